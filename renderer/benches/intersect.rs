@@ -1,0 +1,2 @@
+//! PLACEHOLDER (being written): criterion bench of every intersection method.
+fn main() {}

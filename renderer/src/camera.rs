@@ -1,0 +1,315 @@
+//! The lecture's camera: P0, t, u, r, θ, d, w, h, ρ, H_d, W_d, C00, P_ij, v_ij.
+
+use crate::ray::Ray;
+use glam::{DVec3, Vec2, Vec3};
+use scene::ResolvedCamera;
+
+/// Why a camera cannot be built.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum CameraError {
+    /// t is zero (or not finite).
+    #[error("the toward vector t is zero or not finite")]
+    ZeroToward,
+    /// u is zero (or not finite).
+    #[error("the up vector u is zero or not finite")]
+    ZeroUp,
+    /// u is parallel to t, so r = t × u is undefined.
+    #[error("the up vector u is parallel to the toward vector t")]
+    UpParallelToToward,
+    /// θ outside (0°, 90°).
+    #[error("the half-height angle θ must lie strictly between 0° and 90°, got {0}°")]
+    Theta(f32),
+    /// d not a positive finite number.
+    #[error("the view-window distance d must be positive, got {0}")]
+    Distance(f32),
+    /// w or h outside 1..=16384.
+    #[error("the image size must be 1..=16384 pixels per side, got {0}×{1}")]
+    Size(u32, u32),
+}
+
+/// The lecture's camera with every derived quantity precomputed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    /// P0, the viewpoint.
+    pub p0: Vec3,
+    /// t, the unit toward vector.
+    pub t: Vec3,
+    /// u, the unit up vector, made orthogonal to t in the plane of t and the given up.
+    pub u: Vec3,
+    /// r = t × u, the unit right vector.
+    pub r: Vec3,
+    /// θ, the half-height angle, in radians.
+    pub theta: f32,
+    /// d, the distance from P0 to the view window.
+    pub d: f32,
+    /// w, the image width in pixels.
+    pub w: u32,
+    /// h, the image height in pixels.
+    pub h: u32,
+    /// ρ = w / h, the aspect ratio.
+    pub rho: f32,
+    /// H_d = 2 d tan θ, the view window's height.
+    pub h_d: f32,
+    /// W_d = ρ H_d, the view window's width.
+    pub w_d: f32,
+    /// C00 = P0 + d t + (H_d/2) u − (W_d/2) r, the view window's top-left corner.
+    pub c00: Vec3,
+}
+
+impl Camera {
+    /// Builds the camera from the scene's inputs. t is normalised; u is made
+    /// orthogonal to t (Gram–Schmidt in f64, so the basis is orthonormal to
+    /// f32 precision); d defaults to the lecture's h / (2 tan θ).
+    pub fn new(input: &ResolvedCamera) -> Result<Self, CameraError> {
+        let (w, h) = (input.width, input.height);
+        if !(1..=scene::Camera::MAX_SIZE).contains(&w)
+            || !(1..=scene::Camera::MAX_SIZE).contains(&h)
+        {
+            return Err(CameraError::Size(w, h));
+        }
+        if !(input.theta_deg > 0.0 && input.theta_deg < 90.0) {
+            return Err(CameraError::Theta(input.theta_deg));
+        }
+        let t = input
+            .toward
+            .as_dvec3()
+            .try_normalize()
+            .ok_or(CameraError::ZeroToward)?;
+        let up = input
+            .up
+            .as_dvec3()
+            .try_normalize()
+            .ok_or(CameraError::ZeroUp)?;
+        let u_perp = up - up.dot(t) * t;
+        if u_perp.length() < 1e-6 {
+            return Err(CameraError::UpParallelToToward);
+        }
+        let u: DVec3 = u_perp.normalize();
+        let r = t.cross(u);
+        let theta = input.theta_deg.to_radians();
+        let d = match input.d {
+            Some(d) => d,
+            None => h as f32 / (2.0 * theta.tan()),
+        };
+        if !(d > 0.0 && d.is_finite()) {
+            return Err(CameraError::Distance(d));
+        }
+        let (t, u, r) = (t.as_vec3(), u.as_vec3(), r.as_vec3());
+        let rho = w as f32 / h as f32;
+        let h_d = 2.0 * d * theta.tan();
+        let w_d = rho * h_d;
+        let p0 = input.eye;
+        let c00 = p0 + Self::corner_offset(d, t, u, r, h_d, w_d);
+        Ok(Self {
+            p0,
+            t,
+            u,
+            r,
+            theta,
+            d,
+            w,
+            h,
+            rho,
+            h_d,
+            w_d,
+            c00,
+        })
+    }
+
+    /// C00 − P0 = d t + (H_d/2) u − (W_d/2) r.
+    fn corner_offset(d: f32, t: Vec3, u: Vec3, r: Vec3, h_d: f32, w_d: f32) -> Vec3 {
+        d * t + (h_d / 2.0) * u - (w_d / 2.0) * r
+    }
+
+    /// The point on the view window at pixel coordinates (i + x, j + y) minus
+    /// P0: the lecture's P_ij − P0 with the ½ replaced by `offset`. Formed
+    /// relative to P0 so far-away cameras keep their precision.
+    fn window_offset(&self, i: u32, j: u32, offset: Vec2) -> Vec3 {
+        let corner = Self::corner_offset(self.d, self.t, self.u, self.r, self.h_d, self.w_d);
+        corner + ((i as f32 + offset.x) * (self.w_d / self.w as f32)) * self.r
+            - ((j as f32 + offset.y) * (self.h_d / self.h as f32)) * self.u
+    }
+
+    /// P_ij = C00 + (i + ½)(W_d/w) r − (j + ½)(H_d/h) u, the centre of pixel (i, j) on the view window.
+    pub fn pixel_center(&self, i: u32, j: u32) -> Vec3 {
+        self.p0 + self.window_offset(i, j, Vec2::splat(0.5))
+    }
+
+    /// v_ij = (P_ij − P0)/‖P_ij − P0‖ with the ½ replaced by `offset` in [0, 1)²
+    /// (jittered samples; `Vec2::splat(0.5)` is the pixel centre).
+    pub fn direction(&self, i: u32, j: u32, offset: Vec2) -> Vec3 {
+        self.window_offset(i, j, offset).normalize()
+    }
+
+    /// R_ij = (P0, v_ij): the primary ray through pixel (i, j) at `offset`.
+    pub fn ray(&self, i: u32, j: u32, offset: Vec2) -> Ray {
+        Ray::new(self.p0, self.direction(i, j, offset))
+    }
+
+    /// The ray through the pixel centre P_ij.
+    pub fn center_ray(&self, i: u32, j: u32) -> Ray {
+        self.ray(i, j, Vec2::splat(0.5))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn input() -> ResolvedCamera {
+        ResolvedCamera {
+            eye: Vec3::new(0.0, 0.0, 0.0),
+            toward: Vec3::new(0.0, 0.0, -1.0),
+            up: Vec3::Y,
+            theta_deg: 45.0,
+            d: Some(1.0),
+            width: 4,
+            height: 2,
+        }
+    }
+
+    #[test]
+    fn derived_values_match_hand_computation() {
+        let c = Camera::new(&input()).expect("valid");
+        // r = t × u = (0,0,−1) × (0,1,0) = (1,0,0).
+        assert!((c.r - Vec3::X).length() < 1e-7);
+        assert_eq!(c.rho, 2.0);
+        assert!((c.h_d - 2.0).abs() < 1e-6); // 2 · 1 · tan 45°
+        assert!((c.w_d - 4.0).abs() < 1e-6);
+        // C00 = (0,0,0) + 1·(0,0,−1) + 1·(0,1,0) − 2·(1,0,0).
+        assert!((c.c00 - Vec3::new(-2.0, 1.0, -1.0)).length() < 1e-6);
+        // P_00 = C00 + ½·1·r − ½·1·u; P_31 = C00 + 3.5 r − 1.5 u.
+        assert!((c.pixel_center(0, 0) - Vec3::new(-1.5, 0.5, -1.0)).length() < 1e-6);
+        assert!((c.pixel_center(3, 1) - Vec3::new(1.5, -0.5, -1.0)).length() < 1e-6);
+        let v = c.center_ray(3, 1).dir;
+        assert!((v - Vec3::new(1.5, -0.5, -1.0).normalize()).length() < 1e-6);
+    }
+
+    #[test]
+    fn default_distance_makes_the_window_h_pixels_high() {
+        let mut inp = input();
+        inp.d = None;
+        inp.theta_deg = 30.0;
+        let c = Camera::new(&inp).expect("valid");
+        // d = h / (2 tan θ) ⇒ H_d = h and W_d = w, as in the lecture.
+        assert!(
+            (c.h_d - 2.0).abs() < 1e-5 && (c.w_d - 4.0).abs() < 1e-5,
+            "{c:?}"
+        );
+    }
+
+    #[test]
+    fn degenerate_inputs_are_errors() {
+        let cases = [
+            (
+                ResolvedCamera {
+                    toward: Vec3::ZERO,
+                    ..input()
+                },
+                CameraError::ZeroToward,
+            ),
+            (
+                ResolvedCamera {
+                    up: Vec3::ZERO,
+                    ..input()
+                },
+                CameraError::ZeroUp,
+            ),
+            (
+                ResolvedCamera {
+                    up: Vec3::new(0.0, 0.0, 3.0),
+                    ..input()
+                },
+                CameraError::UpParallelToToward,
+            ),
+            (
+                ResolvedCamera {
+                    theta_deg: 0.0,
+                    ..input()
+                },
+                CameraError::Theta(0.0),
+            ),
+            (
+                ResolvedCamera {
+                    theta_deg: 90.0,
+                    ..input()
+                },
+                CameraError::Theta(90.0),
+            ),
+            (
+                ResolvedCamera {
+                    theta_deg: f32::NAN,
+                    ..input()
+                },
+                CameraError::Theta(f32::NAN),
+            ),
+            (
+                ResolvedCamera {
+                    d: Some(0.0),
+                    ..input()
+                },
+                CameraError::Distance(0.0),
+            ),
+            (
+                ResolvedCamera {
+                    width: 0,
+                    ..input()
+                },
+                CameraError::Size(0, 2),
+            ),
+            (
+                ResolvedCamera {
+                    height: 16385,
+                    ..input()
+                },
+                CameraError::Size(4, 16385),
+            ),
+        ];
+        for (inp, expected) in cases {
+            let err = Camera::new(&inp).expect_err("must fail");
+            // NaN ≠ NaN, so compare the messages.
+            assert_eq!(err.to_string(), expected.to_string());
+        }
+    }
+
+    #[test]
+    fn ray_direction_is_independent_of_view_window_distance() {
+        let near = Camera::new(&ResolvedCamera {
+            d: Some(1e-3),
+            ..input()
+        })
+        .expect("valid");
+        let far = Camera::new(&ResolvedCamera {
+            d: Some(1e3),
+            ..input()
+        })
+        .expect("valid");
+        for (i, j) in [(0, 0), (3, 1), (2, 0)] {
+            let dv = near.center_ray(i, j).dir - far.center_ray(i, j).dir;
+            assert!(dv.length() < 1e-6, "{i} {j} {dv}");
+        }
+    }
+
+    proptest! {
+        #[test]
+        fn basis_is_orthonormal_for_any_valid_t_and_u(
+            tx in -10.0f32..10.0, ty in -10.0f32..10.0, tz in -10.0f32..10.0,
+            ux in -10.0f32..10.0, uy in -10.0f32..10.0, uz in -10.0f32..10.0,
+            theta in 0.01f32..89.99,
+        ) {
+            let toward = Vec3::new(tx, ty, tz);
+            let up = Vec3::new(ux, uy, uz);
+            prop_assume!(toward.length() > 1e-3 && up.length() > 1e-3);
+            prop_assume!(toward.normalize().cross(up.normalize()).length() > 1e-3);
+            let c = Camera::new(&ResolvedCamera { toward, up, theta_deg: theta, ..input() }).expect("valid");
+            for v in [c.t, c.u, c.r] {
+                prop_assert!((v.length() - 1.0).abs() < 1e-6);
+            }
+            prop_assert!(c.t.dot(c.u).abs() < 1e-6 && c.t.dot(c.r).abs() < 1e-6 && c.u.dot(c.r).abs() < 1e-6);
+            // u stays in the plane of t and the given up, on the same side as up.
+            prop_assert!(c.u.dot(up) > 0.0);
+            prop_assert!(c.r.dot(toward.cross(up)).abs() > 0.0);
+        }
+    }
+}

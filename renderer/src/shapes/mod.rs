@@ -1,0 +1,151 @@
+//! Shapes are data: a closed enum with one file per variant, each with its
+//! intersection and its tests beside it.
+//!
+//! Intersection is two-phase (as in pbrt): [`Shape::intersect`] returns only
+//! the distance α of the nearest hit inside the ray's interval, cheap enough
+//! to run against every candidate; [`Shape::surface`] computes the hit point
+//! and normal for the one closest hit.
+
+mod cone;
+mod cuboid;
+mod cylinder;
+mod plane;
+pub mod quadratic;
+mod sphere;
+mod torus;
+mod triangle;
+
+pub use cone::Cone;
+pub use cuboid::Cuboid;
+pub use cylinder::Cylinder;
+pub use plane::Plane;
+pub use sphere::Sphere;
+pub use torus::Torus;
+pub use triangle::Triangle;
+
+use crate::ray::Ray;
+use glam::Vec3;
+use scene::Geometry;
+
+/// Which intersection formula to use where the lecture gives one.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Method {
+    /// The lecture's formulas exactly: the sphere's quadratic in α, the
+    /// triangle's ray–plane α followed by the 2×2 barycentric solve.
+    Lecture,
+    /// Numerically robust forms: Ray Tracing Gems ch. 7 for the sphere,
+    /// watertight Woop–Benthin–Wald 2013 for the triangle.
+    #[default]
+    Robust,
+}
+
+/// Where a ray meets a surface.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Surface {
+    /// The hit point, placed on the surface as accurately as the shape can.
+    pub point: Vec3,
+    /// The unit geometric normal, pointing out of closed shapes (for
+    /// triangles: along (t1 − t0) × (t2 − t0); for planes: along n).
+    pub normal: Vec3,
+}
+
+/// Every primitive raylab can render.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Shape {
+    /// A sphere.
+    Sphere(Sphere),
+    /// A triangle.
+    Triangle(Triangle),
+    /// An oriented box.
+    Box(Cuboid),
+    /// A capped cylinder.
+    Cylinder(Cylinder),
+    /// A capped cone.
+    Cone(Cone),
+    /// A torus.
+    Torus(Torus),
+    /// An infinite plane.
+    Plane(Plane),
+}
+
+impl Shape {
+    /// The renderable shape for a resolved scene geometry.
+    pub fn from_geometry(geometry: &Geometry) -> Shape {
+        match *geometry {
+            Geometry::Sphere { center, radius } => Shape::Sphere(Sphere::new(center, radius)),
+            Geometry::Triangle { t0, t1, t2 } => Shape::Triangle(Triangle::new(t0, t1, t2)),
+            Geometry::Box {
+                center,
+                size,
+                rotate,
+            } => Shape::Box(Cuboid::new(center, size, rotate)),
+            Geometry::Cylinder {
+                base,
+                radius,
+                height,
+                rotate,
+            } => Shape::Cylinder(Cylinder::new(base, radius, height, rotate)),
+            Geometry::Cone {
+                base,
+                radius,
+                height,
+                rotate,
+            } => Shape::Cone(Cone::new(base, radius, height, rotate)),
+            Geometry::Torus {
+                center,
+                major,
+                minor,
+                rotate,
+            } => Shape::Torus(Torus::new(center, major, minor, rotate)),
+            Geometry::Plane { point, normal } => Shape::Plane(Plane::new(point, normal)),
+        }
+    }
+
+    /// α of the nearest hit inside the ray's interval, or `None`.
+    /// `method` matters for the sphere and the triangle only.
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, method: Method) -> Option<f32> {
+        match self {
+            Shape::Sphere(s) => s.intersect(ray, method),
+            Shape::Triangle(s) => s.intersect(ray, method),
+            Shape::Box(s) => s.intersect(ray),
+            Shape::Cylinder(s) => s.intersect(ray),
+            Shape::Cone(s) => s.intersect(ray),
+            Shape::Torus(s) => s.intersect(ray),
+            Shape::Plane(s) => s.intersect(ray),
+        }
+    }
+
+    /// Hit point and normal of the hit at distance `alpha` along `ray`.
+    pub fn surface(&self, ray: &Ray, alpha: f32) -> Surface {
+        match self {
+            Shape::Sphere(s) => s.surface(ray, alpha),
+            Shape::Triangle(s) => s.surface(ray, alpha),
+            Shape::Box(s) => s.surface(ray, alpha),
+            Shape::Cylinder(s) => s.surface(ray, alpha),
+            Shape::Cone(s) => s.surface(ray, alpha),
+            Shape::Torus(s) => s.surface(ray, alpha),
+            Shape::Plane(s) => s.surface(ray, alpha),
+        }
+    }
+
+    /// Whether the shape encloses a volume (rays can start inside it).
+    pub fn is_closed(&self) -> bool {
+        !matches!(self, Shape::Triangle(_) | Shape::Plane(_))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shape_stays_small() {
+        // Shapes are stored by value in flat arrays; keep them compact.
+        assert!(
+            std::mem::size_of::<Shape>() <= 80,
+            "{}",
+            std::mem::size_of::<Shape>()
+        );
+    }
+}

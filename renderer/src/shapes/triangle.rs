@@ -1,0 +1,268 @@
+//! The triangle: the lecture's ray–plane α and 2×2 barycentric solve, and the
+//! watertight test of Woop, Benthin and Wald (JCGT 2013).
+
+use super::{Method, Surface};
+use crate::ray::Ray;
+use glam::{DVec3, Vec3};
+
+/// The triangle T with vertices t0, t1, t2 (edges v1 = t1 − t0, v2 = t2 − t0).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Triangle {
+    /// t0.
+    pub t0: Vec3,
+    /// t1.
+    pub t1: Vec3,
+    /// t2.
+    pub t2: Vec3,
+}
+
+/// A hit with the lecture's unknowns: P0 + α v = t0 + β v1 + γ v2.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TriangleHit {
+    /// α, the distance along the ray.
+    pub alpha: f32,
+    /// β, the weight of v1 (of t1).
+    pub beta: f32,
+    /// γ, the weight of v2 (of t2).
+    pub gamma: f32,
+}
+
+impl Triangle {
+    /// The triangle t0, t1, t2.
+    pub fn new(t0: Vec3, t1: Vec3, t2: Vec3) -> Self {
+        Self { t0, t1, t2 }
+    }
+
+    /// α of the hit inside the ray's interval, if any.
+    pub fn intersect(&self, ray: &Ray, method: Method) -> Option<f32> {
+        self.hit(ray, method).map(|h| h.alpha)
+    }
+
+    /// The hit with its barycentric coordinates.
+    pub fn hit(&self, ray: &Ray, method: Method) -> Option<TriangleHit> {
+        match method {
+            Method::Lecture => self.lecture_hit(ray),
+            Method::Robust => self.watertight_hit(ray),
+        }
+    }
+
+    /// The lecture, step by step: n = v1 × v2; α = (n · u)/(n · v) with
+    /// u = t0 − P0; s = α v − u; then solve
+    /// s · v1 = β (v1 · v1) + γ (v1 · v2), s · v2 = β (v1 · v2) + γ (v2 · v2)
+    /// and accept β ≥ 0, γ ≥ 0, β + γ ≤ 1.
+    fn lecture_hit(&self, ray: &Ray) -> Option<TriangleHit> {
+        let v1 = self.t1 - self.t0;
+        let v2 = self.t2 - self.t0;
+        let n = v1.cross(v2);
+        let n_dot_v = n.dot(ray.dir);
+        if n_dot_v == 0.0 {
+            // Parallel to the plane, or lying in it: no single hit.
+            return None;
+        }
+        let u = self.t0 - ray.origin;
+        let alpha = n.dot(u) / n_dot_v;
+        if !alpha.is_finite() || !ray.contains(alpha) {
+            return None;
+        }
+        let s = alpha * ray.dir - u;
+        let (v11, v12, v22) = (v1.dot(v1), v1.dot(v2), v2.dot(v2));
+        let (sv1, sv2) = (s.dot(v1), s.dot(v2));
+        let det = v11 * v22 - v12 * v12;
+        let beta = (sv1 * v22 - sv2 * v12) / det;
+        let gamma = (v11 * sv2 - v12 * sv1) / det;
+        // Written so that NaN fails every comparison and is rejected.
+        let inside = beta >= 0.0 && gamma >= 0.0 && beta + gamma <= 1.0;
+        inside.then_some(TriangleHit { alpha, beta, gamma })
+    }
+
+    /// Watertight ray–triangle intersection (Woop, Benthin, Wald 2013): shear
+    /// the vertices into the ray's frame so the test is three 2D edge
+    /// functions, recomputed in f64 when one is exactly zero. Rays through a
+    /// shared edge or vertex of a mesh hit at least one of its triangles.
+    fn watertight_hit(&self, ray: &Ray) -> Option<TriangleHit> {
+        let d = ray.dir;
+        let kz = d.abs().max_position();
+        let mut kx = (kz + 1) % 3;
+        let mut ky = (kx + 1) % 3;
+        if d[kz] < 0.0 {
+            std::mem::swap(&mut kx, &mut ky);
+        }
+        let sx = d[kx] / d[kz];
+        let sy = d[ky] / d[kz];
+        let sz = 1.0 / d[kz];
+
+        let a = self.t0 - ray.origin;
+        let b = self.t1 - ray.origin;
+        let c = self.t2 - ray.origin;
+        let (ax, ay) = (a[kx] - sx * a[kz], a[ky] - sy * a[kz]);
+        let (bx, by) = (b[kx] - sx * b[kz], b[ky] - sy * b[kz]);
+        let (cx, cy) = (c[kx] - sx * c[kz], c[ky] - sy * c[kz]);
+
+        let mut eu = cx * by - cy * bx;
+        let mut ev = ax * cy - ay * cx;
+        let mut ew = bx * ay - by * ax;
+        if eu == 0.0 || ev == 0.0 || ew == 0.0 {
+            let f =
+                |p: f32, q: f32, r: f32, s: f32| (p as f64 * q as f64 - r as f64 * s as f64) as f32;
+            eu = f(cx, by, cy, bx);
+            ev = f(ax, cy, ay, cx);
+            ew = f(bx, ay, by, ax);
+        }
+        if (eu < 0.0 || ev < 0.0 || ew < 0.0) && (eu > 0.0 || ev > 0.0 || ew > 0.0) {
+            return None;
+        }
+        let det = eu + ev + ew;
+        if det == 0.0 {
+            return None;
+        }
+        let t_scaled = eu * (sz * a[kz]) + ev * (sz * b[kz]) + ew * (sz * c[kz]);
+        let alpha = t_scaled / det;
+        if !alpha.is_finite() || !ray.contains(alpha) {
+            return None;
+        }
+        Some(TriangleHit {
+            alpha,
+            beta: ev / det,
+            gamma: ew / det,
+        })
+    }
+
+    /// β and γ of a point in the triangle's plane, by the lecture's 2×2 solve
+    /// (in f64, so the reconstructed point is accurate).
+    pub fn barycentrics(&self, p: Vec3) -> (f32, f32) {
+        let t0 = self.t0.as_dvec3();
+        let v1 = self.t1.as_dvec3() - t0;
+        let v2 = self.t2.as_dvec3() - t0;
+        let s: DVec3 = p.as_dvec3() - t0;
+        let (v11, v12, v22) = (v1.dot(v1), v1.dot(v2), v2.dot(v2));
+        let (sv1, sv2) = (s.dot(v1), s.dot(v2));
+        let det = v11 * v22 - v12 * v12;
+        let beta = (sv1 * v22 - sv2 * v12) / det;
+        let gamma = (v11 * sv2 - v12 * sv1) / det;
+        (beta as f32, gamma as f32)
+    }
+
+    /// The unit normal along (t1 − t0) × (t2 − t0).
+    pub fn normal(&self) -> Vec3 {
+        (self.t1 - self.t0)
+            .cross(self.t2 - self.t0)
+            .try_normalize()
+            .unwrap_or(Vec3::Y)
+    }
+
+    /// The hit point rebuilt as t0 + β v1 + γ v2 (on the plane), and the normal.
+    pub fn surface(&self, ray: &Ray, alpha: f32) -> Surface {
+        let (beta, gamma) = self.barycentrics(ray.at(alpha));
+        let t0 = self.t0.as_dvec3();
+        let point =
+            t0 + beta as f64 * (self.t1.as_dvec3() - t0) + gamma as f64 * (self.t2.as_dvec3() - t0);
+        Surface {
+            point: point.as_vec3(),
+            normal: self.normal(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    const METHODS: [Method; 2] = [Method::Lecture, Method::Robust];
+
+    fn lecture_triangle() -> Triangle {
+        Triangle::new(
+            Vec3::new(-1.0, 0.0, 0.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+        )
+    }
+
+    #[test]
+    fn hit_has_the_expected_alpha_beta_gamma() {
+        let ray = Ray::new(Vec3::new(0.0, 0.5, 2.0), -Vec3::Z);
+        for m in METHODS {
+            let h = lecture_triangle().hit(&ray, m).expect("hit");
+            assert!((h.alpha - 2.0).abs() < 1e-6, "{m:?} {h:?}");
+            // (0, 0.5) = t0 + β (2, 0) + γ (1, 1) → γ = 0.5, β = 0.25.
+            assert!(
+                (h.beta - 0.25).abs() < 1e-6 && (h.gamma - 0.5).abs() < 1e-6,
+                "{m:?} {h:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn ray_outside_the_edges_misses() {
+        let ray = Ray::new(Vec3::new(0.9, 0.9, 2.0), -Vec3::Z);
+        for m in METHODS {
+            assert_eq!(lecture_triangle().intersect(&ray, m), None, "{m:?}");
+        }
+    }
+
+    #[test]
+    fn triangle_behind_the_ray_misses() {
+        let ray = Ray::new(Vec3::new(0.0, 0.5, 2.0), Vec3::Z);
+        for m in METHODS {
+            assert_eq!(lecture_triangle().intersect(&ray, m), None, "{m:?}");
+        }
+    }
+
+    #[test]
+    fn parallel_ray_never_hits_and_never_yields_nan() {
+        for origin in [Vec3::new(0.0, 0.5, 1.0), Vec3::new(-2.0, 0.5, 0.0)] {
+            let ray = Ray::new(origin, Vec3::X);
+            for m in METHODS {
+                assert_eq!(
+                    lecture_triangle().intersect(&ray, m),
+                    None,
+                    "{m:?} {origin}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn back_side_is_hit_too() {
+        let ray = Ray::new(Vec3::new(0.0, 0.5, -2.0), Vec3::Z);
+        for m in METHODS {
+            assert_eq!(lecture_triangle().intersect(&ray, m), Some(2.0), "{m:?}");
+        }
+    }
+
+    #[test]
+    fn watertight_test_never_leaks_through_a_shared_edge() {
+        // The quad [0,1]² at z = 0 split along its diagonal; rays aimed exactly
+        // at diagonal points must hit one of the two triangles.
+        let a = Triangle::new(Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0));
+        let b = Triangle::new(Vec3::ZERO, Vec3::new(1.0, 1.0, 0.0), Vec3::Y);
+        let origin = Vec3::new(0.3123, -0.77, 3.1);
+        for k in 1..1000 {
+            let s = k as f32 / 1000.0;
+            let ray = Ray::new(origin, (Vec3::new(s, s, 0.0) - origin).normalize());
+            let hit = a
+                .intersect(&ray, Method::Robust)
+                .or(b.intersect(&ray, Method::Robust));
+            assert!(hit.is_some(), "leak at s = {s}");
+        }
+    }
+
+    proptest! {
+        #[test]
+        fn surface_point_is_on_the_triangle_plane(
+            b in 0.0f32..0.5, g in 0.0f32..0.5, oz in 0.5f32..100.0, ox in -5.0f32..5.0,
+        ) {
+            let t = Triangle::new(Vec3::new(1.0, 2.0, 3.0), Vec3::new(4.0, 2.5, 3.5), Vec3::new(2.0, 6.0, 2.0));
+            let target = t.t0 + b * (t.t1 - t.t0) + g * (t.t2 - t.t0);
+            let origin = target + Vec3::new(ox, 0.3, oz);
+            let ray = Ray::new(origin, (target - origin).normalize());
+            for m in METHODS {
+                let alpha = t.intersect(&ray, m);
+                prop_assert!(alpha.is_some(), "{:?}", m);
+                let surf = t.surface(&ray, alpha.unwrap_or_default());
+                let off_plane = (surf.point - t.t0).dot(t.normal()).abs();
+                prop_assert!(off_plane < 1e-5, "{off_plane}");
+            }
+        }
+    }
+}

@@ -1,0 +1,24 @@
+//! raylab's scene: the data model, the XML format (read and write), defaults
+//! and validation. No rendering and no GUI here.
+//!
+//! ```
+//! let scene = scene::read_str(r#"<scene> <sphere color="red"> </scene>"#, "inline.xml").unwrap();
+//! assert_eq!(scene.objects.len(), 1);
+//! ```
+
+pub mod color;
+mod error;
+pub mod materials;
+pub mod model;
+mod read;
+mod resolve;
+mod resolved;
+mod write;
+pub mod layout;
+
+pub use error::{InvalidScene, SceneError};
+pub use model::*;
+pub use read::{read_file, read_str};
+pub use resolve::resolve;
+pub use resolved::*;
+pub use write::write_string;

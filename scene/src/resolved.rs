@@ -1,0 +1,134 @@
+//! The scene with every default filled in: what a renderer consumes.
+
+use crate::model::{BaseMaterial, Light};
+use glam::Vec3;
+
+/// A scene with concrete positions, camera, lights and materials.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ResolvedScene {
+    /// The camera with P0 and t decided.
+    pub camera: ResolvedCamera,
+    /// The lights to shade with (the scene's own, or the default key + ambient).
+    pub lights: Vec<Light>,
+    /// The objects in document order; an object's index is its object id.
+    pub objects: Vec<ResolvedObject>,
+}
+
+/// The lecture's camera inputs, all decided; t and u are as given (not normalised).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ResolvedCamera {
+    /// P0, the viewpoint.
+    pub eye: Vec3,
+    /// t, the toward vector (any non-zero length).
+    pub toward: Vec3,
+    /// u, the up vector (any non-zero length, not parallel to t).
+    pub up: Vec3,
+    /// θ, the half-height angle in degrees.
+    pub theta_deg: f32,
+    /// d, the view-window distance; `None` means h / (2 tan θ).
+    pub d: Option<f32>,
+    /// w, image width in pixels.
+    pub width: u32,
+    /// h, image height in pixels.
+    pub height: u32,
+}
+
+/// An object with concrete geometry and material.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ResolvedObject {
+    /// The object's name, or `<tag> <index>` when it has none.
+    pub name: String,
+    /// Concrete geometry.
+    pub geometry: Geometry,
+    /// Concrete material.
+    pub material: Material,
+}
+
+/// Concrete geometry in world space (the floor has become a plane).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Geometry {
+    /// Sphere with centre C and radius r.
+    Sphere {
+        /// C.
+        center: Vec3,
+        /// r.
+        radius: f32,
+    },
+    /// Box centred at `center`, edge lengths `size`, rotated by `rotate` degrees (x, then y, then z).
+    Box {
+        /// Centre.
+        center: Vec3,
+        /// Edge lengths.
+        size: Vec3,
+        /// Degrees about x, then y, then z.
+        rotate: Vec3,
+    },
+    /// Capped cylinder on the disk at `base`, axis along the rotated +y.
+    Cylinder {
+        /// Centre of the bottom disk.
+        base: Vec3,
+        /// Radius.
+        radius: f32,
+        /// Height.
+        height: f32,
+        /// Degrees about x, then y, then z.
+        rotate: Vec3,
+    },
+    /// Capped cone on the disk at `base`, apex at base + height·(rotated y).
+    Cone {
+        /// Centre of the base disk.
+        base: Vec3,
+        /// Base radius.
+        radius: f32,
+        /// Height.
+        height: f32,
+        /// Degrees about x, then y, then z.
+        rotate: Vec3,
+    },
+    /// Torus in the rotated xz-plane around `center`.
+    Torus {
+        /// Centre.
+        center: Vec3,
+        /// R.
+        major: f32,
+        /// r.
+        minor: f32,
+        /// Degrees about x, then y, then z.
+        rotate: Vec3,
+    },
+    /// Triangle t0, t1, t2.
+    Triangle {
+        /// t0.
+        t0: Vec3,
+        /// t1.
+        t1: Vec3,
+        /// t2.
+        t2: Vec3,
+    },
+    /// Infinite plane through `point` with normal `normal` (not normalised).
+    Plane {
+        /// A point on the plane.
+        point: Vec3,
+        /// The normal.
+        normal: Vec3,
+    },
+}
+
+/// A concrete material: a base with every parameter decided.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Material {
+    /// Which built-in behaviour.
+    pub base: BaseMaterial,
+    /// Linear RGB albedo (matte, plastic, marble), reflectance (mirror, metal) or tint (glass).
+    pub color: Vec3,
+    /// Index of refraction inside (glass).
+    pub ior: f32,
+    /// Blinn-Phong exponent.
+    pub shininess: f32,
+    /// Blinn-Phong highlight strength in [0, 1].
+    pub specular: f32,
+    /// Mirror-reflected fraction in [0, 1] (plastic, marble).
+    pub reflectivity: f32,
+    /// Emitted radiance from the front side.
+    pub emission: Vec3,
+}
