@@ -4,7 +4,22 @@
 //! θ, d, H_d, W_d, C00, P_ij, v_ij); every primitive of the lecture has its
 //! own intersection file under [`shapes`].
 
+pub mod aov;
 pub mod camera;
+pub mod film;
 pub mod frame;
+pub mod integrator;
+pub mod light;
+pub mod offset;
+pub mod optics;
 pub mod ray;
+pub mod sampler;
 pub mod shapes;
+pub mod texture;
+pub mod world;
+
+pub use camera::Camera;
+pub use film::Film;
+pub use integrator::RenderOptions;
+pub use shapes::Method;
+pub use world::{RenderError, World};

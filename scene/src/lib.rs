@@ -8,13 +8,13 @@
 
 pub mod color;
 mod error;
+pub mod layout;
 pub mod materials;
 pub mod model;
 mod read;
 mod resolve;
 mod resolved;
 mod write;
-pub mod layout;
 
 pub use error::{InvalidScene, SceneError};
 pub use model::*;

@@ -1,0 +1,121 @@
+//! Progressive accumulation: each pass adds one jittered sample per pixel.
+
+use crate::integrator::{RenderOptions, whitted};
+use crate::sampler::Sampler;
+use crate::world::World;
+use glam::Vec3;
+use rayon::prelude::*;
+
+/// Rows per parallel work item: bands of rows are the tiles rayon shares out.
+const BAND_ROWS: usize = 4;
+
+/// The radiance of sample `sample` of pixel (i, j): the ray through the
+/// jittered point (i + x, j + y) on the view window, seeded from
+/// (seed, pixel, sample) alone, so it can be re-traced exactly at any time.
+pub fn sample_pixel(world: &World, options: &RenderOptions, i: u32, j: u32, sample: u32) -> Vec3 {
+    let mut sampler = Sampler::for_sample(options.seed, i, j, sample);
+    let ray = world.camera.ray(i, j, sampler.next_2d());
+    whitted(world, &ray, options)
+}
+
+/// A sum of samples per pixel, all pixels having the same sample count.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Film {
+    width: u32,
+    height: u32,
+    sum: Vec<Vec3>,
+    passes: u32,
+    discarded: u64,
+}
+
+impl Film {
+    /// An empty film of `width` × `height` pixels.
+    pub fn new(width: u32, height: u32) -> Self {
+        Self {
+            width,
+            height,
+            sum: vec![Vec3::ZERO; width as usize * height as usize],
+            passes: 0,
+            discarded: 0,
+        }
+    }
+
+    /// Width in pixels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height in pixels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// Samples per pixel so far.
+    pub fn passes(&self) -> u32 {
+        self.passes
+    }
+
+    /// Samples that came out NaN or infinite and were left out (counted, not hidden).
+    pub fn discarded(&self) -> u64 {
+        self.discarded
+    }
+
+    /// Adds one sample to every pixel (pass k traces sample index k), in parallel over bands of rows.
+    pub fn add_pass(&mut self, world: &World, options: &RenderOptions) {
+        let (width, sample) = (self.width as usize, self.passes);
+        let discarded: u64 = self
+            .sum
+            .par_chunks_mut(width * BAND_ROWS)
+            .enumerate()
+            .map(|(band, rows)| {
+                let mut bad = 0;
+                for (k, acc) in rows.iter_mut().enumerate() {
+                    let (i, j) = ((k % width) as u32, (band * BAND_ROWS + k / width) as u32);
+                    let value = sample_pixel(world, options, i, j, sample);
+                    if value.is_finite() {
+                        *acc += value;
+                    } else {
+                        bad += 1;
+                    }
+                }
+                bad
+            })
+            .sum();
+        self.discarded += discarded;
+        self.passes += 1;
+    }
+
+    /// A film with `spp` passes of `world`.
+    pub fn render(world: &World, options: &RenderOptions, spp: u32) -> Film {
+        let mut film = Film::new(world.camera.w, world.camera.h);
+        for _ in 0..spp {
+            film.add_pass(world, options);
+        }
+        film
+    }
+
+    /// The mean radiance of pixel (i, j).
+    pub fn pixel(&self, i: u32, j: u32) -> Vec3 {
+        self.sum[j as usize * self.width as usize + i as usize] / self.passes.max(1) as f32
+    }
+
+    /// The mean radiance of every pixel, row by row from the top.
+    pub fn linear(&self) -> Vec<Vec3> {
+        let scale = 1.0 / self.passes.max(1) as f32;
+        self.sum.iter().map(|s| *s * scale).collect()
+    }
+
+    /// The image as 8-bit sRGB (clamped), row by row from the top.
+    pub fn to_srgb8(&self) -> Vec<u8> {
+        self.linear()
+            .into_iter()
+            .flat_map(linear_to_srgb8)
+            .collect()
+    }
+}
+
+/// Linear radiance to an 8-bit sRGB pixel, clamping to [0, 1].
+pub fn linear_to_srgb8(c: Vec3) -> [u8; 3] {
+    let encode = |x: f32| (scene::color::linear_to_srgb(x.clamp(0.0, 1.0)) * 255.0).round() as u8;
+    [encode(c.x), encode(c.y), encode(c.z)]
+}

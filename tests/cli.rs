@@ -1,0 +1,162 @@
+//! End-to-end tests of `raylab render`: the real binary on real files.
+
+mod support;
+
+use support::{asset, raylab, read_png, render};
+
+#[test]
+fn every_shipped_scene_renders_to_a_lit_png() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    for name in ["seed.xml", "primitives.xml", "cornell.xml", "glass.xml"] {
+        let out = dir.path().join(name.replace(".xml", ".png"));
+        let output = render(
+            &asset(name),
+            &out,
+            &["--width", "64", "--height", "48", "--spp", "2"],
+        );
+        let stdout = String::from_utf8_lossy(&output.stdout);
+        assert!(
+            stdout.contains(out.to_str().expect("utf-8")),
+            "prints the output path: {stdout}"
+        );
+        assert!(stdout.contains(" s"), "prints the render time: {stdout}");
+        let img = read_png(&out);
+        assert_eq!(img.dimensions(), (64, 48));
+        let lit = img.pixels().filter(|p| p.0.iter().any(|&c| c > 40)).count();
+        assert!(
+            lit > 64 * 48 / 4,
+            "{name}: most of the image is lit ({lit} pixels)"
+        );
+    }
+}
+
+#[test]
+fn malformed_scene_reports_file_line_and_column_with_exit_code_2() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let scene = dir.path().join("bad.xml");
+    std::fs::write(&scene, "<scene>\n  <sphere radius=\"-1\"/>\n</scene>\n").expect("write");
+    let out = dir.path().join("bad.png");
+    let output = raylab(&[
+        "render",
+        scene.to_str().expect("utf-8"),
+        "-o",
+        out.to_str().expect("utf-8"),
+    ]);
+    assert_eq!(output.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    let place = format!("{}:2:", scene.display());
+    assert!(
+        stderr.contains(&place) && stderr.contains("radius"),
+        "{stderr}"
+    );
+    assert!(!out.exists(), "no image is written for a bad scene");
+}
+
+#[test]
+fn missing_scene_file_and_unknown_format_are_clear_errors() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("x.png");
+    let output = raylab(&[
+        "render",
+        "/nonexistent/scene.xml",
+        "-o",
+        out.to_str().expect("utf-8"),
+    ]);
+    assert_eq!(output.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&output.stderr).contains("/nonexistent/scene.xml"));
+
+    let bmp = dir.path().join("x.bmp");
+    let output = raylab(&[
+        "render",
+        asset("seed.xml").to_str().expect("utf-8"),
+        "-o",
+        bmp.to_str().expect("utf-8"),
+    ]);
+    assert_eq!(output.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&output.stderr).contains(".png or .exr"));
+}
+
+#[test]
+fn image_is_independent_of_view_window_distance() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mut images = Vec::new();
+    for d in ["0.001", "1", "1000"] {
+        let scene = dir.path().join(format!("d{d}.xml"));
+        std::fs::write(
+            &scene,
+            format!(
+                r#"<scene>
+  <camera eye="0 2 7" toward="0 -0.25 -1" theta="25" d="{d}" width="96" height="64"/>
+  <sphere center="-1.2 1 0" radius="1" color="red"/>
+  <box center="1.3 0.75 0" size="1.5 1.5 1.5" rotate="0 30 0" color="purple"/>
+  <floor material="marble"/>
+</scene>"#
+            ),
+        )
+        .expect("write");
+        let out = dir.path().join(format!("d{d}.png"));
+        render(&scene, &out, &["--spp", "2"]);
+        images.push(read_png(&out));
+    }
+    for other in &images[1..] {
+        let differing = images[0]
+            .pixels()
+            .zip(other.pixels())
+            .filter(|(a, b)| a.0.iter().zip(b.0.iter()).any(|(x, y)| x.abs_diff(*y) > 1));
+        assert_eq!(differing.count(), 0, "only float rounding may differ");
+    }
+}
+
+#[test]
+fn image_is_identical_for_any_thread_count() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mut bytes = Vec::new();
+    for threads in ["1", "2"] {
+        let out = dir.path().join(format!("t{threads}.png"));
+        let output = std::process::Command::new(env!("CARGO_BIN_EXE_raylab"))
+            .env("RAYON_NUM_THREADS", threads)
+            .args([
+                "render",
+                asset("glass.xml").to_str().expect("utf-8"),
+                "-o",
+                out.to_str().expect("utf-8"),
+            ])
+            .args(["--width", "80", "--height", "50", "--spp", "3"])
+            .output()
+            .expect("runs");
+        assert!(output.status.success());
+        bytes.push(read_png(&out).into_raw());
+    }
+    assert!(bytes[0] == bytes[1], "1 and 2 threads give the same pixels");
+}
+
+#[test]
+fn depth_exr_has_one_z_channel_with_infinite_misses() {
+    use exr::prelude::*;
+    let dir = tempfile::tempdir().expect("tempdir");
+    let scene = dir.path().join("one-sphere.xml");
+    std::fs::write(
+        &scene,
+        r#"<scene><camera eye="0 0 5" toward="0 0 -1" theta="30" width="32" height="32"/><sphere center="0 0 0" radius="1"/></scene>"#,
+    )
+    .expect("write");
+    let out = dir.path().join("depth.exr");
+    render(&scene, &out, &["--aov", "depth"]);
+    let image = read_all_flat_layers_from_file(&out).expect("reads");
+    let layer = &image.layer_data[0];
+    let names: Vec<String> = layer
+        .channel_data
+        .list
+        .iter()
+        .map(|c| c.name.to_string())
+        .collect();
+    assert_eq!(names, ["Z"]);
+    let z: Vec<f32> = layer.channel_data.list[0]
+        .sample_data
+        .values_as_f32()
+        .collect();
+    let centre = z[16 * 32 + 16];
+    // The ray through the pixel centre next to the image centre hits the sphere near α = 4.
+    assert!((centre - 4.0).abs() < 0.01, "{centre}");
+    assert!(z[0].is_infinite(), "a corner ray misses: {}", z[0]);
+}
