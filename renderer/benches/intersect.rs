@@ -1,2 +1,169 @@
-//! PLACEHOLDER (being written): criterion bench of every intersection method.
-fn main() {}
+//! Nanoseconds per intersection test, for every shape through
+//! `Shape::intersect`, over a fixed seeded set of rays of which roughly half
+//! hit. Run: `cargo bench -p raylab-renderer --bench intersect`.
+
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use glam::Vec3;
+use renderer::ray::Ray;
+use renderer::shapes::{Method, Shape};
+use scene::Geometry;
+use std::hint::black_box;
+
+/// Rays per benchmark iteration.
+const RAYS: usize = 1024;
+
+/// SplitMix64: a tiny seeded generator, so every run tests the same rays.
+struct SplitMix(u64);
+
+impl SplitMix {
+    fn unit(&mut self) -> f32 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
+    }
+
+    fn dir(&mut self) -> Vec3 {
+        let z = 2.0 * self.unit() - 1.0;
+        let phi = std::f32::consts::TAU * self.unit();
+        let s = (1.0 - z * z).sqrt();
+        Vec3::new(s * phi.cos(), z, s * phi.sin())
+    }
+}
+
+/// Rays from 3–10 units away, aimed at random points of a ball of `spread`
+/// around the origin; `spread` is tuned per shape so that about half hit.
+fn rays(seed: u64, spread: f32) -> Vec<Ray> {
+    let mut rng = SplitMix(seed);
+    (0..RAYS)
+        .map(|_| {
+            let origin = (3.0 + 7.0 * rng.unit()) * rng.dir();
+            let target = spread * rng.unit().cbrt() * rng.dir();
+            Ray::new(origin, (target - origin).normalize())
+        })
+        .collect()
+}
+
+fn shapes() -> Vec<(&'static str, Method, Geometry, f32)> {
+    let rotate = Vec3::new(20.0, 30.0, 40.0);
+    vec![
+        (
+            "sphere/lecture",
+            Method::Lecture,
+            Geometry::Sphere {
+                center: Vec3::ZERO,
+                radius: 1.0,
+            },
+            1.6,
+        ),
+        (
+            "sphere/robust",
+            Method::Robust,
+            Geometry::Sphere {
+                center: Vec3::ZERO,
+                radius: 1.0,
+            },
+            1.6,
+        ),
+        (
+            "triangle/lecture",
+            Method::Lecture,
+            Geometry::Triangle {
+                t0: Vec3::new(-1.0, -1.0, 0.0),
+                t1: Vec3::new(1.0, -1.0, 0.0),
+                t2: Vec3::new(0.0, 1.0, 0.3),
+            },
+            0.8,
+        ),
+        (
+            "triangle/robust",
+            Method::Robust,
+            Geometry::Triangle {
+                t0: Vec3::new(-1.0, -1.0, 0.0),
+                t1: Vec3::new(1.0, -1.0, 0.0),
+                t2: Vec3::new(0.0, 1.0, 0.3),
+            },
+            0.8,
+        ),
+        (
+            "box",
+            Method::Robust,
+            Geometry::Box {
+                center: Vec3::ZERO,
+                size: Vec3::new(1.6, 1.2, 1.0),
+                rotate,
+            },
+            1.4,
+        ),
+        (
+            "cylinder",
+            Method::Robust,
+            Geometry::Cylinder {
+                base: Vec3::new(0.0, -0.7, 0.0),
+                radius: 0.7,
+                height: 1.4,
+                rotate,
+            },
+            1.4,
+        ),
+        (
+            "cone",
+            Method::Robust,
+            Geometry::Cone {
+                base: Vec3::new(0.0, -0.7, 0.0),
+                radius: 0.9,
+                height: 1.4,
+                rotate,
+            },
+            1.2,
+        ),
+        (
+            "torus",
+            Method::Robust,
+            Geometry::Torus {
+                center: Vec3::ZERO,
+                major: 1.0,
+                minor: 0.35,
+                rotate,
+            },
+            1.5,
+        ),
+        (
+            "plane",
+            Method::Robust,
+            Geometry::Plane {
+                point: Vec3::ZERO,
+                normal: Vec3::new(0.2, 1.0, 0.1),
+            },
+            // Aimed at a huge ball: nearly uniform directions, half cross the plane.
+            1000.0,
+        ),
+    ]
+}
+
+fn bench_intersect(c: &mut Criterion) {
+    let mut group = c.benchmark_group("intersect");
+    group.throughput(Throughput::Elements(RAYS as u64));
+    for (k, (name, method, geometry, spread)) in shapes().into_iter().enumerate() {
+        let shape = Shape::from_geometry(&geometry);
+        let rays = rays(0x5EED + k as u64, spread);
+        let hits = rays
+            .iter()
+            .filter(|r| shape.intersect(r, method).is_some())
+            .count();
+        eprintln!("intersect/{name}: {hits}/{RAYS} rays hit");
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                let shape = black_box(&shape);
+                rays.iter()
+                    .filter(|r| shape.intersect(black_box(r), method).is_some())
+                    .count()
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench_intersect);
+criterion_main!(benches);
