@@ -23,15 +23,24 @@ pub struct Aabb {
 impl Aabb {
     /// The box around a set of points.
     pub fn around(points: impl IntoIterator<Item = Vec3>) -> Aabb {
-        points.into_iter().fold(Aabb::EMPTY, |b, p| Aabb { min: b.min.min(p), max: b.max.max(p) })
+        points.into_iter().fold(Aabb::EMPTY, |b, p| Aabb {
+            min: b.min.min(p),
+            max: b.max.max(p),
+        })
     }
 
     /// The empty box (union identity).
-    pub const EMPTY: Aabb = Aabb { min: Vec3::INFINITY, max: Vec3::NEG_INFINITY };
+    pub const EMPTY: Aabb = Aabb {
+        min: Vec3::INFINITY,
+        max: Vec3::NEG_INFINITY,
+    };
 
     /// The smallest box containing both.
     pub fn union(self, other: Aabb) -> Aabb {
-        Aabb { min: self.min.min(other.min), max: self.max.max(other.max) }
+        Aabb {
+            min: self.min.min(other.min),
+            max: self.max.max(other.max),
+        }
     }
 
     /// True when the box holds no point.
@@ -66,18 +75,38 @@ fn rotated_box(origin: Vec3, rotate_deg: Vec3, lo: Vec3, hi: Vec3) -> Aabb {
 /// The world-space bounding box of a geometry; `None` for an infinite plane.
 pub fn bounds(geometry: &Geometry) -> Option<Aabb> {
     Some(match *geometry {
-        Geometry::Sphere { center, radius } => {
-            Aabb { min: center - Vec3::splat(radius), max: center + Vec3::splat(radius) }
+        Geometry::Sphere { center, radius } => Aabb {
+            min: center - Vec3::splat(radius),
+            max: center + Vec3::splat(radius),
+        },
+        Geometry::Box {
+            center,
+            size,
+            rotate,
+        } => rotated_box(center, rotate, -0.5 * size, 0.5 * size),
+        Geometry::Cylinder {
+            base,
+            radius,
+            height,
+            rotate,
         }
-        Geometry::Box { center, size, rotate } => rotated_box(center, rotate, -0.5 * size, 0.5 * size),
-        Geometry::Cylinder { base, radius, height, rotate }
-        | Geometry::Cone { base, radius, height, rotate } => rotated_box(
+        | Geometry::Cone {
+            base,
+            radius,
+            height,
+            rotate,
+        } => rotated_box(
             base,
             rotate,
             Vec3::new(-radius, 0.0, -radius),
             Vec3::new(radius, height, radius),
         ),
-        Geometry::Torus { center, major, minor, rotate } => {
+        Geometry::Torus {
+            center,
+            major,
+            minor,
+            rotate,
+        } => {
             let e = Vec3::new(major + minor, minor, major + minor);
             rotated_box(center, rotate, -e, e)
         }
@@ -89,20 +118,58 @@ pub fn bounds(geometry: &Geometry) -> Option<Aabb> {
 /// The geometry of `shape` with its anchor at `anchor` when the shape has none.
 pub fn geometry_at(shape: &Shape, anchor: Vec3) -> Geometry {
     match *shape {
-        Shape::Sphere { center, radius } => Geometry::Sphere { center: center.unwrap_or(anchor), radius },
-        Shape::Box { center, size, rotate } => Geometry::Box { center: center.unwrap_or(anchor), size, rotate },
-        Shape::Cylinder { base, radius, height, rotate } => {
-            Geometry::Cylinder { base: base.unwrap_or(anchor), radius, height, rotate }
-        }
-        Shape::Cone { base, radius, height, rotate } => {
-            Geometry::Cone { base: base.unwrap_or(anchor), radius, height, rotate }
-        }
-        Shape::Torus { center, major, minor, rotate } => {
-            Geometry::Torus { center: center.unwrap_or(anchor), major, minor, rotate }
-        }
+        Shape::Sphere { center, radius } => Geometry::Sphere {
+            center: center.unwrap_or(anchor),
+            radius,
+        },
+        Shape::Box {
+            center,
+            size,
+            rotate,
+        } => Geometry::Box {
+            center: center.unwrap_or(anchor),
+            size,
+            rotate,
+        },
+        Shape::Cylinder {
+            base,
+            radius,
+            height,
+            rotate,
+        } => Geometry::Cylinder {
+            base: base.unwrap_or(anchor),
+            radius,
+            height,
+            rotate,
+        },
+        Shape::Cone {
+            base,
+            radius,
+            height,
+            rotate,
+        } => Geometry::Cone {
+            base: base.unwrap_or(anchor),
+            radius,
+            height,
+            rotate,
+        },
+        Shape::Torus {
+            center,
+            major,
+            minor,
+            rotate,
+        } => Geometry::Torus {
+            center: center.unwrap_or(anchor),
+            major,
+            minor,
+            rotate,
+        },
         Shape::Triangle { t0, t1, t2 } => Geometry::Triangle { t0, t1, t2 },
         Shape::Plane { point, normal } => Geometry::Plane { point, normal },
-        Shape::Floor { y } => Geometry::Plane { point: Vec3::new(0.0, y, 0.0), normal: Vec3::Y },
+        Shape::Floor { y } => Geometry::Plane {
+            point: Vec3::new(0.0, y, 0.0),
+            normal: Vec3::Y,
+        },
     }
 }
 
@@ -128,9 +195,19 @@ pub fn place(shapes: &[Shape], floor_y: f32) -> Vec<Geometry> {
     // Each unplaced shape's box when anchored at the origin.
     let footprints: Vec<Option<Aabb>> = shapes
         .iter()
-        .map(|s| if is_unplaced(s) { bounds(&geometry_at(s, Vec3::ZERO)) } else { None })
+        .map(|s| {
+            if is_unplaced(s) {
+                bounds(&geometry_at(s, Vec3::ZERO))
+            } else {
+                None
+            }
+        })
         .collect();
-    let widths: Vec<f32> = footprints.iter().flatten().map(|b| b.max.x - b.min.x).collect();
+    let widths: Vec<f32> = footprints
+        .iter()
+        .flatten()
+        .map(|b| b.max.x - b.min.x)
+        .collect();
     let total = widths.iter().sum::<f32>() + ROW_GAP * widths.len().saturating_sub(1) as f32;
     let mut cursor = -0.5 * total;
     shapes
@@ -150,14 +227,32 @@ pub fn place(shapes: &[Shape], floor_y: f32) -> Vec<Geometry> {
 /// The default viewing direction: from the front (+z) and slightly above.
 pub const DEFAULT_TOWARD: Vec3 = Vec3::new(0.0, -0.3, -1.0);
 
-/// How far from the centre of a bounding sphere of `radius` the eye must be
-/// for the sphere to fit the view volume of half-height angle θ and aspect ρ,
-/// with a margin.
-pub fn framing_distance(radius: f32, theta_deg: f32, aspect: f32) -> f32 {
-    let theta = theta_deg.to_radians();
-    let half_width_angle = (aspect * theta.tan()).atan();
-    let fit = theta.min(half_width_angle).sin().max(1e-3);
-    1.15 * radius.max(1e-3) / fit
+/// Extra room around the framed box, as a factor on the eye's distance.
+const FRAMING_MARGIN: f32 = 1.12;
+
+/// How far back from `focus`'s centre, along the unit toward vector `t`, the
+/// eye must stand for every corner of `focus` to fall inside the view volume
+/// of half-height angle θ and aspect ρ (up vector `up`), with a small margin.
+pub fn framing_distance(focus: &Aabb, t: Vec3, up: Vec3, theta_deg: f32, aspect: f32) -> f32 {
+    let u = (up - up.dot(t) * t).normalize_or(Vec3::Y);
+    let r = t.cross(u);
+    let tan_v = theta_deg.to_radians().tan().max(1e-4);
+    let tan_h = aspect * tan_v;
+    let center = focus.center();
+    let mut distance = 0.0f32;
+    for k in 0..8 {
+        let corner = Vec3::new(
+            if k & 1 == 0 { focus.min.x } else { focus.max.x },
+            if k & 2 == 0 { focus.min.y } else { focus.max.y },
+            if k & 4 == 0 { focus.min.z } else { focus.max.z },
+        ) - center;
+        // With the eye at centre − D t, this corner lies at depth D + corner·t.
+        let depth_offset = corner.dot(t);
+        distance = distance
+            .max(corner.dot(r).abs() / tan_h - depth_offset)
+            .max(corner.dot(u).abs() / tan_v - depth_offset);
+    }
+    FRAMING_MARGIN * distance.max(1e-3)
 }
 
 #[cfg(test)]
@@ -177,7 +272,10 @@ mod tests {
             assert!(b.min.y.abs() < 1e-6, "rests on the floor: {b:?}");
         }
         for pair in boxes.windows(2) {
-            assert!((pair[1].min.x - pair[0].max.x - ROW_GAP).abs() < 1e-5, "side by side");
+            assert!(
+                (pair[1].min.x - pair[0].max.x - ROW_GAP).abs() < 1e-5,
+                "side by side"
+            );
         }
         let row = boxes.iter().fold(Aabb::EMPTY, |a, b| a.union(*b));
         assert!(row.center().x.abs() < 1e-5, "centred: {row:?}");
@@ -185,7 +283,11 @@ mod tests {
 
     #[test]
     fn rotated_box_bounds_grow_by_the_rotation() {
-        let g = Geometry::Box { center: Vec3::ZERO, size: Vec3::ONE, rotate: Vec3::new(0.0, 45.0, 0.0) };
+        let g = Geometry::Box {
+            center: Vec3::ZERO,
+            size: Vec3::ONE,
+            rotate: Vec3::new(0.0, 45.0, 0.0),
+        };
         let b = bounds(&g).expect("finite");
         assert!((b.max.x - std::f32::consts::FRAC_1_SQRT_2).abs() < 1e-6);
         assert!((b.max.y - 0.5).abs() < 1e-6);

@@ -1,10 +1,10 @@
 //! Filling in every default: materials, placement, camera framing, lighting.
 
+use crate::InvalidScene;
 use crate::layout::{self, Aabb};
 use crate::materials;
 use crate::model::{Light, LightKind, Scene, Shape};
 use crate::resolved::{ResolvedCamera, ResolvedObject, ResolvedScene};
-use crate::InvalidScene;
 use glam::Vec3;
 
 /// The scene with every default decided:
@@ -28,7 +28,10 @@ pub fn resolve(scene: &Scene) -> Result<ResolvedScene, InvalidScene> {
         let base = materials::named(&scene.materials, object.material.as_deref())
             .map_err(|e| InvalidScene(format!("{} {}: {}", object.shape.tag(), index + 1, e.0)))?;
         objects.push(ResolvedObject {
-            name: object.name.clone().unwrap_or_else(|| format!("{} {}", object.shape.tag(), index + 1)),
+            name: object
+                .name
+                .clone()
+                .unwrap_or_else(|| format!("{} {}", object.shape.tag(), index + 1)),
             geometry,
             material: materials::apply(base, &object.params),
         });
@@ -39,19 +42,28 @@ pub fn resolve(scene: &Scene) -> Result<ResolvedScene, InvalidScene> {
         .filter_map(|o| layout::bounds(&o.geometry))
         .fold(Aabb::EMPTY, Aabb::union);
     let focus = if finite.is_empty() {
-        Aabb { min: Vec3::new(-1.0, floor_y, -1.0), max: Vec3::new(1.0, floor_y + 2.0, 1.0) }
+        Aabb {
+            min: Vec3::new(-1.0, floor_y, -1.0),
+            max: Vec3::new(1.0, floor_y + 2.0, 1.0),
+        }
     } else {
         finite
     };
 
     let camera = frame_camera(scene, &focus);
-    let emissive = objects.iter().any(|o| o.material.emission.max_element() > 0.0);
+    let emissive = objects
+        .iter()
+        .any(|o| o.material.emission.max_element() > 0.0);
     let lights = if scene.lights.is_empty() && !emissive {
         default_lights(&focus)
     } else {
         scene.lights.clone()
     };
-    Ok(ResolvedScene { camera, lights, objects })
+    Ok(ResolvedScene {
+        camera,
+        lights,
+        objects,
+    })
 }
 
 /// The scene's camera with P0 and t decided: a missing t looks at the focus
@@ -60,16 +72,24 @@ fn frame_camera(scene: &Scene, focus: &Aabb) -> ResolvedCamera {
     let cam = &scene.camera;
     let center = focus.center();
     let aspect = cam.width as f32 / cam.height as f32;
-    let distance = layout::framing_distance(focus.radius(), cam.theta_deg, aspect);
     let (eye, toward) = match (cam.eye, cam.toward) {
         (Some(eye), Some(toward)) => (eye, toward),
         (Some(eye), None) => {
             let toward = center - eye;
-            (eye, if toward.length() > 0.0 { toward } else { layout::DEFAULT_TOWARD })
+            (
+                eye,
+                if toward.length() > 0.0 {
+                    toward
+                } else {
+                    layout::DEFAULT_TOWARD
+                },
+            )
         }
         (None, toward) => {
             let toward = toward.unwrap_or(layout::DEFAULT_TOWARD);
-            (center - distance * toward.normalize_or(Vec3::NEG_Z), toward)
+            let t = toward.normalize_or(Vec3::NEG_Z);
+            let distance = layout::framing_distance(focus, t, cam.up, cam.theta_deg, aspect);
+            (center - distance * t, toward)
         }
     };
     ResolvedCamera {
@@ -130,18 +150,45 @@ mod tests {
     }
 
     #[test]
-    fn default_camera_sees_every_object_in_front_of_it() {
+    fn default_camera_frames_every_corner_of_every_object() {
         let scene = Scene {
-            objects: vec![object("cone"), object("sphere"), object("box"), object("floor")],
+            objects: vec![
+                object("cone"),
+                object("sphere"),
+                object("box"),
+                object("floor"),
+            ],
             ..Default::default()
         };
         let r = resolve(&scene).expect("resolves");
-        let t = r.camera.toward.normalize();
+        let cam = r.camera;
+        let t = cam.toward.normalize();
+        let u = (cam.up - cam.up.dot(t) * t).normalize();
+        let right = t.cross(u);
+        let tan_v = cam.theta_deg.to_radians().tan();
+        let tan_h = tan_v * cam.width as f32 / cam.height as f32;
         for o in &r.objects {
-            if let Some(b) = layout::bounds(&o.geometry) {
-                let to_center = b.center() - r.camera.eye;
-                let angle = to_center.angle_between(t).to_degrees();
-                assert!(angle < r.camera.theta_deg, "{} at {angle}°", o.name);
+            let Some(b) = layout::bounds(&o.geometry) else {
+                continue;
+            };
+            for k in 0..8 {
+                let corner = Vec3::new(
+                    if k & 1 == 0 { b.min.x } else { b.max.x },
+                    if k & 2 == 0 { b.min.y } else { b.max.y },
+                    if k & 4 == 0 { b.min.z } else { b.max.z },
+                ) - cam.eye;
+                let depth = corner.dot(t);
+                assert!(depth > 0.0, "{} is in front of the camera", o.name);
+                assert!(
+                    corner.dot(right).abs() <= depth * tan_h,
+                    "{} fits horizontally",
+                    o.name
+                );
+                assert!(
+                    corner.dot(u).abs() <= depth * tan_v,
+                    "{} fits vertically",
+                    o.name
+                );
             }
         }
     }
@@ -150,7 +197,11 @@ mod tests {
     fn emissive_objects_switch_default_lights_off() {
         let mut lamp = object("sphere");
         lamp.params.emission = Some(Vec3::ONE);
-        let r = resolve(&Scene { objects: vec![lamp], ..Default::default() }).expect("resolves");
+        let r = resolve(&Scene {
+            objects: vec![lamp],
+            ..Default::default()
+        })
+        .expect("resolves");
         assert!(r.lights.is_empty());
     }
 }
