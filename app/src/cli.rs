@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 /// raylab: a ray-tracing viewer and editor built on the course lecture's camera model.
 #[derive(Debug, Parser)]
-#[command(name = "raylab", version, about)]
+#[command(name = "raylab", version, about, arg_required_else_help = true)]
 pub struct Cli {
     /// What to do.
     #[command(subcommand)]

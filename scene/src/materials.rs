@@ -1,8 +1,8 @@
 //! The built-in materials and how a named material with overrides resolves.
 
+use crate::InvalidScene;
 use crate::model::{BaseMaterial, MaterialDef, MaterialParams};
 use crate::resolved::Material;
-use crate::InvalidScene;
 use glam::Vec3;
 
 /// The parameters of a built-in material before any override.
@@ -18,10 +18,25 @@ pub fn builtin(base: BaseMaterial) -> Material {
     };
     match base {
         BaseMaterial::Matte => plain,
-        BaseMaterial::Plastic => Material { shininess: 64.0, specular: 0.5, ..plain },
-        BaseMaterial::Mirror => Material { color: Vec3::splat(0.95), reflectivity: 1.0, ..plain },
-        BaseMaterial::Metal => Material { color: Vec3::splat(0.9), reflectivity: 1.0, ..plain },
-        BaseMaterial::Glass => Material { color: Vec3::ONE, ..plain },
+        BaseMaterial::Plastic => Material {
+            shininess: 64.0,
+            specular: 0.5,
+            ..plain
+        },
+        BaseMaterial::Mirror => Material {
+            color: Vec3::splat(0.95),
+            reflectivity: 1.0,
+            ..plain
+        },
+        BaseMaterial::Metal => Material {
+            color: Vec3::splat(0.9),
+            reflectivity: 1.0,
+            ..plain
+        },
+        BaseMaterial::Glass => Material {
+            color: Vec3::ONE,
+            ..plain
+        },
         BaseMaterial::Marble => Material {
             color: Vec3::new(0.92, 0.91, 0.88),
             shininess: 80.0,
@@ -52,12 +67,18 @@ pub fn named(defs: &[MaterialDef], name: Option<&str>) -> Result<Material, Inval
     named_at_depth(defs, name, 0)
 }
 
-fn named_at_depth(defs: &[MaterialDef], name: &str, depth: usize) -> Result<Material, InvalidScene> {
+fn named_at_depth(
+    defs: &[MaterialDef],
+    name: &str,
+    depth: usize,
+) -> Result<Material, InvalidScene> {
     if let Some(base) = BaseMaterial::from_name(name) {
         return Ok(builtin(base));
     }
     if depth > defs.len() {
-        return Err(InvalidScene(format!("material \"{name}\" is defined in terms of itself")));
+        return Err(InvalidScene(format!(
+            "material \"{name}\" is defined in terms of itself"
+        )));
     }
     let def = defs.iter().find(|d| d.name == name).ok_or_else(|| {
         InvalidScene(format!(
@@ -65,7 +86,10 @@ fn named_at_depth(defs: &[MaterialDef], name: &str, depth: usize) -> Result<Mate
             BaseMaterial::ALL.map(BaseMaterial::name).join(", ")
         ))
     })?;
-    Ok(apply(named_at_depth(defs, &def.base, depth + 1)?, &def.params))
+    Ok(apply(
+        named_at_depth(defs, &def.base, depth + 1)?,
+        &def.params,
+    ))
 }
 
 #[cfg(test)]
@@ -78,12 +102,18 @@ mod tests {
             MaterialDef {
                 name: "blue-glass".into(),
                 base: "glass".into(),
-                params: MaterialParams { color: Some(Vec3::new(0.6, 0.8, 1.0)), ..Default::default() },
+                params: MaterialParams {
+                    color: Some(Vec3::new(0.6, 0.8, 1.0)),
+                    ..Default::default()
+                },
             },
             MaterialDef {
                 name: "water".into(),
                 base: "blue-glass".into(),
-                params: MaterialParams { ior: Some(1.33), ..Default::default() },
+                params: MaterialParams {
+                    ior: Some(1.33),
+                    ..Default::default()
+                },
             },
         ];
         let m = named(&defs, Some("water")).expect("resolves");
@@ -95,7 +125,11 @@ mod tests {
     #[test]
     fn unknown_and_cyclic_names_are_errors() {
         assert!(named(&[], Some("unobtainium")).is_err());
-        let cyclic = vec![MaterialDef { name: "a".into(), base: "a".into(), params: Default::default() }];
+        let cyclic = vec![MaterialDef {
+            name: "a".into(),
+            base: "a".into(),
+            params: Default::default(),
+        }];
         assert!(named(&cyclic, Some("a")).is_err());
     }
 

@@ -76,7 +76,7 @@ pub struct Light {
     pub kind: LightKind,
     /// Linear RGB colour (default white).
     pub color: Vec3,
-    /// Scalar multiplier of `color` (default 1).
+    /// Scalar multiplier of `color` (default [`defaults::light_intensity`] of the kind).
     pub intensity: f32,
 }
 
@@ -315,8 +315,20 @@ pub mod defaults {
     ];
     /// Default light colour.
     pub const LIGHT_COLOR: Vec3 = Vec3::ONE;
-    /// Default light intensity.
-    pub const LIGHT_INTENSITY: f32 = 1.0;
+    /// Default position of a point light.
+    pub const LIGHT_POSITION: Vec3 = Vec3::new(-4.0, 6.0, 4.0);
+    /// Default direction of a directional light (the way its light travels).
+    pub const LIGHT_DIRECTION: Vec3 = Vec3::new(-1.0, -2.0, -1.0);
+
+    /// Default intensity of a light of this kind: 60 W/sr for a point light,
+    /// 2 W/m² for a directional light, 0.1 for ambient light.
+    pub fn light_intensity(kind: &super::LightKind) -> f32 {
+        match kind {
+            super::LightKind::Point { .. } => 60.0,
+            super::LightKind::Directional { .. } => 2.0,
+            super::LightKind::Ambient => 0.1,
+        }
+    }
 }
 
 impl Shape {
@@ -338,8 +350,15 @@ impl Shape {
     pub fn default_for_tag(tag: &str) -> Option<Shape> {
         use defaults::*;
         Some(match tag {
-            "sphere" => Shape::Sphere { center: None, radius: SPHERE_RADIUS },
-            "box" => Shape::Box { center: None, size: BOX_SIZE, rotate: Vec3::ZERO },
+            "sphere" => Shape::Sphere {
+                center: None,
+                radius: SPHERE_RADIUS,
+            },
+            "box" => Shape::Box {
+                center: None,
+                size: BOX_SIZE,
+                rotate: Vec3::ZERO,
+            },
             "cylinder" => Shape::Cylinder {
                 base: None,
                 radius: CYLINDER_RADIUS,
@@ -358,14 +377,22 @@ impl Shape {
                 minor: TORUS_MINOR,
                 rotate: Vec3::ZERO,
             },
-            "triangle" => Shape::Triangle { t0: TRIANGLE[0], t1: TRIANGLE[1], t2: TRIANGLE[2] },
-            "plane" => Shape::Plane { point: PLANE_POINT, normal: PLANE_NORMAL },
+            "triangle" => Shape::Triangle {
+                t0: TRIANGLE[0],
+                t1: TRIANGLE[1],
+                t2: TRIANGLE[2],
+            },
+            "plane" => Shape::Plane {
+                point: PLANE_POINT,
+                normal: PLANE_NORMAL,
+            },
             "floor" => Shape::Floor { y: FLOOR_Y },
             _ => return None,
         })
     }
 
     /// Every shape element name, for error suggestions.
-    pub const TAGS: [&'static str; 8] =
-        ["sphere", "box", "cylinder", "cone", "torus", "triangle", "plane", "floor"];
+    pub const TAGS: [&'static str; 8] = [
+        "sphere", "box", "cylinder", "cone", "torus", "triangle", "plane", "floor",
+    ];
 }
