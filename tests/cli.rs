@@ -99,11 +99,8 @@ fn image_is_independent_of_view_window_distance() {
         images.push(read_png(&out));
     }
     for other in &images[1..] {
-        let differing = images[0]
-            .pixels()
-            .zip(other.pixels())
-            .filter(|(a, b)| a.0.iter().zip(b.0.iter()).any(|(x, y)| x.abs_diff(*y) > 1));
-        assert_eq!(differing.count(), 0, "only float rounding may differ");
+        // v_ij is formed in f64, where d's rounding is far below f32 precision.
+        assert!(images[0].as_raw() == other.as_raw(), "d changes no pixel");
     }
 }
 
