@@ -1,6 +1,7 @@
 //! A rigid placement of a shape: rotation then translation (world_from_object).
 
 use crate::ray::Ray;
+use crate::shapes::Surface;
 use glam::{Mat3, Vec3};
 
 /// world_from_object = translate(origin) · rotation. Rotations preserve length,
@@ -46,6 +47,19 @@ impl Frame {
     /// An object-space point in world space.
     pub fn point_to_world(&self, p: Vec3) -> Vec3 {
         self.world_from_object * p + self.origin
+    }
+
+    /// An object-space hit point and unit normal in world space.
+    pub fn surface_to_world(&self, point: Vec3, normal: Vec3) -> Surface {
+        let surface = Surface {
+            point: self.point_to_world(point),
+            normal: self.vector_to_world(normal),
+        };
+        debug_assert!(
+            surface.point.is_finite() && surface.normal.is_finite(),
+            "{surface:?}"
+        );
+        surface
     }
 
     /// An object-space direction or normal in world space (rotation only).

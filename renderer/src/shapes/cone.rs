@@ -102,12 +102,7 @@ impl Cone {
             let scale = if rho > r { r / rho } else { 1.0 };
             (Vec3::new(p.x * scale, 0.0, p.z * scale), -Vec3::Y)
         };
-        let surface = Surface {
-            point: self.frame.point_to_world(point),
-            normal: self.frame.vector_to_world(normal),
-        };
-        debug_assert!(surface.point.is_finite() && surface.normal.is_finite());
-        surface
+        self.frame.surface_to_world(point, normal)
     }
 }
 

@@ -85,12 +85,7 @@ impl Cuboid {
         p[axis] = self.half[axis].copysign(p[axis]);
         let mut normal = Vec3::ZERO;
         normal[axis] = 1.0f32.copysign(p[axis]);
-        let surface = Surface {
-            point: self.frame.point_to_world(p),
-            normal: self.frame.vector_to_world(normal),
-        };
-        debug_assert!(surface.point.is_finite() && surface.normal.is_finite());
-        surface
+        self.frame.surface_to_world(p, normal)
     }
 }
 

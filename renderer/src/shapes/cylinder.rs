@@ -92,12 +92,7 @@ impl Cylinder {
             let scale = if rho > r { r / rho } else { 1.0 };
             (Vec3::new(p.x * scale, y, p.z * scale), n)
         };
-        let surface = Surface {
-            point: self.frame.point_to_world(point),
-            normal: self.frame.vector_to_world(normal),
-        };
-        debug_assert!(surface.point.is_finite() && surface.normal.is_finite());
-        surface
+        self.frame.surface_to_world(point, normal)
     }
 }
 

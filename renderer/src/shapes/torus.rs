@@ -120,12 +120,7 @@ impl Torus {
         };
         let c = self.major * radial;
         let normal = (p - c).try_normalize().unwrap_or(Vec3::Y);
-        let surface = Surface {
-            point: self.frame.point_to_world(c + self.minor * normal),
-            normal: self.frame.vector_to_world(normal),
-        };
-        debug_assert!(surface.point.is_finite() && surface.normal.is_finite());
-        surface
+        self.frame.surface_to_world(c + self.minor * normal, normal)
     }
 }
 
