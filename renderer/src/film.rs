@@ -62,12 +62,28 @@ impl Film {
 
     /// Adds one sample to every pixel (pass k traces sample index k), in parallel over bands of rows.
     pub fn add_pass(&mut self, world: &World, options: &RenderOptions) {
+        let completed = self.add_pass_unless(world, options, &|| false);
+        debug_assert!(completed);
+    }
+
+    /// Like [`Film::add_pass`], but bands not yet started are skipped once
+    /// `cancelled()` returns true. Returns false when the pass was cut short:
+    /// the film then holds a partial pass and must be discarded.
+    pub fn add_pass_unless(
+        &mut self,
+        world: &World,
+        options: &RenderOptions,
+        cancelled: &(dyn Fn() -> bool + Sync),
+    ) -> bool {
         let (width, sample) = (self.width as usize, self.passes);
-        let discarded: u64 = self
+        let (discarded, skipped): (u64, u64) = self
             .sum
             .par_chunks_mut(width * BAND_ROWS)
             .enumerate()
             .map(|(band, rows)| {
+                if cancelled() {
+                    return (0, 1);
+                }
                 let mut bad = 0;
                 for (k, acc) in rows.iter_mut().enumerate() {
                     let (i, j) = ((k % width) as u32, (band * BAND_ROWS + k / width) as u32);
@@ -78,11 +94,12 @@ impl Film {
                         bad += 1;
                     }
                 }
-                bad
+                (bad, 0)
             })
-            .sum();
+            .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
         self.discarded += discarded;
         self.passes += 1;
+        skipped == 0
     }
 
     /// A film with `spp` passes of `world`.

@@ -12,6 +12,8 @@ pub mod integrator;
 pub mod light;
 pub mod offset;
 pub mod optics;
+pub mod preview;
+pub mod progressive;
 pub mod ray;
 pub mod sampler;
 pub mod shapes;

@@ -1,0 +1,256 @@
+//! A progressive render session: a worker thread refines the image of the
+//! newest job — coarse previews first (every 8th, 4th, 2nd pixel), then full
+//! passes that accumulate samples — and hands each finished step over in a
+//! one-frame slot where the newest frame wins. Submitting a job cancels the
+//! stale one at once: no frame of an older job is handed out after
+//! [`ProgressiveRenderer::submit`] returns. Nothing here ever blocks the caller
+//! on rendering.
+
+use crate::film::Film;
+use crate::integrator::RenderOptions;
+use crate::preview::preview;
+use crate::world::World;
+use glam::Vec3;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, Condvar, Mutex, MutexGuard, PoisonError};
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+/// The preview strides shown before the first full pass.
+pub const PREVIEW_STRIDES: [u32; 3] = [8, 4, 2];
+
+/// What to render: a prepared scene snapshot and how far to refine it.
+#[derive(Clone, Debug)]
+pub struct Job {
+    /// The immutable render copy of the scene.
+    pub world: Arc<World>,
+    /// Integrator settings.
+    pub options: RenderOptions,
+    /// Stop after this many samples per pixel; `None` refines until a new job.
+    pub target_spp: Option<u32>,
+}
+
+/// Which step of refinement a frame shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Step {
+    /// One ray per `stride` × `stride` block.
+    Preview {
+        /// Block size in pixels.
+        stride: u32,
+    },
+    /// The mean of `spp` full passes.
+    Passes {
+        /// Samples per pixel so far.
+        spp: u32,
+    },
+}
+
+/// A finished refinement step, ready to show.
+#[derive(Clone, Debug)]
+pub struct RenderedFrame {
+    /// Which job it belongs to (increases with every submit).
+    pub generation: u64,
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Linear radiance, row by row from the top.
+    pub pixels: Vec<Vec3>,
+    /// Which step this is.
+    pub step: Step,
+    /// Time from the submit to this frame.
+    pub since_submit: Duration,
+    /// Full-pass camera samples per second so far (0 for previews).
+    pub samples_per_second: f64,
+    /// Samples left out because they were NaN or infinite.
+    pub discarded: u64,
+}
+
+/// The worker's inbox.
+#[derive(Default)]
+struct Inbox {
+    pending: Option<(u64, Job, Instant)>,
+    paused: bool,
+    shutdown: bool,
+}
+
+struct Shared {
+    generation: AtomicU64,
+    inbox: Mutex<Inbox>,
+    wake: Condvar,
+    slot: Mutex<Option<RenderedFrame>>,
+    on_frame: Box<dyn Fn() + Send + Sync>,
+}
+
+/// Locks a mutex, recovering the data if a panicking thread poisoned it.
+fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+/// A render session owning one worker thread (which uses rayon for each step).
+pub struct ProgressiveRenderer {
+    shared: Arc<Shared>,
+    worker: Option<JoinHandle<()>>,
+}
+
+impl ProgressiveRenderer {
+    /// Starts the worker. `on_frame` is called (from the worker) after each
+    /// new frame, e.g. to ask the UI for a repaint.
+    pub fn new(on_frame: impl Fn() + Send + Sync + 'static) -> Self {
+        let shared = Arc::new(Shared {
+            generation: AtomicU64::new(0),
+            inbox: Mutex::new(Inbox::default()),
+            wake: Condvar::new(),
+            slot: Mutex::new(None),
+            on_frame: Box::new(on_frame),
+        });
+        let worker_shared = Arc::clone(&shared);
+        let worker = std::thread::Builder::new()
+            .name("raylab-render".into())
+            .spawn(move || work(&worker_shared))
+            .expect("the render thread starts");
+        Self {
+            shared,
+            worker: Some(worker),
+        }
+    }
+
+    /// Replaces the current job; stale work stops at its next band of rows.
+    /// Returns the new job's generation.
+    pub fn submit(&self, job: Job) -> u64 {
+        let generation = {
+            let mut slot = lock(&self.shared.slot);
+            *slot = None;
+            self.shared.generation.fetch_add(1, Ordering::SeqCst) + 1
+        };
+        lock(&self.shared.inbox).pending = Some((generation, job, Instant::now()));
+        self.shared.wake.notify_all();
+        generation
+    }
+
+    /// Pauses or resumes refinement (a paused session finishes its current step).
+    pub fn set_paused(&self, paused: bool) {
+        lock(&self.shared.inbox).paused = paused;
+        self.shared.wake.notify_all();
+    }
+
+    /// The newest frame not yet taken, if any; never blocks on rendering.
+    pub fn take_frame(&self) -> Option<RenderedFrame> {
+        lock(&self.shared.slot).take()
+    }
+}
+
+impl Drop for ProgressiveRenderer {
+    fn drop(&mut self) {
+        lock(&self.shared.inbox).shutdown = true;
+        self.shared.generation.fetch_add(1, Ordering::SeqCst);
+        self.shared.wake.notify_all();
+        if let Some(worker) = self.worker.take() {
+            let _ = worker.join();
+        }
+    }
+}
+
+/// The job the worker is refining.
+struct Current {
+    generation: u64,
+    job: Job,
+    submitted: Instant,
+    film: Film,
+    next_preview: usize,
+    pass_time: Duration,
+}
+
+impl Current {
+    fn done(&self) -> bool {
+        self.next_preview >= PREVIEW_STRIDES.len()
+            && self
+                .job
+                .target_spp
+                .is_some_and(|target| self.film.passes() >= target)
+    }
+}
+
+fn work(shared: &Shared) {
+    let mut current: Option<Current> = None;
+    loop {
+        {
+            let mut inbox = lock(&shared.inbox);
+            loop {
+                if inbox.shutdown {
+                    return;
+                }
+                if let Some((generation, job, submitted)) = inbox.pending.take() {
+                    let film = Film::new(job.world.camera.w, job.world.camera.h);
+                    current = Some(Current {
+                        generation,
+                        job,
+                        submitted,
+                        film,
+                        next_preview: 0,
+                        pass_time: Duration::ZERO,
+                    });
+                    break;
+                }
+                if current.as_ref().is_some_and(|c| !c.done()) && !inbox.paused {
+                    break;
+                }
+                inbox = shared
+                    .wake
+                    .wait(inbox)
+                    .unwrap_or_else(PoisonError::into_inner);
+            }
+        }
+        if let Some(c) = current.as_mut() {
+            step(shared, c);
+        }
+    }
+}
+
+/// Renders one preview or one full pass of `c` and publishes it unless stale.
+fn step(shared: &Shared, c: &mut Current) {
+    let stale = || shared.generation.load(Ordering::SeqCst) != c.generation;
+    let world = Arc::clone(&c.job.world);
+    let (pixels, step, samples_per_second) =
+        if let Some(&stride) = PREVIEW_STRIDES.get(c.next_preview) {
+            c.next_preview += 1;
+            (
+                preview(&world, &c.job.options, stride),
+                Step::Preview { stride },
+                0.0,
+            )
+        } else {
+            let started = Instant::now();
+            if !c.film.add_pass_unless(&world, &c.job.options, &stale) {
+                return;
+            }
+            c.pass_time += started.elapsed();
+            let samples =
+                f64::from(c.film.passes()) * f64::from(c.film.width()) * f64::from(c.film.height());
+            (
+                c.film.linear(),
+                Step::Passes {
+                    spp: c.film.passes(),
+                },
+                samples / c.pass_time.as_secs_f64().max(1e-9),
+            )
+        };
+    let frame = RenderedFrame {
+        generation: c.generation,
+        width: c.film.width(),
+        height: c.film.height(),
+        pixels,
+        step,
+        since_submit: c.submitted.elapsed(),
+        samples_per_second,
+        discarded: c.film.discarded(),
+    };
+    {
+        let mut slot = lock(&shared.slot);
+        if stale() {
+            return;
+        }
+        *slot = Some(frame);
+    }
+    (shared.on_frame)();
+}

@@ -1,0 +1,163 @@
+//! The progressive session's contract: previews first, then passes that add
+//! up to exactly the offline render; a new job hides every older frame; pause
+//! stops refinement; dropping the session stops its thread.
+
+use renderer::progressive::{Job, PREVIEW_STRIDES, ProgressiveRenderer, RenderedFrame, Step};
+use renderer::{Film, RenderOptions, World};
+use scene::{Object, Scene, Shape};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+fn world(width: u32, height: u32, radius: f32) -> Arc<World> {
+    let scene = Scene {
+        camera: scene::Camera {
+            width,
+            height,
+            ..Default::default()
+        },
+        objects: vec![
+            Object {
+                name: None,
+                shape: Shape::Sphere {
+                    center: None,
+                    radius,
+                },
+                material: Some("glass".into()),
+                params: Default::default(),
+            },
+            Object {
+                name: None,
+                shape: Shape::Floor { y: 0.0 },
+                material: Some("marble".into()),
+                params: Default::default(),
+            },
+        ],
+        ..Default::default()
+    };
+    Arc::new(World::from_scene(&scene).expect("valid"))
+}
+
+/// Polls until `until` accepts a frame or 60 s pass; returns every frame seen.
+fn frames_until(
+    session: &ProgressiveRenderer,
+    until: impl Fn(&RenderedFrame) -> bool,
+) -> Vec<RenderedFrame> {
+    let deadline = Instant::now() + Duration::from_secs(60);
+    let mut seen = Vec::new();
+    while Instant::now() < deadline {
+        if let Some(frame) = session.take_frame() {
+            let stop = until(&frame);
+            seen.push(frame);
+            if stop {
+                return seen;
+            }
+        } else {
+            std::thread::sleep(Duration::from_millis(1));
+        }
+    }
+    panic!(
+        "no accepted frame within 60 s; saw {:?}",
+        seen.iter().map(|f| f.step).collect::<Vec<_>>()
+    );
+}
+
+#[test]
+fn previews_come_first_and_passes_add_up_to_the_offline_render() {
+    let session = ProgressiveRenderer::new(|| {});
+    let world = world(48, 32, 1.0);
+    let options = RenderOptions::default();
+    session.submit(Job {
+        world: Arc::clone(&world),
+        options,
+        target_spp: Some(3),
+    });
+    let frames = frames_until(&session, |f| f.step == Step::Passes { spp: 3 });
+    let first = &frames[0];
+    assert!(
+        matches!(first.step, Step::Preview { .. }),
+        "first frame {:?}",
+        first.step
+    );
+    // Newest wins: frames may be skipped, but they never go backwards.
+    let order = |s: Step| match s {
+        Step::Preview { stride } => PREVIEW_STRIDES
+            .iter()
+            .position(|&x| x == stride)
+            .expect("known stride") as u32,
+        Step::Passes { spp } => PREVIEW_STRIDES.len() as u32 + spp,
+    };
+    assert!(
+        frames
+            .windows(2)
+            .all(|w| order(w[0].step) < order(w[1].step))
+    );
+    let last = frames.last().expect("a frame");
+    assert_eq!(
+        last.pixels,
+        Film::render(&world, &options, 3).linear(),
+        "bit for bit"
+    );
+    assert!(last.samples_per_second > 0.0);
+}
+
+#[test]
+fn no_frame_of_an_older_job_appears_after_a_submit() {
+    let session = ProgressiveRenderer::new(|| {});
+    let options = RenderOptions::default();
+    let old = session.submit(Job {
+        world: world(160, 120, 1.0),
+        options,
+        target_spp: None,
+    });
+    frames_until(&session, |f| matches!(f.step, Step::Passes { .. }));
+    let new = session.submit(Job {
+        world: world(40, 30, 0.5),
+        options,
+        target_spp: Some(2),
+    });
+    assert!(new > old);
+    let frames = frames_until(&session, |f| f.step == Step::Passes { spp: 2 });
+    for f in &frames {
+        assert_eq!(
+            f.generation, new,
+            "a stale frame of job {} was shown",
+            f.generation
+        );
+        assert_eq!((f.width, f.height), (40, 30));
+    }
+}
+
+#[test]
+fn pause_stops_refinement_and_resume_continues() {
+    let session = ProgressiveRenderer::new(|| {});
+    session.submit(Job {
+        world: world(32, 24, 1.0),
+        options: RenderOptions::default(),
+        target_spp: None,
+    });
+    frames_until(&session, |f| matches!(f.step, Step::Passes { .. }));
+    session.set_paused(true);
+    std::thread::sleep(Duration::from_millis(100)); // let the step in flight finish
+    while session.take_frame().is_some() {}
+    std::thread::sleep(Duration::from_millis(200));
+    assert!(session.take_frame().is_none(), "no new frame while paused");
+    session.set_paused(false);
+    frames_until(&session, |f| matches!(f.step, Step::Passes { .. }));
+}
+
+#[test]
+fn dropping_the_session_stops_a_render_that_never_ends() {
+    let session = ProgressiveRenderer::new(|| {});
+    session.submit(Job {
+        world: world(200, 150, 1.0),
+        options: RenderOptions::default(),
+        target_spp: None,
+    });
+    frames_until(&session, |f| matches!(f.step, Step::Passes { .. }));
+    let started = Instant::now();
+    drop(session);
+    assert!(
+        started.elapsed() < Duration::from_secs(5),
+        "the worker stops within a band of rows"
+    );
+}
