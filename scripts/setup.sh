@@ -1,10 +1,16 @@
 #!/usr/bin/env bash
 # Installs what raylab needs on a fresh Debian 12 machine that has Rust (rustup):
-# a C toolchain for linking, and the rustfmt/clippy components the checks use.
+# a C toolchain for linking; Mesa's software Vulkan (lavapipe) and the X client
+# libraries the window loads at run time (no GPU needed); and the
+# rustfmt/clippy components the checks use.
 # Safe to run again: it installs only what is missing.
 set -euo pipefail
 
-packages=(gcc libc6-dev ca-certificates)
+packages=(
+  gcc libc6-dev ca-certificates
+  mesa-vulkan-drivers libvulkan1
+  libx11-6 libx11-xcb1 libxcursor1 libxi6 libxrandr2 libxkbcommon0 libxkbcommon-x11-0
+)
 
 missing=()
 for p in "${packages[@]}"; do

@@ -5,11 +5,18 @@ use std::path::PathBuf;
 
 /// raylab: a ray-tracing viewer and editor built on the course lecture's camera model.
 #[derive(Debug, Parser)]
-#[command(name = "raylab", version, about, arg_required_else_help = true)]
+#[command(
+    name = "raylab",
+    version,
+    about,
+    args_conflicts_with_subcommands = true
+)]
 pub struct Cli {
-    /// What to do.
+    /// What to do; without a command raylab opens its window.
     #[command(subcommand)]
-    pub command: Command,
+    pub command: Option<Command>,
+    /// The scene to open in the window (default: assets/scenes/seed.xml).
+    pub scene: Option<PathBuf>,
 }
 
 /// The subcommands.

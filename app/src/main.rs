@@ -1,17 +1,59 @@
-//! The `raylab` program: the command line now, the desktop window later.
+//! The `raylab` program: the desktop window (`raylab [SCENE]`) and the command line.
 
 mod cli;
+mod gui;
 mod output;
 mod render_cmd;
 
 use clap::Parser;
 use cli::{Cli, Command};
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+
+/// The scene the window opens without an argument: the lecture's.
+fn default_scene() -> PathBuf {
+    let here = Path::new("assets/scenes/seed.xml");
+    if here.exists() {
+        return here.to_path_buf();
+    }
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/seed.xml")
+}
+
+/// Opens the window on `path`; returns when it closes.
+fn run_window(path: PathBuf) -> ExitCode {
+    let scene = match scene::read_file(&path) {
+        Ok(scene) => scene,
+        Err(error) => {
+            eprintln!("error: {error}");
+            return ExitCode::from(2);
+        }
+    };
+    let options = eframe::NativeOptions {
+        viewport: egui::ViewportBuilder::default()
+            .with_title(format!("raylab — {}", path.display()))
+            .with_inner_size([1280.0, 800.0]),
+        renderer: eframe::Renderer::Wgpu,
+        ..Default::default()
+    };
+    let result = eframe::run_native(
+        "raylab",
+        options,
+        Box::new(move |_cc| Ok(Box::new(gui::RaylabApp::new(scene, Some(path))))),
+    );
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(error) => {
+            eprintln!("error: cannot open the window: {error}");
+            ExitCode::FAILURE
+        }
+    }
+}
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
-        Command::Render(args) => match render_cmd::run(&args) {
+        None => run_window(cli.scene.unwrap_or_else(default_scene)),
+        Some(Command::Render(args)) => match render_cmd::run(&args) {
             Ok(elapsed) => {
                 println!(
                     "wrote {} in {:.3} s",
