@@ -70,6 +70,8 @@ pub struct RenderedFrame {
 #[derive(Default)]
 struct Inbox {
     pending: Option<(u64, Job, Instant)>,
+    /// A new target spp for the current job, when one was set.
+    target: Option<Option<u32>>,
     paused: bool,
     shutdown: bool,
 }
@@ -134,6 +136,13 @@ impl ProgressiveRenderer {
         self.shared.wake.notify_all();
     }
 
+    /// Changes the current job's target spp without restarting it: raising it
+    /// continues refining the image on screen; `None` refines without end.
+    pub fn set_target_spp(&self, target_spp: Option<u32>) {
+        lock(&self.shared.inbox).target = Some(target_spp);
+        self.shared.wake.notify_all();
+    }
+
     /// The newest frame not yet taken, if any; never blocks on rendering.
     pub fn take_frame(&self) -> Option<RenderedFrame> {
         lock(&self.shared.slot).take()
@@ -179,6 +188,11 @@ fn work(shared: &Shared) {
             loop {
                 if inbox.shutdown {
                     return;
+                }
+                if let Some(target) = inbox.target.take()
+                    && let Some(c) = current.as_mut()
+                {
+                    c.job.target_spp = target;
                 }
                 if let Some((generation, job, submitted)) = inbox.pending.take() {
                     let film = Film::new(job.world.camera.w, job.world.camera.h);

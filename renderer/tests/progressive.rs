@@ -161,3 +161,29 @@ fn dropping_the_session_stops_a_render_that_never_ends() {
         "the worker stops within a band of rows"
     );
 }
+
+#[test]
+fn raising_the_target_continues_the_same_image() {
+    let session = ProgressiveRenderer::new(|| {});
+    let world = world(32, 24, 1.0);
+    let options = RenderOptions::default();
+    let generation = session.submit(Job {
+        world: Arc::clone(&world),
+        options,
+        target_spp: Some(1),
+    });
+    frames_until(&session, |f| f.step == Step::Passes { spp: 1 });
+    session.set_target_spp(Some(3));
+    let frames = frames_until(&session, |f| f.step == Step::Passes { spp: 3 });
+    assert!(
+        frames
+            .iter()
+            .all(|f| f.generation == generation && matches!(f.step, Step::Passes { .. }))
+    );
+    let last = frames.last().expect("a frame");
+    assert_eq!(
+        last.pixels,
+        Film::render(&world, &options, 3).linear(),
+        "continued, not restarted"
+    );
+}

@@ -33,8 +33,8 @@ pub struct RaylabApp {
     shown: Option<status_bar::Shown>,
     /// Why the scene cannot be rendered as edited, if it can't.
     error: Option<String>,
-    /// Refinement target in samples per pixel.
-    target_spp: u32,
+    /// Refinement target and pause, as set in the status bar.
+    controls: status_bar::Controls,
     /// True when the scene changed since the last submit.
     dirty: bool,
 }
@@ -51,7 +51,10 @@ impl RaylabApp {
             image: image_view::ImageView::default(),
             shown: None,
             error: None,
-            target_spp: DEFAULT_TARGET_SPP,
+            controls: status_bar::Controls {
+                target_spp: DEFAULT_TARGET_SPP,
+                paused: false,
+            },
             dirty: true,
         }
     }
@@ -71,7 +74,7 @@ impl RaylabApp {
                 self.generation = session.submit(Job {
                     world,
                     options: RenderOptions::default(),
-                    target_spp: Some(self.target_spp),
+                    target_spp: Some(self.controls.target_spp),
                 });
                 self.error = None;
             }
@@ -95,12 +98,20 @@ impl RaylabApp {
         self.receive(&ctx);
 
         egui::Panel::bottom("status").show(ui, |ui| {
-            status_bar::show(
-                ui,
-                self.shown.as_ref(),
-                self.error.as_deref(),
-                self.target_spp,
-            );
+            ui.horizontal(|ui| {
+                if status_bar::controls(ui, &mut self.controls)
+                    && let Some(session) = &self.session
+                {
+                    session.set_paused(self.controls.paused);
+                    session.set_target_spp(Some(self.controls.target_spp));
+                }
+                status_bar::show(
+                    ui,
+                    self.shown.as_ref(),
+                    self.error.as_deref(),
+                    self.controls.target_spp,
+                );
+            });
         });
         egui::Panel::left("camera").resizable(true).show(ui, |ui| {
             if let Some(path) = &self.path {

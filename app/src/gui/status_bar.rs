@@ -28,6 +28,34 @@ impl Shown {
     }
 }
 
+/// What the user asked for in the status bar.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Controls {
+    /// Refinement stops at this many samples per pixel.
+    pub target_spp: u32,
+    /// Refinement is paused.
+    pub paused: bool,
+}
+
+/// Draws the pause button and the target spp; true when either changed.
+pub fn controls(ui: &mut egui::Ui, controls: &mut Controls) -> bool {
+    let label = if controls.paused { "Resume" } else { "Pause" };
+    let mut changed = false;
+    if ui.button(label).clicked() {
+        controls.paused = !controls.paused;
+        changed = true;
+    }
+    changed |= ui
+        .add(
+            egui::DragValue::new(&mut controls.target_spp)
+                .range(1..=65536)
+                .prefix("target spp "),
+        )
+        .changed();
+    ui.separator();
+    changed
+}
+
 /// Draws the status line.
 pub fn show(ui: &mut egui::Ui, shown: Option<&Shown>, error: Option<&str>, target_spp: u32) {
     ui.horizontal(|ui| {

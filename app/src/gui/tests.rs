@@ -12,7 +12,7 @@ fn seed_app(width: u32, height: u32) -> RaylabApp {
     scene.camera.width = width;
     scene.camera.height = height;
     let mut app = RaylabApp::new(scene, Some(path));
-    app.target_spp = 2;
+    app.controls.target_spp = 2;
     app
 }
 
@@ -29,7 +29,7 @@ fn settle(h: &mut Harness<'static, RaylabApp>) {
         h.step();
         if h.state().shown.map(|s| s.step)
             == Some(Step::Passes {
-                spp: h.state().target_spp,
+                spp: h.state().controls.target_spp,
             })
         {
             return;
@@ -76,4 +76,17 @@ fn a_degenerate_camera_keeps_the_last_image_and_says_why() {
     h.step(); // the status bar shows the error from the next frame on
     h.get_by_label("camera: the up vector u is zero or not finite");
     assert!(h.state().shown.is_some(), "the last image stays");
+}
+
+#[test]
+fn raising_the_target_spp_refines_the_same_image_further() {
+    let mut h = harness(seed_app(48, 32));
+    settle(&mut h);
+    let generation = h.state().generation;
+    h.get_by_label_contains("target spp")
+        .set_value_accesskit(4.0);
+    h.step();
+    assert_eq!(h.state().controls.target_spp, 4);
+    settle(&mut h);
+    assert_eq!(h.state().generation, generation, "no restart");
 }
