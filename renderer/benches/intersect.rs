@@ -5,6 +5,7 @@
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use glam::Vec3;
 use renderer::ray::Ray;
+use renderer::sampler::Sampler;
 use renderer::shapes::{Method, Shape};
 use scene::Geometry;
 use std::hint::black_box;
@@ -12,34 +13,14 @@ use std::hint::black_box;
 /// Rays per benchmark iteration.
 const RAYS: usize = 1024;
 
-/// SplitMix64: a tiny seeded generator, so every run tests the same rays.
-struct SplitMix(u64);
-
-impl SplitMix {
-    fn unit(&mut self) -> f32 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
-    }
-
-    fn dir(&mut self) -> Vec3 {
-        let z = 2.0 * self.unit() - 1.0;
-        let phi = std::f32::consts::TAU * self.unit();
-        let s = (1.0 - z * z).sqrt();
-        Vec3::new(s * phi.cos(), z, s * phi.sin())
-    }
-}
-
 /// Rays from 3–10 units away, aimed at random points of a ball of `spread`
 /// around the origin; `spread` is tuned per shape so that about half hit.
 fn rays(seed: u64, spread: f32) -> Vec<Ray> {
-    let mut rng = SplitMix(seed);
+    let mut rng = Sampler::for_sample(seed, 0, 0, 0);
     (0..RAYS)
         .map(|_| {
-            let origin = (3.0 + 7.0 * rng.unit()) * rng.dir();
-            let target = spread * rng.unit().cbrt() * rng.dir();
+            let origin = (3.0 + 7.0 * rng.next_f32()) * rng.next_direction();
+            let target = spread * rng.next_f32().cbrt() * rng.next_direction();
             Ray::new(origin, (target - origin).normalize())
         })
         .collect()

@@ -1,7 +1,7 @@
 //! Random numbers that depend only on (seed, pixel, sample index), so images
 //! are identical for any thread count and any one sample can be re-traced.
 
-use glam::Vec2;
+use glam::{Vec2, Vec3};
 use rand_core::Rng;
 use rand_pcg::Pcg32;
 
@@ -31,6 +31,14 @@ impl Sampler {
     pub fn next_f32(&mut self) -> f32 {
         // 24 random mantissa bits: exactly representable, never 1.0.
         (self.rng.next_u32() >> 8) as f32 * (1.0 / 16_777_216.0)
+    }
+
+    /// A uniformly distributed unit vector (uniform on the sphere).
+    pub fn next_direction(&mut self) -> Vec3 {
+        let z = 2.0 * self.next_f32() - 1.0;
+        let phi = std::f32::consts::TAU * self.next_f32();
+        let s = (1.0 - z * z).max(0.0).sqrt();
+        Vec3::new(s * phi.cos(), z, s * phi.sin())
     }
 
     /// A uniform point in [0, 1)².

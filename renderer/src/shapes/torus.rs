@@ -127,6 +127,7 @@ impl Torus {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sampler::Sampler;
     use proptest::prelude::*;
 
     fn ring() -> Torus {
@@ -216,24 +217,6 @@ mod tests {
         assert!((t.surface(&ray, a).normal - Vec3::Y).length() < 1e-5);
     }
 
-    /// A small deterministic generator for the statistical tests.
-    struct SplitMix(u64);
-    impl SplitMix {
-        fn unit(&mut self) -> f32 {
-            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
-        }
-        fn dir(&mut self) -> Vec3 {
-            let z = 2.0 * self.unit() - 1.0;
-            let phi = std::f32::consts::TAU * self.unit();
-            let s = (1.0 - z * z).sqrt();
-            Vec3::new(s * phi.cos(), z, s * phi.sin())
-        }
-    }
-
     /// Fraction of rays from `dist` away, aimed at random points of the outer
     /// half (whose tangent planes support the torus, so the aimed-at point is
     /// the first hit), that hit with relative α error ≤ 1e-4.
@@ -244,17 +227,17 @@ mod tests {
             0.25,
             Vec3::new(30.0, 10.0, 50.0),
         );
-        let mut rng = SplitMix(7);
+        let mut rng = Sampler::for_sample(7, 0, 0, 0);
         let (n, mut good) = (4000, 0);
         for _ in 0..n {
-            let theta = std::f32::consts::PI * (rng.unit() - 0.5);
-            let phi = std::f32::consts::TAU * rng.unit();
+            let theta = std::f32::consts::PI * (rng.next_f32() - 0.5);
+            let phi = std::f32::consts::TAU * rng.next_f32();
             let radial = Vec3::new(phi.cos(), 0.0, phi.sin());
             let n_local = theta.cos() * radial + Vec3::new(0.0, theta.sin(), 0.0);
             let p = t.frame.point_to_world(t.major * radial + t.minor * n_local);
             let normal = t.frame.vector_to_world(n_local);
             let u = loop {
-                let u = rng.dir();
+                let u = rng.next_direction();
                 if u.dot(normal) > 0.1 {
                     break u;
                 }
@@ -284,13 +267,13 @@ mod tests {
     #[test]
     fn far_rays_through_the_hole_with_nothing_in_the_way_never_hit() {
         let t = ring();
-        let mut rng = SplitMix(11);
+        let mut rng = Sampler::for_sample(11, 0, 0, 0);
         let mut tested = 0;
         for k in 0..2000 {
             let dist = if k % 2 == 0 { 100.0 } else { 1.0e4 };
-            let phi = std::f32::consts::TAU * rng.unit();
-            let hole = 1.4 * rng.unit() * Vec3::new(phi.cos(), 0.0, phi.sin());
-            let mut d = rng.dir();
+            let phi = std::f32::consts::TAU * rng.next_f32();
+            let hole = 1.4 * rng.next_f32() * Vec3::new(phi.cos(), 0.0, phi.sin());
+            let mut d = rng.next_direction();
             d.y = d.y.signum() * d.y.abs().max(0.8);
             let d = d.normalize();
             // The distance to the tube is 1-Lipschitz along the ray: sampling
