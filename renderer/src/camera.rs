@@ -54,6 +54,12 @@ pub struct Camera {
     pub w_d: f32,
     /// C00 = P0 + d t + (H_d/2) u − (W_d/2) r, the view window's top-left corner.
     pub c00: Vec3,
+    /// C00 − P0 in f64 (see [`Camera::window_offset`]).
+    corner_offset: DVec3,
+    /// (W_d / w) r in f64: one pixel to the right on the view window.
+    pixel_right: DVec3,
+    /// (H_d / h) u in f64: one pixel up on the view window.
+    pixel_up: DVec3,
 }
 
 impl Camera {
@@ -94,12 +100,21 @@ impl Camera {
         if !(d > 0.0 && d.is_finite()) {
             return Err(CameraError::Distance(d));
         }
+        // The window's geometry in f64: d scales every term, and in f64 its
+        // rounding stays ~1e-16 relative, far below f32 precision, so the f32
+        // directions v_ij — and the image — come out the same for any d.
+        let d64 = f64::from(d);
+        let h_d64 = 2.0 * d64 * f64::from(theta).tan();
+        let w_d64 = f64::from(w) / f64::from(h) * h_d64;
+        let corner_offset = d64 * t + (h_d64 / 2.0) * u - (w_d64 / 2.0) * r;
+        let pixel_right = (w_d64 / f64::from(w)) * r;
+        let pixel_up = (h_d64 / f64::from(h)) * u;
         let (t, u, r) = (t.as_vec3(), u.as_vec3(), r.as_vec3());
         let rho = w as f32 / h as f32;
-        let h_d = 2.0 * d * theta.tan();
-        let w_d = rho * h_d;
+        let h_d = h_d64 as f32;
+        let w_d = w_d64 as f32;
         let p0 = input.eye;
-        let c00 = p0 + Self::corner_offset(d, t, u, r, h_d, w_d);
+        let c00 = p0 + corner_offset.as_vec3();
         Ok(Self {
             p0,
             t,
@@ -113,29 +128,20 @@ impl Camera {
             h_d,
             w_d,
             c00,
+            corner_offset,
+            pixel_right,
+            pixel_up,
         })
     }
 
-    /// C00 − P0 = d t + (H_d/2) u − (W_d/2) r.
-    fn corner_offset(d: f32, t: Vec3, u: Vec3, r: Vec3, h_d: f32, w_d: f32) -> Vec3 {
-        d * t + (h_d / 2.0) * u - (w_d / 2.0) * r
-    }
-
     /// The point on the view window at pixel coordinates (i + x, j + y) minus
-    /// P0: the lecture's P_ij − P0 with the ½ replaced by `offset`.
-    ///
-    /// Formed relative to P0 (so far-away cameras keep their precision) and
-    /// in f64: d scales every term, and in f64 its rounding stays ~1e-16
-    /// relative, far below f32 precision, so the f32 direction v_ij — and the
-    /// image — comes out the same for any d.
+    /// P0: the lecture's P_ij − P0 = (C00 − P0) + (i + x)(W_d/w) r − (j + y)(H_d/h) u,
+    /// with the ½ replaced by `offset`. Formed relative to P0 (so far-away
+    /// cameras keep their precision) and in f64, from terms precomputed in
+    /// [`Camera::new`].
     fn window_offset(&self, i: u32, j: u32, offset: Vec2) -> DVec3 {
-        let (t, u, r) = (self.t.as_dvec3(), self.u.as_dvec3(), self.r.as_dvec3());
-        let d = f64::from(self.d);
-        let h_d = 2.0 * d * f64::from(self.theta).tan();
-        let w_d = f64::from(self.w) / f64::from(self.h) * h_d;
-        let corner = d * t + (h_d / 2.0) * u - (w_d / 2.0) * r;
-        corner + ((f64::from(i) + f64::from(offset.x)) * (w_d / f64::from(self.w))) * r
-            - ((f64::from(j) + f64::from(offset.y)) * (h_d / f64::from(self.h))) * u
+        self.corner_offset + (f64::from(i) + f64::from(offset.x)) * self.pixel_right
+            - (f64::from(j) + f64::from(offset.y)) * self.pixel_up
     }
 
     /// P_ij = C00 + (i + ½)(W_d/w) r − (j + ½)(H_d/h) u, the centre of pixel (i, j) on the view window.

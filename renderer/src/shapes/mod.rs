@@ -128,11 +128,6 @@ impl Shape {
             Shape::Plane(s) => s.surface(ray, alpha),
         }
     }
-
-    /// Whether the shape encloses a volume (rays can start inside it).
-    pub fn is_closed(&self) -> bool {
-        !matches!(self, Shape::Triangle(_) | Shape::Plane(_))
-    }
 }
 
 #[cfg(test)]
