@@ -82,6 +82,8 @@ fn window_shows_the_rendered_seed_scene_beside_the_camera_panel() {
         .env("SHOT", &shot)
         .env("STOP", &stop)
         .env("XDG_RUNTIME_DIR", &runtime)
+        // Persistence (recent files, window layout) goes to the temp dir, not the user's.
+        .env("XDG_DATA_HOME", dir.path())
         .env("WGPU_BACKEND", "vulkan")
         .spawn()
         .expect("xvfb-run starts (scripts/setup.sh installs it)");

@@ -30,7 +30,8 @@ fn run_window(path: PathBuf) -> ExitCode {
     };
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
-            .with_title(format!("raylab — {}", path.display()))
+            .with_title("raylab")
+            .with_drag_and_drop(true)
             .with_inner_size([1280.0, 800.0]),
         renderer: eframe::Renderer::Wgpu,
         ..Default::default()
@@ -38,7 +39,13 @@ fn run_window(path: PathBuf) -> ExitCode {
     let result = eframe::run_native(
         "raylab",
         options,
-        Box::new(move |_cc| Ok(Box::new(gui::RaylabApp::new(scene, Some(path))))),
+        Box::new(move |cc| {
+            Ok(Box::new(gui::RaylabApp::with_storage(
+                scene,
+                Some(path),
+                cc.storage,
+            )))
+        }),
     );
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -33,14 +33,98 @@ impl Format {
     }
 }
 
-/// Writes linear RGB pixels (row 0 at the top) as an 8-bit sRGB PNG.
-pub fn write_png(path: &Path, width: u32, height: u32, pixels: &[Vec3]) -> Result<()> {
+/// Where an image came from, recorded in the files written: PNG text
+/// chunks, an EXR comment.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Provenance {
+    /// `(keyword, text)` pairs, e.g. `("raylab:camera", "P0=(…) t=(…) …")`.
+    pub entries: Vec<(String, String)>,
+}
+
+impl Provenance {
+    /// The provenance of a render of `camera` from `scene_file` at `spp` samples per pixel.
+    pub fn of_render(camera: &renderer::Camera, scene_file: Option<&Path>, spp: u32) -> Self {
+        let v = |v: Vec3| format!("({}, {}, {})", v.x, v.y, v.z);
+        let camera_text = format!(
+            "P0={} t={} u={} theta={}deg d={} w={} h={}",
+            v(camera.p0),
+            v(camera.t),
+            v(camera.u),
+            camera.theta.to_degrees(),
+            camera.d,
+            camera.w,
+            camera.h
+        );
+        let mut entries = vec![
+            (
+                "Software".to_owned(),
+                format!("raylab {}", env!("CARGO_PKG_VERSION")),
+            ),
+            ("raylab:camera".to_owned(), camera_text),
+            ("raylab:spp".to_owned(), spp.to_string()),
+        ];
+        if let Some(file) = scene_file {
+            let file = std::path::absolute(file).unwrap_or_else(|_| file.to_path_buf());
+            entries.push(("raylab:scene".to_owned(), file.display().to_string()));
+        }
+        Provenance { entries }
+    }
+
+    /// The value recorded under `keyword`.
+    #[cfg(test)]
+    pub fn get(&self, keyword: &str) -> Option<&str> {
+        self.entries
+            .iter()
+            .find(|(k, _)| k == keyword)
+            .map(|(_, v)| v.as_str())
+    }
+}
+
+/// Writes linear RGB pixels (row 0 at the top) as an 8-bit sRGB PNG, with
+/// `provenance` as UTF-8 text chunks.
+pub fn write_png(
+    path: &Path,
+    width: u32,
+    height: u32,
+    pixels: &[Vec3],
+    provenance: &Provenance,
+) -> Result<()> {
     let bytes: Vec<u8> = pixels
         .iter()
         .flat_map(|&c| renderer::film::linear_to_srgb8(c))
         .collect();
-    image::save_buffer(path, &bytes, width, height, image::ExtendedColorType::Rgb8)
-        .with_context(|| format!("cannot write {}", path.display()))
+    let write = || -> std::result::Result<(), png::EncodingError> {
+        let file = std::io::BufWriter::new(std::fs::File::create(path)?);
+        let mut encoder = png::Encoder::new(file, width, height);
+        encoder.set_color(png::ColorType::Rgb);
+        encoder.set_depth(png::BitDepth::Eight);
+        encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
+        for (keyword, text) in &provenance.entries {
+            encoder.add_itxt_chunk(keyword.clone(), text.clone())?;
+        }
+        let mut writer = encoder.write_header()?;
+        writer.write_image_data(&bytes)?;
+        writer.finish()
+    };
+    write().with_context(|| format!("cannot write {}", path.display()))
+}
+
+/// Reads the text chunks of a PNG written by [`write_png`].
+#[cfg(test)]
+pub fn read_png_provenance(path: &Path) -> Result<Provenance> {
+    let file = std::io::BufReader::new(
+        std::fs::File::open(path).with_context(|| format!("cannot open {}", path.display()))?,
+    );
+    let reader = png::Decoder::new(file).read_info()?;
+    let info = reader.info();
+    let mut entries = Vec::new();
+    for chunk in &info.utf8_text {
+        entries.push((chunk.keyword.clone(), chunk.get_text()?));
+    }
+    for chunk in &info.uncompressed_latin1_text {
+        entries.push((chunk.keyword.clone(), chunk.text.clone()));
+    }
+    Ok(Provenance { entries })
 }
 
 /// Writes float channels (interleaved per pixel, row 0 at the top) as a
@@ -51,6 +135,7 @@ pub fn write_exr(
     height: u32,
     names: &[&str],
     values: &[f32],
+    provenance: &Provenance,
 ) -> Result<()> {
     let count = names.len();
     let channels: Vec<AnyChannel<FlatSamples>> = names
@@ -61,9 +146,16 @@ pub fn write_exr(
             AnyChannel::new(*name, FlatSamples::F32(samples))
         })
         .collect();
+    let comment: Vec<String> = provenance
+        .entries
+        .iter()
+        .map(|(k, v)| format!("{k}: {v}"))
+        .collect();
+    let mut attributes = LayerAttributes::named("raylab");
+    attributes.comments = Text::new_or_none(comment.join("\n"));
     let layer = Layer::new(
         (width as usize, height as usize),
-        LayerAttributes::named("raylab"),
+        attributes,
         Encoding::FAST_LOSSLESS,
         AnyChannels::sort(channels.into()),
     );

@@ -1,7 +1,7 @@
 //! `raylab render`: a scene to an image file, no window.
 
 use crate::cli::{AovArg, MethodArg, RenderArgs};
-use crate::output::{Format, write_exr, write_png};
+use crate::output::{Format, Provenance, write_exr, write_png};
 use anyhow::Result;
 use renderer::aov::{self, Aov};
 use renderer::{Film, Method, RenderOptions, World};
@@ -33,6 +33,7 @@ pub fn run(args: &RenderArgs) -> Result<Duration> {
         seed: args.seed,
     };
     let (w, h) = (world.camera.w, world.camera.h);
+    let provenance = Provenance::of_render(&world.camera, Some(&args.scene), args.spp);
     let start = Instant::now();
     match aov_of(args.aov) {
         None => {
@@ -46,10 +47,10 @@ pub fn run(args: &RenderArgs) -> Result<Duration> {
             }
             let pixels = film.linear();
             match format {
-                Format::Png => write_png(&args.output, w, h, &pixels)?,
+                Format::Png => write_png(&args.output, w, h, &pixels, &provenance)?,
                 Format::Exr => {
                     let values: Vec<f32> = pixels.iter().flat_map(|p| p.to_array()).collect();
-                    write_exr(&args.output, w, h, &["R", "G", "B"], &values)?
+                    write_exr(&args.output, w, h, &["R", "G", "B"], &values, &provenance)?
                 }
             }
             Ok(elapsed)
@@ -58,14 +59,20 @@ pub fn run(args: &RenderArgs) -> Result<Duration> {
             let values = aov::render_aov(&world, kind, options.method);
             let elapsed = start.elapsed();
             match format {
-                Format::Png => write_png(&args.output, w, h, &aov::visualize(kind, &values))?,
+                Format::Png => write_png(
+                    &args.output,
+                    w,
+                    h,
+                    &aov::visualize(kind, &values),
+                    &provenance,
+                )?,
                 Format::Exr => {
                     let names: &[&str] = match kind {
                         Aov::Depth => &["Z"],
                         Aov::Object => &["id"],
                         Aov::Normal | Aov::Albedo => &["R", "G", "B"],
                     };
-                    write_exr(&args.output, w, h, names, &values)?
+                    write_exr(&args.output, w, h, names, &values, &provenance)?
                 }
             }
             Ok(elapsed)

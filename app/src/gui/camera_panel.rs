@@ -1,31 +1,10 @@
 //! The camera panel: the lecture's inputs P0, t, u, θ, d, w, h as editable
 //! values, and its derived quantities r, ρ, H_d, W_d, C00 read-only.
 
+use super::widgets::vec3_row;
 use glam::Vec3;
 use renderer::Camera;
 use scene::Scene;
-
-/// Three drag values for a vector; true when one changed.
-fn vec3_row(ui: &mut egui::Ui, label: &str, v: &mut Vec3, speed: f32) -> bool {
-    ui.label(label);
-    let mut changed = false;
-    ui.horizontal(|ui| {
-        for (axis, c) in ["x", "y", "z"]
-            .into_iter()
-            .zip([&mut v.x, &mut v.y, &mut v.z])
-        {
-            changed |= ui
-                .add(
-                    egui::DragValue::new(c)
-                        .speed(speed)
-                        .prefix(format!("{axis} ")),
-                )
-                .changed();
-        }
-    });
-    ui.end_row();
-    changed
-}
 
 /// A read-only vector.
 fn vec3_value(ui: &mut egui::Ui, label: &str, v: Vec3) {

@@ -1,81 +1,197 @@
-//! The desktop window: a camera panel, the progressively refined image and a
-//! status bar. The UI thread never renders: it submits a scene snapshot to
-//! the progressive session after every edit and shows the newest frame.
+//! The desktop window: menu bar, camera and render panel, scene panel, the
+//! progressively refined image and a status bar. The UI thread never
+//! renders: after every edit it snapshots the scene for the progressive
+//! session and shows the newest frame the session hands back.
 
 mod camera_panel;
+mod commands;
+mod document;
+mod edits;
+mod files;
+mod history;
 mod image_view;
+mod light_editor;
+mod navigation;
+mod object_editor;
+mod render_panel;
+mod scene_panel;
+mod screenshot;
 mod status_bar;
+mod widgets;
 
+use crate::output::Provenance;
+use commands::Command;
+use document::{Document, RenderSettings};
+use edits::Selection;
+use files::{DialogKind, DialogResult, Dialogs, Settings};
+use navigation::OrbitView;
 use renderer::progressive::{Job, ProgressiveRenderer, RenderedFrame};
+use renderer::ray::Ray;
 use renderer::{RenderOptions, World};
-use scene::Scene;
-use std::path::PathBuf;
+use scene::{ResolvedScene, Scene};
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
+use std::time::Instant;
 
-/// Samples per pixel the window refines to before it stops.
-const DEFAULT_TARGET_SPP: u32 = 64;
+/// Orbit speed, radians per point dragged.
+const ORBIT_SPEED: f32 = 0.008;
+/// Dolly speed: the distance shrinks by e^(speed · points).
+const DOLLY_SPEED: f32 = 0.004;
 
-/// The application state: the edited scene, its render session and what is shown.
+/// A scene snapshot and the render copy prepared from it.
+struct Prepared {
+    /// Every default decided (placement, camera, lights).
+    resolved: ResolvedScene,
+    /// The immutable render copy the session renders.
+    world: Arc<World>,
+}
+
+/// What waits for the user's answer to "save changes?".
+#[derive(Clone, Debug, PartialEq)]
+enum Pending {
+    /// Open this file.
+    Open(PathBuf),
+    /// Ask for a file to open.
+    OpenDialog,
+    /// Start a new scene.
+    New,
+    /// Close the window.
+    Close,
+}
+
+/// The application state: the document, its render session and what is shown.
 pub struct RaylabApp {
-    /// The scene being edited.
-    scene: Scene,
-    /// Where the scene came from.
-    path: Option<PathBuf>,
+    /// The open scene, its file and undo history.
+    doc: Document,
+    /// The selected object or light.
+    selection: Selection,
     /// The render session; started on the first frame, when a context exists.
     session: Option<ProgressiveRenderer>,
-    /// The prepared copy of the newest valid scene (camera values for the panel).
-    world: Option<Arc<World>>,
+    /// The prepared copy of the newest valid scene.
+    prepared: Option<Prepared>,
+    /// What the session was last given: the scene and the options.
+    submitted: Option<(Scene, RenderOptions)>,
+    /// The target spp the session was last given.
+    submitted_target: Option<Option<u32>>,
     /// The generation of the newest submitted job.
     generation: u64,
     /// The image view (one texture, updated in place).
     image: image_view::ImageView,
-    /// The newest frame's step and timings, for the status bar.
-    shown: Option<status_bar::Shown>,
+    /// The newest frame on screen.
+    frame: Option<RenderedFrame>,
     /// Why the scene cannot be rendered as edited, if it can't.
     error: Option<String>,
-    /// Refinement target and pause, as set in the status bar.
-    controls: status_bar::Controls,
-    /// True when the scene changed since the last submit.
-    dirty: bool,
+    /// Refinement is paused.
+    paused: bool,
+    /// The camera being orbited, panned or dollied by a drag in progress.
+    navigation: Option<OrbitView>,
+    /// The open file dialog, if any.
+    dialogs: Dialogs,
+    /// Remembered between runs.
+    settings: Settings,
+    /// An action waiting for "save changes?".
+    guard: Option<Pending>,
+    /// An action to carry out once a Save As dialog has saved.
+    after_save: Option<Pending>,
+    /// Closing the window was confirmed.
+    allow_close: bool,
+    /// A message for the user (a failed open or save), shown until dismissed.
+    message: Option<String>,
+    /// A path typed by the user when no file dialog is available.
+    path_prompt: Option<(DialogKind, String)>,
+    /// The help overlay is shown.
+    show_help: bool,
+    /// The title last sent to the window.
+    title: String,
+    /// The UI thread's frame times.
+    frame_times: status_bar::FrameTimes,
 }
 
 impl RaylabApp {
     /// An app showing `scene` (loaded from `path`).
     pub fn new(scene: Scene, path: Option<PathBuf>) -> Self {
         Self {
-            scene,
-            path,
+            doc: Document::new(scene, path, RenderSettings::default()),
+            selection: Selection::None,
             session: None,
-            world: None,
+            prepared: None,
+            submitted: None,
+            submitted_target: None,
             generation: 0,
             image: image_view::ImageView::default(),
-            shown: None,
+            frame: None,
             error: None,
-            controls: status_bar::Controls {
-                target_spp: DEFAULT_TARGET_SPP,
-                paused: false,
-            },
-            dirty: true,
+            paused: false,
+            navigation: None,
+            dialogs: Dialogs::default(),
+            settings: Settings::default(),
+            guard: None,
+            after_save: None,
+            allow_close: false,
+            message: None,
+            path_prompt: None,
+            show_help: false,
+            title: String::new(),
+            frame_times: status_bar::FrameTimes::default(),
         }
     }
 
-    /// Prepares the scene and hands it to the session; a scene that cannot be
-    /// rendered keeps the last image and shows why.
-    fn submit(&mut self, ctx: &egui::Context) {
-        self.dirty = false;
+    /// An app restoring its settings from eframe's storage.
+    pub fn with_storage(
+        scene: Scene,
+        path: Option<PathBuf>,
+        storage: Option<&dyn eframe::Storage>,
+    ) -> Self {
+        let mut app = Self::new(scene, path.clone());
+        if let Some(settings) = storage.and_then(|s| eframe::get_value(s, Settings::KEY)) {
+            app.settings = settings;
+        }
+        if let Some(path) = path {
+            app.settings.remember(&path);
+        }
+        app
+    }
+
+    /// Hands the scene to the session when it or the options changed since
+    /// the last submit; a scene that cannot be rendered keeps the last image
+    /// and says why.
+    fn submit_if_changed(&mut self, ctx: &egui::Context) {
+        let options = self.doc.state.render.options();
+        let target = self.doc.state.render.target_spp;
+        let unchanged = self
+            .submitted
+            .as_ref()
+            .is_some_and(|(scene, o)| *o == options && *scene == self.doc.state.scene);
         let session = self.session.get_or_insert_with(|| {
             let ctx = ctx.clone();
             ProgressiveRenderer::new(move || ctx.request_repaint())
         });
-        match World::from_scene(&self.scene) {
-            Ok(world) => {
-                let world = Arc::new(world);
-                self.world = Some(Arc::clone(&world));
+        if unchanged {
+            if self.submitted_target != Some(target) {
+                session.set_target_spp(target);
+                self.submitted_target = Some(target);
+            }
+            return;
+        }
+        self.submitted = Some((self.doc.state.scene.clone(), options));
+        self.submitted_target = Some(target);
+        let prepared = scene::resolve(&self.doc.state.scene)
+            .map_err(renderer::RenderError::from)
+            .and_then(|resolved| {
+                let world = World::new(&resolved)?;
+                Ok(Prepared {
+                    resolved,
+                    world: Arc::new(world),
+                })
+            });
+        match prepared {
+            Ok(prepared) => {
                 self.generation = session.submit(Job {
-                    world,
-                    options: RenderOptions::default(),
-                    target_spp: Some(self.controls.target_spp),
+                    world: Arc::clone(&prepared.world),
+                    options,
+                    target_spp: target,
                 });
+                self.prepared = Some(prepared);
                 self.error = None;
             }
             Err(e) => self.error = Some(e.to_string()),
@@ -84,56 +200,527 @@ impl RaylabApp {
 
     /// Shows the newest finished frame, if one arrived.
     fn receive(&mut self, ctx: &egui::Context) {
-        let Some(frame): Option<RenderedFrame> = self.session.as_ref().and_then(|s| s.take_frame())
-        else {
+        if let Some(frame) = self.session.as_ref().and_then(|s| s.take_frame()) {
+            self.image.show_frame(ctx, &frame);
+            self.frame = Some(frame);
+        }
+    }
+
+    /// The object under pixel (i, j) of the newest render, if any.
+    fn pick(&self, [i, j]: [u32; 2]) -> Option<usize> {
+        let prepared = self.prepared.as_ref()?;
+        let world = &prepared.world;
+        if i >= world.camera.w || j >= world.camera.h {
+            return None;
+        }
+        let ray = world.camera.center_ray(i, j);
+        world
+            .intersect(&ray, self.doc.state.render.method)
+            .map(|hit| hit.object as usize)
+    }
+
+    /// The camera as an eye orbiting the point the image centre shows (or,
+    /// looking at nothing, the scene's centre depth).
+    fn orbit_view(&self) -> Option<OrbitView> {
+        let prepared = self.prepared.as_ref()?;
+        let camera = &prepared.world.camera;
+        let hit = prepared
+            .world
+            .intersect(&Ray::new(camera.p0, camera.t), self.doc.state.render.method)
+            .map(|h| h.alpha)
+            .filter(|a| a.is_finite() && *a > 1e-3);
+        let depth = hit.unwrap_or_else(|| {
+            let focus = prepared
+                .resolved
+                .objects
+                .iter()
+                .filter_map(|o| scene::layout::bounds(&o.geometry))
+                .fold(scene::layout::Aabb::EMPTY, scene::layout::Aabb::union);
+            if focus.is_empty() {
+                5.0
+            } else {
+                (focus.center() - camera.p0).dot(camera.t).max(1.0)
+            }
+        });
+        Some(OrbitView {
+            eye: camera.p0,
+            target: camera.p0 + camera.t * depth,
+            up: self.doc.state.scene.camera.up,
+        })
+    }
+
+    /// Turns this frame's mouse gestures on the image into a pick or a camera move.
+    fn navigate(&mut self, gestures: &image_view::Gestures, dragging: bool) {
+        if let Some(pixel) = gestures.clicked_pixel {
+            self.selection = match self.pick(pixel) {
+                Some(object) => Selection::Object(object),
+                None => Selection::None,
+            };
+        }
+        let moved = gestures.orbit != egui::Vec2::ZERO
+            || gestures.pan != egui::Vec2::ZERO
+            || gestures.dolly != 0.0;
+        if !moved {
+            if !dragging {
+                self.navigation = None;
+            }
+            return;
+        }
+        let Some(mut view) = self.navigation.or_else(|| self.orbit_view()) else {
             return;
         };
-        self.image.show_frame(ctx, &frame);
-        self.shown = Some(status_bar::Shown::of(&frame));
+        view = view.orbit(
+            -gestures.orbit.x * ORBIT_SPEED,
+            -gestures.orbit.y * ORBIT_SPEED,
+        );
+        if gestures.pan != egui::Vec2::ZERO
+            && let Some(prepared) = &self.prepared
+        {
+            let camera = &prepared.world.camera;
+            // World units per screen point at the target's depth.
+            let per_pixel = 2.0 * view.distance() * camera.theta.tan() / camera.h as f32;
+            let scale = per_pixel * gestures.pixels_per_point;
+            view = view.pan(-gestures.pan.x * scale, gestures.pan.y * scale);
+        }
+        view = view.dolly((gestures.dolly * DOLLY_SPEED).exp());
+        let cam = &mut self.doc.state.scene.camera;
+        cam.eye = Some(view.eye);
+        cam.toward = Some(view.toward());
+        self.navigation = dragging.then_some(view);
+    }
+
+    /// Carries out `command`.
+    fn run(&mut self, ctx: &egui::Context, command: Command) {
+        match command {
+            Command::New => self.guarded(ctx, Pending::New),
+            Command::Open => self.guarded(ctx, Pending::OpenDialog),
+            Command::OpenPath(path) => self.guarded(ctx, Pending::Open(path)),
+            Command::Save => match self.doc.path.clone() {
+                Some(path) => {
+                    self.save_scene(&path);
+                }
+                None => self.start_dialog(ctx, DialogKind::SaveScene),
+            },
+            Command::SaveAs => self.start_dialog(ctx, DialogKind::SaveScene),
+            Command::SaveImage => self.start_dialog(ctx, DialogKind::SaveImage),
+            Command::CopyImage => {
+                if let Some(frame) = &self.frame {
+                    ctx.copy_image(screenshot::color_image(frame));
+                }
+            }
+            Command::Quit => ctx.send_viewport_cmd(egui::ViewportCommand::Close),
+            Command::Undo => {
+                self.navigation = None;
+                self.doc.history.undo(&mut self.doc.state);
+            }
+            Command::Redo => {
+                self.navigation = None;
+                self.doc.history.redo(&mut self.doc.state);
+            }
+            Command::Edit(action) => {
+                let resolved = self.prepared.as_ref().map(|p| &p.resolved);
+                self.selection =
+                    edits::apply(action, &mut self.doc.state.scene, resolved, self.selection);
+            }
+            Command::Fit => self.image.fit(),
+            Command::ActualSize => self.image.actual_size(),
+            Command::ToggleHelp => self.show_help = !self.show_help,
+        }
+        self.selection = self.selection.valid_in(&self.doc.state.scene);
+    }
+
+    /// Carries out `pending` now, or first asks about unsaved changes.
+    fn guarded(&mut self, ctx: &egui::Context, pending: Pending) {
+        if self.doc.is_modified() {
+            self.guard = Some(pending);
+        } else {
+            self.proceed(ctx, pending);
+        }
+    }
+
+    /// Carries out an action that no longer needs to ask.
+    fn proceed(&mut self, ctx: &egui::Context, pending: Pending) {
+        match pending {
+            Pending::Open(path) => self.open(&path),
+            Pending::OpenDialog => self.start_dialog(ctx, DialogKind::Open),
+            Pending::New => {
+                self.doc = Document::new(Scene::default(), None, self.doc.state.render);
+                self.selection = Selection::None;
+            }
+            Pending::Close => {
+                self.allow_close = true;
+                ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+            }
+        }
+    }
+
+    /// Replaces the document with the scene file at `path`; a file that
+    /// cannot be read leaves the current document as it is and says why.
+    fn open(&mut self, path: &Path) {
+        match Document::open(path, self.doc.state.render) {
+            Ok(doc) => {
+                self.doc = doc;
+                self.selection = Selection::None;
+                self.navigation = None;
+                self.settings.remember(path);
+            }
+            Err(e) => self.message = Some(format!("Cannot open the scene.\n\n{e}")),
+        }
+    }
+
+    /// Saves the scene to `path`; true when it was saved.
+    fn save_scene(&mut self, path: &Path) -> bool {
+        match self.doc.save_as(path) {
+            Ok(()) => {
+                self.settings.remember(path);
+                true
+            }
+            Err(e) => {
+                self.message = Some(format!("Cannot save {}: {e}", path.display()));
+                false
+            }
+        }
+    }
+
+    /// Writes the image on screen to `path`.
+    fn save_image(&mut self, path: &Path) {
+        let (Some(frame), Some(prepared)) = (&self.frame, &self.prepared) else {
+            return;
+        };
+        let provenance = Provenance::of_render(
+            &prepared.world.camera,
+            self.doc.path.as_deref(),
+            screenshot::spp_of(frame.step),
+        );
+        match screenshot::save(path, frame, &provenance) {
+            Ok(()) => self.settings.last_folder = path.parent().map(Path::to_path_buf),
+            Err(e) => self.message = Some(format!("Cannot save the image: {e:#}")),
+        }
+    }
+
+    /// Opens a native file dialog of `kind` in the last folder.
+    fn start_dialog(&mut self, ctx: &egui::Context, kind: DialogKind) {
+        let name = match kind {
+            DialogKind::Open => None,
+            DialogKind::SaveScene => Some(self.doc.display_name()).map(|n| {
+                if n.ends_with(".xml") {
+                    n
+                } else {
+                    format!("{n}.xml")
+                }
+            }),
+            DialogKind::SaveImage => self
+                .frame
+                .as_ref()
+                .map(|f| screenshot::default_file_name(&self.doc.display_name(), f.step)),
+        };
+        let folder = self
+            .doc
+            .path
+            .as_deref()
+            .and_then(Path::parent)
+            .map(Path::to_path_buf)
+            .or_else(|| self.settings.last_folder.clone());
+        self.dialogs.start(ctx, kind, folder.as_deref(), name);
+    }
+
+    /// Acts on a file chosen in a dialog or typed into the path prompt.
+    fn chosen(&mut self, ctx: &egui::Context, kind: DialogKind, path: PathBuf) {
+        match kind {
+            DialogKind::Open => self.open(&path),
+            DialogKind::SaveScene => {
+                let saved = self.save_scene(&path);
+                // What waited for this save goes ahead only if it succeeded.
+                if let Some(pending) = self.after_save.take()
+                    && saved
+                {
+                    self.proceed(ctx, pending);
+                }
+            }
+            DialogKind::SaveImage => self.save_image(&path),
+        }
+    }
+
+    /// Handles a closed file dialog.
+    fn poll_dialogs(&mut self, ctx: &egui::Context) {
+        match self.dialogs.poll() {
+            Some(DialogResult::Chosen(kind, path)) => self.chosen(ctx, kind, path),
+            Some(DialogResult::Unavailable(kind)) => {
+                let start = match kind {
+                    DialogKind::Open => String::new(),
+                    _ => self
+                        .settings
+                        .last_folder
+                        .as_deref()
+                        .map(|f| format!("{}/", f.display()))
+                        .unwrap_or_default(),
+                };
+                self.path_prompt = Some((kind, start));
+            }
+            Some(DialogResult::Cancelled) => self.after_save = None,
+            None => {}
+        }
+    }
+}
+
+impl RaylabApp {
+    /// "Save changes?" for the action waiting in `self.guard`.
+    fn guard_modal(&mut self, ctx: &egui::Context) {
+        let Some(pending) = self.guard.clone() else {
+            return;
+        };
+        let what = match &pending {
+            Pending::Close => "closing",
+            Pending::New => "starting a new scene",
+            Pending::Open(_) | Pending::OpenDialog => "opening another scene",
+        };
+        let mut answer = None;
+        egui::Modal::new(egui::Id::unique("unsaved-changes")).show(ctx, |ui| {
+            ui.heading("Unsaved changes");
+            ui.label(format!(
+                "Save the changes to {} before {what}?",
+                self.doc.display_name()
+            ));
+            ui.horizontal(|ui| {
+                if ui.button("Save").clicked() {
+                    answer = Some("save");
+                }
+                if ui.button("Don't save").clicked() {
+                    answer = Some("discard");
+                }
+                if ui.button("Cancel").clicked() {
+                    answer = Some("cancel");
+                }
+            });
+        });
+        match answer {
+            Some("save") => {
+                self.guard = None;
+                match self.doc.path.clone() {
+                    Some(path) => {
+                        if self.save_scene(&path) {
+                            self.proceed(ctx, pending);
+                        }
+                    }
+                    None => {
+                        self.after_save = Some(pending);
+                        self.start_dialog(ctx, DialogKind::SaveScene);
+                    }
+                }
+            }
+            Some("discard") => {
+                self.guard = None;
+                self.proceed(ctx, pending);
+            }
+            Some(_) => self.guard = None,
+            None => {}
+        }
+    }
+
+    /// A message (failed open or save) until dismissed.
+    fn message_modal(&mut self, ctx: &egui::Context) {
+        let Some(message) = &self.message else {
+            return;
+        };
+        let mut dismissed = false;
+        egui::Modal::new(egui::Id::unique("message")).show(ctx, |ui| {
+            ui.set_max_width(520.0);
+            ui.label(message.as_str());
+            dismissed = ui.button("OK").clicked();
+        });
+        if dismissed {
+            self.message = None;
+        }
+    }
+
+    /// Where no native dialog is available: type the file's path.
+    fn path_prompt_modal(&mut self, ctx: &egui::Context) {
+        let Some((kind, text)) = &mut self.path_prompt else {
+            return;
+        };
+        let kind = *kind;
+        let mut answer = None;
+        egui::Modal::new(egui::Id::unique("path-prompt")).show(ctx, |ui| {
+            ui.label(match kind {
+                DialogKind::Open => "Open scene file:",
+                DialogKind::SaveScene => "Save scene as:",
+                DialogKind::SaveImage => "Save image as (.png or .exr):",
+            });
+            ui.weak("No file dialog is available here (xdg-desktop-portal or zenity).");
+            let edit = ui.add(egui::TextEdit::singleline(text).desired_width(480.0));
+            let entered = edit.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+            ui.horizontal(|ui| {
+                if ui.button("OK").clicked() || entered {
+                    answer = Some(true);
+                }
+                if ui.button("Cancel").clicked() {
+                    answer = Some(false);
+                }
+            });
+        });
+        match answer {
+            Some(true) => {
+                let path = self
+                    .path_prompt
+                    .take()
+                    .map(|(_, t)| PathBuf::from(t.trim()));
+                if let Some(path) = path.filter(|p| !p.as_os_str().is_empty()) {
+                    self.chosen(ctx, kind, path);
+                }
+            }
+            Some(false) => {
+                self.path_prompt = None;
+                self.after_save = None;
+            }
+            None => {}
+        }
+    }
+
+    /// The mouse and keyboard bindings.
+    fn help_window(&mut self, ctx: &egui::Context) {
+        egui::Window::new("Mouse and keys")
+            .open(&mut self.show_help)
+            .collapsible(false)
+            .resizable(false)
+            .show(ctx, |ui| {
+                egui::Grid::new("help")
+                    .num_columns(2)
+                    .striped(true)
+                    .show(ui, |ui| {
+                        for (input, effect) in navigation::HELP {
+                            ui.strong(*input);
+                            ui.label(*effect);
+                            ui.end_row();
+                        }
+                    });
+            });
+    }
+
+    /// Commands from outside the widgets: shortcuts, dropped files, the
+    /// window's close button.
+    fn outside_commands(&mut self, ctx: &egui::Context) -> Vec<Command> {
+        let mut commands = commands::from_keyboard(ctx);
+        let dropped: Vec<PathBuf> = ctx.input(|i| {
+            i.raw
+                .dropped_files
+                .iter()
+                .map(|f| f.path().to_path_buf())
+                .filter(|p| !p.as_os_str().is_empty())
+                .collect()
+        });
+        if let Some(path) = dropped.into_iter().next() {
+            commands.push(Command::OpenPath(path));
+        }
+        if ctx.input(|i| i.viewport().close_requested())
+            && !self.allow_close
+            && self.doc.is_modified()
+        {
+            ctx.send_viewport_cmd(egui::ViewportCommand::CancelClose);
+            self.guard = Some(Pending::Close);
+        }
+        commands
+    }
+
+    /// Sends the window title when it changed.
+    fn update_title(&mut self, ctx: &egui::Context) {
+        let title = self.doc.title();
+        if title != self.title {
+            ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
+            self.title = title;
+        }
     }
 
     /// Draws the whole window into `ui`.
     pub fn show(&mut self, ui: &mut egui::Ui) {
+        let started = Instant::now();
         let ctx = ui.ctx().clone();
         self.receive(&ctx);
+        self.poll_dialogs(&ctx);
+        let mut commands = self.outside_commands(&ctx);
 
+        egui::Panel::top("menu").show(ui, |ui| {
+            let state = commands::MenuState {
+                recent: &self.settings.recent,
+                can_undo: self.doc.history.can_undo(&self.doc.state),
+                can_redo: self.doc.history.can_redo(&self.doc.state),
+                has_image: self.frame.is_some(),
+                has_selection: self.selection != Selection::None,
+            };
+            commands.extend(commands::menu_bar(ui, &state));
+        });
         egui::Panel::bottom("status").show(ui, |ui| {
-            ui.horizontal(|ui| {
-                if status_bar::controls(ui, &mut self.controls)
-                    && let Some(session) = &self.session
-                {
-                    session.set_paused(self.controls.paused);
-                    session.set_target_spp(Some(self.controls.target_spp));
+            let shown = self.frame.as_ref().map(status_bar::Shown::of);
+            if status_bar::show(
+                ui,
+                shown.as_ref(),
+                self.error.as_deref(),
+                self.doc.state.render.target_spp,
+                self.paused,
+                &self.frame_times,
+            ) {
+                self.paused = !self.paused;
+                if let Some(session) = &self.session {
+                    session.set_paused(self.paused);
                 }
-                status_bar::show(
-                    ui,
-                    self.shown.as_ref(),
-                    self.error.as_deref(),
-                    self.controls.target_spp,
-                );
+            }
+        });
+        egui::Panel::left("camera")
+            .resizable(true)
+            .default_size(330.0)
+            .show(ui, |ui| {
+                egui::ScrollArea::vertical().id_salt("left").show(ui, |ui| {
+                    let camera = self.prepared.as_ref().map(|p| p.world.camera);
+                    camera_panel::show(ui, &mut self.doc.state.scene, camera.as_ref());
+                    ui.separator();
+                    render_panel::show(ui, &mut self.doc.state.render);
+                });
             });
+        egui::Panel::right("scene")
+            .resizable(true)
+            .default_size(360.0)
+            .show(ui, |ui| {
+                egui::ScrollArea::vertical()
+                    .id_salt("right")
+                    .show(ui, |ui| {
+                        let resolved = self.prepared.as_ref().map(|p| &p.resolved);
+                        let (_, action) = scene_panel::show(
+                            ui,
+                            &mut self.doc.state.scene,
+                            resolved,
+                            &mut self.selection,
+                        );
+                        commands.extend(action.map(Command::Edit));
+                    });
+            });
+        egui::CentralPanel::default().show(ui, |ui| {
+            let gestures = self.image.ui(ui);
+            let dragging = ctx.input(|i| i.pointer.any_down());
+            self.navigate(&gestures, dragging);
         });
-        egui::Panel::left("camera").resizable(true).show(ui, |ui| {
-            if let Some(path) = &self.path {
-                ui.label(path.display().to_string());
-                ui.separator();
-            }
-            let camera = self.world.as_ref().map(|w| w.camera);
-            if camera_panel::show(ui, &mut self.scene, camera.as_ref()) {
-                self.dirty = true;
-            }
-        });
-        egui::CentralPanel::default().show(ui, |ui| self.image.ui(ui));
-        // Edits made anywhere in this frame restart the render once, at its end.
-        if self.dirty {
-            self.submit(&ctx);
+        self.guard_modal(&ctx);
+        self.message_modal(&ctx);
+        self.path_prompt_modal(&ctx);
+        self.help_window(&ctx);
+
+        for command in commands {
+            self.run(&ctx, command);
         }
+        // A drag or a text field being typed in is one undo step, recorded when it ends.
+        let gesture = ctx.input(|i| i.pointer.any_down()) || ctx.text_edit_focused();
+        self.doc.history.settle(&self.doc.state, gesture);
+        self.update_title(&ctx);
+        self.submit_if_changed(&ctx);
+        self.frame_times.record(started.elapsed());
     }
 }
 
 impl eframe::App for RaylabApp {
     fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
         self.show(ui);
+    }
+
+    fn save(&mut self, storage: &mut dyn eframe::Storage) {
+        eframe::set_value(storage, Settings::KEY, &self.settings);
     }
 }
 

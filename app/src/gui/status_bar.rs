@@ -1,6 +1,8 @@
-//! The status bar: refinement step, time since the edit, sampling speed.
+//! The status bar: pause, refinement step, time since the edit, sampling
+//! speed and the UI's own frame time.
 
 use renderer::progressive::{RenderedFrame, Step};
+use std::collections::VecDeque;
 use std::time::Duration;
 
 /// What the status bar reports about the frame on screen.
@@ -28,64 +30,90 @@ impl Shown {
     }
 }
 
-/// What the user asked for in the status bar.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Controls {
-    /// Refinement stops at this many samples per pixel.
-    pub target_spp: u32,
-    /// Refinement is paused.
-    pub paused: bool,
+/// The UI thread's recent frame times.
+#[derive(Clone, Debug, Default)]
+pub struct FrameTimes {
+    recent: VecDeque<Duration>,
 }
 
-/// Draws the pause button and the target spp; true when either changed.
-pub fn controls(ui: &mut egui::Ui, controls: &mut Controls) -> bool {
-    let label = if controls.paused { "Resume" } else { "Pause" };
-    let mut changed = false;
-    if ui.button(label).clicked() {
-        controls.paused = !controls.paused;
-        changed = true;
+impl FrameTimes {
+    /// Frames remembered.
+    const WINDOW: usize = 120;
+
+    /// Records one frame's time.
+    pub fn record(&mut self, time: Duration) {
+        if self.recent.len() == Self::WINDOW {
+            self.recent.pop_front();
+        }
+        self.recent.push_back(time);
     }
-    changed |= ui
-        .add(
-            egui::DragValue::new(&mut controls.target_spp)
-                .range(1..=65536)
-                .prefix("target spp "),
-        )
-        .changed();
-    ui.separator();
-    changed
+
+    /// The newest frame time and the largest of the remembered ones.
+    pub fn latest_and_max(&self) -> Option<(Duration, Duration)> {
+        let latest = *self.recent.back()?;
+        Some((latest, self.recent.iter().copied().max().unwrap_or(latest)))
+    }
 }
 
-/// Draws the status line.
-pub fn show(ui: &mut egui::Ui, shown: Option<&Shown>, error: Option<&str>, target_spp: u32) {
+/// Draws the status line; true when the pause button was pressed.
+pub fn show(
+    ui: &mut egui::Ui,
+    shown: Option<&Shown>,
+    error: Option<&str>,
+    target_spp: Option<u32>,
+    paused: bool,
+    frame_times: &FrameTimes,
+) -> bool {
+    let mut toggled = false;
     ui.horizontal(|ui| {
+        if ui.button(if paused { "Resume" } else { "Pause" }).clicked() {
+            toggled = true;
+        }
+        ui.separator();
         if let Some(error) = error {
             ui.colored_label(ui.visuals().error_fg_color, error);
-            return;
-        }
-        let Some(s) = shown else {
-            ui.label("rendering…");
-            return;
-        };
-        match s.step {
-            Step::Preview { stride } => ui.label(format!("preview: every {stride}th pixel")),
-            Step::Passes { spp } => ui.label(format!("{spp} / {target_spp} spp")),
-        };
-        ui.separator();
-        ui.label(format!(
-            "{:.0} ms since the edit",
-            s.since_edit.as_secs_f64() * 1e3
-        ));
-        if s.samples_per_second > 0.0 {
             ui.separator();
-            ui.label(format!("{:.2} M samples/s", s.samples_per_second / 1e6));
         }
-        if s.discarded > 0 {
+        match shown {
+            None => {
+                ui.label("rendering…");
+            }
+            Some(s) => {
+                match (s.step, target_spp) {
+                    (Step::Preview { stride }, _) => {
+                        ui.label(format!("preview: every {stride}th pixel"))
+                    }
+                    (Step::Passes { spp }, Some(target)) => {
+                        ui.label(format!("{spp} / {target} spp"))
+                    }
+                    (Step::Passes { spp }, None) => ui.label(format!("{spp} spp")),
+                };
+                ui.separator();
+                ui.label(format!(
+                    "{:.0} ms since the edit",
+                    s.since_edit.as_secs_f64() * 1e3
+                ));
+                if s.samples_per_second > 0.0 {
+                    ui.separator();
+                    ui.label(format!("{:.2} M samples/s", s.samples_per_second / 1e6));
+                }
+                if s.discarded > 0 {
+                    ui.separator();
+                    ui.colored_label(
+                        ui.visuals().warn_fg_color,
+                        format!("{} NaN/∞ samples left out", s.discarded),
+                    );
+                }
+            }
+        }
+        if let Some((latest, max)) = frame_times.latest_and_max() {
             ui.separator();
-            ui.colored_label(
-                ui.visuals().warn_fg_color,
-                format!("{} NaN/∞ samples left out", s.discarded),
-            );
+            ui.weak(format!(
+                "UI {:.1} ms (max {:.1})",
+                latest.as_secs_f64() * 1e3,
+                max.as_secs_f64() * 1e3
+            ));
         }
     });
+    toggled
 }

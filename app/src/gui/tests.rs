@@ -1,24 +1,35 @@
 //! Headless UI tests (egui_kittest): the window's behaviour without a display.
 
 use super::RaylabApp;
+use super::commands::Command;
+use super::edits::Selection;
+use egui::{Key, Modifiers, PointerButton};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
+use glam::Vec3;
 use renderer::progressive::Step;
+use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
+fn seed_path() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/seed.xml")
+}
+
 fn seed_app(width: u32, height: u32) -> RaylabApp {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/seed.xml");
+    let path = seed_path();
     let mut scene = scene::read_file(&path).expect("the seed scene loads");
     scene.camera.width = width;
     scene.camera.height = height;
     let mut app = RaylabApp::new(scene, Some(path));
-    app.controls.target_spp = 2;
+    app.doc.state.render.target_spp = Some(2);
+    // The history starts from the adjusted state.
+    app.doc.history = super::history::History::new(&app.doc.state);
     app
 }
 
 fn harness(app: RaylabApp) -> Harness<'static, RaylabApp> {
     Harness::builder()
-        .with_size(egui::Vec2::new(1000.0, 700.0))
+        .with_size(egui::Vec2::new(1200.0, 800.0))
         .build_ui_state(|ui, app: &mut RaylabApp| app.show(ui), app)
 }
 
@@ -27,19 +38,50 @@ fn settle(h: &mut Harness<'static, RaylabApp>) {
     let deadline = Instant::now() + Duration::from_secs(60);
     while Instant::now() < deadline {
         h.step();
-        if h.state().shown.map(|s| s.step)
-            == Some(Step::Passes {
-                spp: h.state().controls.target_spp,
-            })
-        {
+        let target = h.state().doc.state.render.target_spp.unwrap_or(1);
+        let frame = h.state().frame.as_ref();
+        if frame.is_some_and(|f| {
+            f.generation == h.state().generation && f.step == Step::Passes { spp: target }
+        }) {
             return;
         }
         std::thread::sleep(Duration::from_millis(2));
     }
     panic!(
         "the render did not settle; shown {:?}",
-        h.state().shown.map(|s| s.step)
+        h.state().frame.as_ref().map(|f| f.step)
     );
+}
+
+/// The linear pixels on screen.
+fn pixels(h: &Harness<'static, RaylabApp>) -> Vec<Vec3> {
+    h.state().frame.as_ref().expect("a frame").pixels.clone()
+}
+
+/// Clicks the primary button at `pos` without moving.
+fn click_at(h: &mut Harness<'static, RaylabApp>, pos: egui::Pos2) {
+    h.hover_at(pos);
+    h.step();
+    for pressed in [true, false] {
+        h.event(egui::Event::PointerButton {
+            pos,
+            button: PointerButton::Primary,
+            pressed,
+            modifiers: Modifiers::NONE,
+        });
+        h.step();
+    }
+}
+
+/// The panel's d field.
+fn d_field<'h>(h: &'h Harness<'static, RaylabApp>) -> egui_kittest::Node<'h> {
+    h.get_by_role_and_label(egui::accesskit::Role::SpinButton, "d")
+}
+
+/// Steps twice: a new window, menu or modal is measured invisibly on its first frame.
+fn step_shown(h: &mut Harness<'static, RaylabApp>) {
+    h.step();
+    h.step();
 }
 
 #[test]
@@ -52,16 +94,42 @@ fn window_refines_the_seed_scene_and_shows_the_lecture_values() {
 }
 
 #[test]
-fn editing_theta_in_the_panel_starts_a_new_render_with_the_new_angle() {
+fn editing_theta_in_the_panel_starts_a_new_render_and_changes_the_image() {
     let mut h = harness(seed_app(64, 48));
     settle(&mut h);
-    let before = h.state().generation;
+    let (before, image) = (h.state().generation, pixels(&h));
     h.get_by_role_and_label(egui::accesskit::Role::Slider, "θ")
         .set_value_accesskit(40.0);
     h.step();
-    assert_eq!(h.state().scene.camera.theta_deg, 40.0);
+    assert_eq!(h.state().doc.state.scene.camera.theta_deg, 40.0);
     assert!(h.state().generation > before, "an edit submits a new job");
     settle(&mut h);
+    assert_ne!(pixels(&h), image, "a wider view shows a different picture");
+}
+
+#[test]
+fn editing_d_changes_nothing_in_the_image() {
+    let mut h = harness(seed_app(64, 48));
+    settle(&mut h);
+    let image = pixels(&h);
+    let d = h
+        .state()
+        .prepared
+        .as_ref()
+        .expect("prepared")
+        .world
+        .camera
+        .d;
+    d_field(&h).set_value_accesskit(f64::from(d) * 7.5);
+    h.step();
+    let camera_d = h.state().doc.state.scene.camera.d.expect("d was set");
+    assert!((camera_d - d * 7.5).abs() < 1e-3 * d, "d is now {camera_d}");
+    settle(&mut h);
+    assert_eq!(
+        pixels(&h),
+        image,
+        "moving the view window along t leaves the image alone"
+    );
 }
 
 #[test]
@@ -69,13 +137,12 @@ fn a_degenerate_camera_keeps_the_last_image_and_says_why() {
     let mut h = harness(seed_app(64, 48));
     settle(&mut h);
     let before = h.state().generation;
-    h.state_mut().scene.camera.up = glam::Vec3::ZERO;
-    h.state_mut().dirty = true;
+    h.state_mut().doc.state.scene.camera.up = Vec3::ZERO;
     h.step();
     assert_eq!(h.state().generation, before, "no job for an invalid scene");
     h.step(); // the status bar shows the error from the next frame on
     h.get_by_label("camera: the up vector u is zero or not finite");
-    assert!(h.state().shown.is_some(), "the last image stays");
+    assert!(h.state().frame.is_some(), "the last image stays");
 }
 
 #[test]
@@ -86,7 +153,223 @@ fn raising_the_target_spp_refines_the_same_image_further() {
     h.get_by_label_contains("target spp")
         .set_value_accesskit(4.0);
     h.step();
-    assert_eq!(h.state().controls.target_spp, 4);
+    assert_eq!(h.state().doc.state.render.target_spp, Some(4));
     settle(&mut h);
     assert_eq!(h.state().generation, generation, "no restart");
+}
+
+#[test]
+fn adding_a_sphere_lists_it_and_shows_it_in_the_image() {
+    let mut h = harness(seed_app(64, 48));
+    settle(&mut h);
+    let image = pixels(&h);
+    h.get_by_label("Add").click();
+    step_shown(&mut h);
+    h.get_by_label("sphere").click();
+    h.step();
+    assert_eq!(h.state().doc.state.scene.objects.len(), 5);
+    assert_eq!(h.state().selection, Selection::Object(4));
+    settle(&mut h);
+    h.get_by_label("sphere 5");
+    // The new sphere covers pixels that showed something else before.
+    let world = &h.state().prepared.as_ref().expect("prepared").world;
+    let covered = (0..48u32)
+        .flat_map(|j| (0..64u32).map(move |i| (i, j)))
+        .filter(|&(i, j)| {
+            world
+                .intersect(&world.camera.center_ray(i, j), renderer::Method::Robust)
+                .is_some_and(|hit| hit.object == 4)
+        })
+        .count();
+    assert!(covered > 20, "the new sphere covers only {covered} pixels");
+    assert_ne!(pixels(&h), image);
+}
+
+#[test]
+fn undo_and_redo_round_trip_a_camera_edit_and_a_colour_edit() {
+    let mut h = harness(seed_app(48, 32));
+    settle(&mut h);
+    let original = h.state().doc.state.clone();
+    h.get_by_role_and_label(egui::accesskit::Role::Slider, "θ")
+        .set_value_accesskit(35.0);
+    h.step();
+    h.state_mut().doc.state.scene.objects[1].params.color = Some(Vec3::new(0.1, 0.2, 0.9));
+    h.step();
+    let edited = h.state().doc.state.clone();
+
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.step();
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.step();
+    assert_eq!(h.state().doc.state, original, "two undos restore the start");
+    assert!(!h.state().doc.is_modified());
+    h.key_press_modifiers(Modifiers::COMMAND | Modifiers::SHIFT, Key::Z);
+    h.step();
+    h.key_press_modifiers(Modifiers::COMMAND | Modifiers::SHIFT, Key::Z);
+    h.step();
+    assert_eq!(h.state().doc.state, edited, "two redos restore the edits");
+    settle(&mut h);
+}
+
+#[test]
+fn an_orbit_drag_is_one_undo_step_and_keeps_the_distance_to_the_target() {
+    let mut h = harness(seed_app(64, 48));
+    settle(&mut h);
+    let original = h.state().doc.state.clone();
+    let start = h.state().image.pixel_on_screen([32, 24]).expect("drawn");
+    h.hover_at(start);
+    h.drag_at(start);
+    h.step();
+    for k in 1..=10 {
+        h.hover_at(start + egui::vec2(6.0 * k as f32, 2.0 * k as f32));
+        h.step();
+    }
+    let during = h.state().navigation.expect("orbiting");
+    h.drop_at(start + egui::vec2(60.0, 20.0));
+    h.step();
+    let camera = &h.state().doc.state.scene.camera;
+    let eye = camera.eye.expect("the eye was written back");
+    assert_ne!(Some(eye), original.scene.camera.eye);
+    assert!((eye.distance(during.target) - during.distance()).abs() < 1e-3 * during.distance());
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.step();
+    assert_eq!(h.state().doc.state, original, "the whole drag is one step");
+    settle(&mut h);
+}
+
+#[test]
+fn clicking_the_image_selects_the_object_under_the_pointer() {
+    let mut h = harness(seed_app(64, 48));
+    settle(&mut h);
+    let world = h.state().prepared.as_ref().expect("prepared").world.clone();
+    for object in 0..world.shapes.len() as u32 {
+        // A pixel inside the object's silhouette, away from its edge.
+        let pixel = (2..46u32)
+            .flat_map(|j| (2..62u32).map(move |i| [i, j]))
+            .find(|&[i, j]| {
+                [[0i32, 0], [-1, 0], [1, 0], [0, -1], [0, 1]]
+                    .iter()
+                    .all(|[di, dj]| {
+                        let ray = world
+                            .camera
+                            .center_ray((i as i32 + di) as u32, (j as i32 + dj) as u32);
+                        world
+                            .intersect(&ray, renderer::Method::Robust)
+                            .is_some_and(|hit| hit.object == object)
+                    })
+            });
+        let Some(pixel) = pixel else { continue };
+        // Let the panels settle after the previous selection changed them.
+        h.run_steps(3);
+        let pos = h.state().image.pixel_on_screen(pixel).expect("drawn");
+        click_at(&mut h, pos);
+        assert_eq!(
+            h.state().selection,
+            Selection::Object(object as usize),
+            "clicking pixel {pixel:?} of {}",
+            world.names[object as usize]
+        );
+    }
+    assert_eq!(
+        h.state().doc.state.scene.camera.eye,
+        None,
+        "a click does not move the camera"
+    );
+}
+
+#[test]
+fn opening_a_file_with_unsaved_changes_asks_first() {
+    let mut h = harness(seed_app(48, 32));
+    settle(&mut h);
+    h.state_mut().doc.state.scene.camera.theta_deg = 30.0;
+    h.step();
+    let other = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/primitives.xml");
+    let ctx = h.ctx.clone();
+    h.state_mut().run(&ctx, Command::OpenPath(other.clone()));
+    step_shown(&mut h);
+    h.get_by_label("Unsaved changes");
+    h.get_by_label("Cancel").click();
+    h.step();
+    assert_eq!(h.state().doc.path.as_deref(), Some(seed_path().as_path()));
+    assert_eq!(
+        h.state().doc.state.scene.camera.theta_deg,
+        30.0,
+        "nothing lost"
+    );
+
+    h.state_mut().run(&ctx, Command::OpenPath(other.clone()));
+    step_shown(&mut h);
+    h.get_by_label("Don't save").click();
+    h.step();
+    assert_eq!(h.state().doc.path.as_deref(), Some(other.as_path()));
+    assert!(!h.state().doc.is_modified());
+    assert!(h.state().doc.title().starts_with("primitives.xml"));
+}
+
+#[test]
+fn closing_with_unsaved_changes_is_held_until_the_user_answers() {
+    let mut h = harness(seed_app(48, 32));
+    settle(&mut h);
+    h.state_mut().doc.state.scene.objects.pop();
+    h.step();
+    h.state_mut().guard = Some(super::Pending::Close);
+    step_shown(&mut h);
+    h.get_by_label("Save the changes to seed.xml before closing?");
+    h.get_by_label("Cancel").click();
+    h.step();
+    assert!(!h.state().allow_close);
+    assert_eq!(h.state().guard, None);
+}
+
+#[test]
+fn saving_the_image_writes_the_tonemapped_accumulation_buffer_and_the_camera() {
+    let mut h = harness(seed_app(48, 32));
+    settle(&mut h);
+    let dir = tempfile::tempdir().expect("temp dir");
+    let path = dir.path().join("shot.png");
+    h.state_mut().save_image(&path);
+    assert_eq!(h.state().message, None);
+    let frame = h.state().frame.as_ref().expect("a frame");
+    let expected: Vec<u8> = frame
+        .pixels
+        .iter()
+        .flat_map(|&c| renderer::film::linear_to_srgb8(c))
+        .collect();
+    let written = image::open(&path).expect("a PNG").to_rgb8();
+    assert_eq!(written.dimensions(), (48, 32));
+    assert_eq!(
+        written.into_raw(),
+        expected,
+        "PNG pixels = tonemapped buffer"
+    );
+    let text = crate::output::read_png_provenance(&path).expect("text chunks");
+    assert!(text.get("raylab:camera").is_some_and(|c| c.contains("P0=")));
+    assert!(
+        text.get("raylab:scene")
+            .is_some_and(|s| s.ends_with("seed.xml"))
+    );
+    assert_eq!(text.get("raylab:spp"), Some("2"));
+}
+
+#[test]
+fn saving_the_scene_and_reopening_it_gives_the_same_picture() {
+    let mut h = harness(seed_app(48, 32));
+    settle(&mut h);
+    h.get_by_role_and_label(egui::accesskit::Role::Slider, "θ")
+        .set_value_accesskit(31.0);
+    h.step();
+    settle(&mut h);
+    let image = pixels(&h);
+    let dir = tempfile::tempdir().expect("temp dir");
+    let path = dir.path().join("edited.xml");
+    let ctx = h.ctx.clone();
+    h.state_mut()
+        .chosen(&ctx, super::files::DialogKind::SaveScene, path.clone());
+    assert!(!h.state().doc.is_modified());
+    h.state_mut().run(&ctx, Command::OpenPath(path.clone()));
+    h.step();
+    assert_eq!(h.state().doc.path.as_deref(), Some(path.as_path()));
+    h.state_mut().doc.state.render.target_spp = Some(2);
+    settle(&mut h);
+    assert_eq!(pixels(&h), image);
 }

@@ -1,0 +1,164 @@
+//! The open document: the edited scene and render settings, the file they
+//! belong to, what was last saved, and the undo history.
+
+use super::history::History;
+use renderer::{Method, RenderOptions};
+use scene::Scene;
+use std::path::{Path, PathBuf};
+
+/// Integrator settings the user edits alongside the scene (undoable, not saved in the file).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RenderSettings {
+    /// Lecture or robust intersection formulas.
+    pub method: Method,
+    /// Maximum reflection/refraction bounces.
+    pub max_depth: u32,
+    /// Stop refining at this many samples per pixel; `None` refines until stopped.
+    pub target_spp: Option<u32>,
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        Self {
+            method: Method::Robust,
+            max_depth: RenderOptions::default().max_depth,
+            target_spp: Some(64),
+        }
+    }
+}
+
+impl RenderSettings {
+    /// The integrator options these settings ask for.
+    pub fn options(&self) -> RenderOptions {
+        RenderOptions {
+            method: self.method,
+            max_depth: self.max_depth,
+            ..RenderOptions::default()
+        }
+    }
+}
+
+/// Everything an edit can change: what undo and redo step through.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EditState {
+    /// The scene as edited.
+    pub scene: Scene,
+    /// The integrator settings.
+    pub render: RenderSettings,
+}
+
+/// A scene open in the window.
+pub struct Document {
+    /// The live, edited state.
+    pub state: EditState,
+    /// The file the scene is saved to; `None` until it is saved.
+    pub path: Option<PathBuf>,
+    /// The scene as last loaded or saved, to tell unsaved changes.
+    saved: Scene,
+    /// Undo/redo over [`EditState`].
+    pub history: History<EditState>,
+}
+
+impl Document {
+    /// A document showing `scene`, loaded from `path` (or new when `None`).
+    pub fn new(scene: Scene, path: Option<PathBuf>, render: RenderSettings) -> Self {
+        let state = EditState { scene, render };
+        Self {
+            history: History::new(&state),
+            saved: state.scene.clone(),
+            state,
+            path,
+        }
+    }
+
+    /// Reads the scene file at `path`.
+    pub fn open(path: &Path, render: RenderSettings) -> Result<Self, scene::SceneError> {
+        let scene = scene::read_file(path)?;
+        Ok(Self::new(scene, Some(path.to_path_buf()), render))
+    }
+
+    /// True when the scene differs from the file (undoing back to the saved
+    /// state clears it).
+    pub fn is_modified(&self) -> bool {
+        self.state.scene != self.saved
+    }
+
+    /// Writes the scene to `path` (via a temporary file, so a failed write
+    /// never truncates the old one) and makes it the document's file.
+    pub fn save_as(&mut self, path: &Path) -> std::io::Result<()> {
+        let text = scene::write_string(&self.state.scene);
+        let mut temporary = path.as_os_str().to_owned();
+        temporary.push(".raylab-saving");
+        let temporary = PathBuf::from(temporary);
+        std::fs::write(&temporary, text)?;
+        std::fs::rename(&temporary, path).inspect_err(|_| {
+            let _ = std::fs::remove_file(&temporary);
+        })?;
+        self.path = Some(path.to_path_buf());
+        self.saved = self.state.scene.clone();
+        Ok(())
+    }
+
+    /// The file name shown in the title and in default screenshot names.
+    pub fn display_name(&self) -> String {
+        self.path
+            .as_deref()
+            .and_then(Path::file_name)
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "untitled".to_owned())
+    }
+
+    /// The window title: file name, folder, and `•` for unsaved changes.
+    pub fn title(&self) -> String {
+        let mark = if self.is_modified() { "• " } else { "" };
+        let folder = self
+            .path
+            .as_deref()
+            .and_then(Path::parent)
+            .map(|p| format!(" — {}", p.display()))
+            .unwrap_or_default();
+        format!("{mark}{}{folder} — raylab", self.display_name())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn saving_then_reopening_gives_the_same_scene_and_clears_the_mark() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let path = dir.path().join("s.xml");
+        let mut doc = Document::new(Scene::default(), None, RenderSettings::default());
+        doc.state.scene.camera.theta_deg = 33.0;
+        assert!(doc.is_modified());
+        doc.save_as(&path).expect("saved");
+        assert!(!doc.is_modified());
+        assert!(doc.title().starts_with("s.xml"));
+        let reopened = Document::open(&path, RenderSettings::default()).expect("reopens");
+        assert_eq!(reopened.state.scene, doc.state.scene);
+    }
+
+    #[test]
+    fn undoing_back_to_the_saved_scene_clears_the_unsaved_mark() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let path = dir.path().join("s.xml");
+        let mut doc = Document::new(Scene::default(), None, RenderSettings::default());
+        doc.save_as(&path).expect("saved");
+        doc.state.scene.camera.theta_deg = 10.0;
+        assert!(doc.title().starts_with("• "));
+        doc.history.undo(&mut doc.state);
+        assert!(!doc.is_modified());
+    }
+
+    #[test]
+    fn a_failed_save_keeps_the_old_file_and_the_unsaved_mark() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let missing = dir.path().join("no-such-folder").join("s.xml");
+        let mut doc = Document::new(Scene::default(), None, RenderSettings::default());
+        doc.state.scene.camera.theta_deg = 12.0;
+        assert!(doc.save_as(&missing).is_err());
+        assert!(doc.is_modified());
+        assert_eq!(doc.path, None);
+    }
+}

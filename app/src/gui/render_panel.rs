@@ -1,0 +1,59 @@
+//! Integrator settings: intersection method, bounce depth, samples per pixel.
+
+use super::document::RenderSettings;
+use renderer::Method;
+
+/// Samples per pixel offered when the user turns a target back on.
+const DEFAULT_TARGET: u32 = 64;
+
+/// Draws the settings; true when one changed.
+pub fn show(ui: &mut egui::Ui, settings: &mut RenderSettings) -> bool {
+    let mut changed = false;
+    ui.heading("Rendering");
+    egui::Grid::new("render-settings")
+        .num_columns(2)
+        .show(ui, |ui| {
+            ui.label("Intersections");
+            ui.horizontal(|ui| {
+                changed |= ui
+                    .radio_value(&mut settings.method, Method::Robust, "robust")
+                    .on_hover_text("Ray Tracing Gems ch. 7 sphere, watertight triangle")
+                    .changed();
+                changed |= ui
+                    .radio_value(&mut settings.method, Method::Lecture, "lecture")
+                    .on_hover_text("the lecture's formulas exactly")
+                    .changed();
+            });
+            ui.end_row();
+
+            ui.label("Max depth");
+            changed |= ui
+                .add(
+                    egui::DragValue::new(&mut settings.max_depth)
+                        .range(0..=64)
+                        .prefix("bounces "),
+                )
+                .changed();
+            ui.end_row();
+
+            ui.label("Samples per pixel");
+            ui.horizontal(|ui| {
+                let mut forever = settings.target_spp.is_none();
+                if ui.checkbox(&mut forever, "until stopped").changed() {
+                    settings.target_spp = (!forever).then_some(DEFAULT_TARGET);
+                    changed = true;
+                }
+                if let Some(target) = &mut settings.target_spp {
+                    changed |= ui
+                        .add(
+                            egui::DragValue::new(target)
+                                .range(1..=65536)
+                                .prefix("target spp "),
+                        )
+                        .changed();
+                }
+            });
+            ui.end_row();
+        });
+    changed
+}

@@ -1,0 +1,67 @@
+//! Saving the rendered image: full resolution, PNG (8-bit sRGB, the camera
+//! and scene file in text chunks) or EXR (linear float), and copying it to
+//! the clipboard.
+
+use crate::output::{self, Format, Provenance};
+use renderer::progressive::{RenderedFrame, Step};
+use std::path::Path;
+
+/// The file name suggested for an image of `scene_name` (its extension
+/// dropped) at the frame's step: `seed-64spp.png`.
+pub fn default_file_name(scene_name: &str, step: Step) -> String {
+    let stem = Path::new(scene_name)
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "untitled".to_owned());
+    match step {
+        Step::Passes { spp } => format!("{stem}-{spp}spp.png"),
+        Step::Preview { stride } => format!("{stem}-preview{stride}.png"),
+    }
+}
+
+/// Samples per pixel of a frame (0 for a preview).
+pub fn spp_of(step: Step) -> u32 {
+    match step {
+        Step::Passes { spp } => spp,
+        Step::Preview { .. } => 0,
+    }
+}
+
+/// Writes `frame` to `path` as PNG or EXR, chosen by the extension.
+pub fn save(path: &Path, frame: &RenderedFrame, provenance: &Provenance) -> anyhow::Result<()> {
+    let (w, h) = (frame.width, frame.height);
+    match Format::from_path(path)? {
+        Format::Png => output::write_png(path, w, h, &frame.pixels, provenance),
+        Format::Exr => {
+            let values: Vec<f32> = frame.pixels.iter().flat_map(|p| p.to_array()).collect();
+            output::write_exr(path, w, h, &["R", "G", "B"], &values, provenance)
+        }
+    }
+}
+
+/// The frame as the 8-bit sRGB picture shown on screen, for the clipboard.
+pub fn color_image(frame: &RenderedFrame) -> egui::ColorImage {
+    let bytes: Vec<u8> = frame
+        .pixels
+        .iter()
+        .flat_map(|&c| renderer::film::linear_to_srgb8(c))
+        .collect();
+    egui::ColorImage::from_rgb([frame.width as usize, frame.height as usize], &bytes)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_default_name_is_the_scene_name_and_the_samples() {
+        assert_eq!(
+            default_file_name("seed.xml", Step::Passes { spp: 64 }),
+            "seed-64spp.png"
+        );
+        assert_eq!(
+            default_file_name("untitled", Step::Preview { stride: 8 }),
+            "untitled-preview8.png"
+        );
+    }
+}

@@ -1,0 +1,119 @@
+//! Small editing widgets shared by the panels. Each returns true when the
+//! user changed the value.
+
+use glam::Vec3;
+
+/// Three drag values for a vector, labelled x, y, z.
+pub fn vec3(ui: &mut egui::Ui, v: &mut Vec3, speed: f32) -> bool {
+    let mut changed = false;
+    ui.horizontal(|ui| {
+        for (axis, c) in ["x", "y", "z"]
+            .into_iter()
+            .zip([&mut v.x, &mut v.y, &mut v.z])
+        {
+            changed |= ui
+                .add(
+                    egui::DragValue::new(c)
+                        .speed(speed)
+                        .prefix(format!("{axis} ")),
+                )
+                .changed();
+        }
+    });
+    changed
+}
+
+/// A grid row: `label`, then three drag values.
+pub fn vec3_row(ui: &mut egui::Ui, label: &str, v: &mut Vec3, speed: f32) -> bool {
+    ui.label(label);
+    let changed = vec3(ui, v, speed);
+    ui.end_row();
+    changed
+}
+
+/// A grid row with a positive length (drag value clamped to > 0).
+pub fn length_row(ui: &mut egui::Ui, label: &str, value: &mut f32) -> bool {
+    ui.label(label);
+    let changed = ui
+        .add(
+            egui::DragValue::new(value)
+                .speed(0.01)
+                .range(1e-3..=1e5)
+                .prefix(format!("{label} ")),
+        )
+        .changed();
+    ui.end_row();
+    changed
+}
+
+/// A grid row for a position that may be left to the automatic layout:
+/// a checkbox "auto", and the vector when it is set. `resolved` is where
+/// the layout put it, used as the start value when the user unticks auto.
+pub fn anchor_row(
+    ui: &mut egui::Ui,
+    label: &str,
+    anchor: &mut Option<Vec3>,
+    resolved: Option<Vec3>,
+) -> bool {
+    ui.label(label);
+    let mut changed = false;
+    ui.vertical(|ui| {
+        let mut automatic = anchor.is_none();
+        if ui
+            .checkbox(&mut automatic, "on the floor, in a row (auto)")
+            .changed()
+        {
+            *anchor = if automatic {
+                None
+            } else {
+                Some(resolved.unwrap_or_default())
+            };
+            changed = true;
+        }
+        if let Some(v) = anchor {
+            changed |= vec3(ui, v, 0.02);
+        } else if let Some(v) = resolved {
+            ui.weak(format!("({:.2}, {:.2}, {:.2})", v.x, v.y, v.z));
+        }
+    });
+    ui.end_row();
+    changed
+}
+
+/// A linear-RGB colour button with a picker, plus its hex value.
+pub fn color(ui: &mut egui::Ui, c: &mut Vec3) -> bool {
+    let mut rgb = c.to_array();
+    let changed = egui::color_picker::color_edit_button_rgb(ui, &mut rgb).changed();
+    if changed {
+        *c = Vec3::from(rgb).max(Vec3::ZERO);
+    }
+    ui.weak(scene::color::format_color(*c));
+    changed
+}
+
+/// A grid row for an optional parameter: a checkbox that overrides the
+/// inherited value, and `edit` for the value when overridden.
+pub fn optional_row<T: Copy>(
+    ui: &mut egui::Ui,
+    label: &str,
+    value: &mut Option<T>,
+    inherited: T,
+    edit: impl FnOnce(&mut egui::Ui, &mut T) -> bool,
+) -> bool {
+    let mut set = value.is_some();
+    let mut changed = ui.checkbox(&mut set, label).changed();
+    if changed {
+        *value = set.then_some(inherited);
+    }
+    ui.horizontal(|ui| match value {
+        Some(v) => changed |= edit(ui, v),
+        None => {
+            ui.add_enabled_ui(false, |ui| {
+                let mut shown = inherited;
+                edit(ui, &mut shown);
+            });
+        }
+    });
+    ui.end_row();
+    changed
+}
