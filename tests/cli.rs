@@ -181,3 +181,65 @@ fn lecture_method_renders_a_well_conditioned_scene_like_the_robust_one() {
     // Only pixels where rounding flips a silhouette or shadow edge may differ.
     assert!(differing < 96 * 60 / 100, "{differing} pixels differ");
 }
+
+#[test]
+fn bench_interactive_reports_latency_and_ui_frame_time() {
+    let output = raylab(&[
+        "bench",
+        "interactive",
+        "--width",
+        "64",
+        "--height",
+        "48",
+        "--edits",
+        "2",
+    ]);
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        output.status.success(),
+        "{stdout}{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    for figure in [
+        "edit → first preview on screen",
+        "edit → first full pass on screen",
+        "UI frame time while rendering",
+    ] {
+        assert!(stdout.contains(figure), "missing {figure:?} in {stdout}");
+    }
+}
+
+#[test]
+fn rendered_png_records_the_camera_and_the_scene_file() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("seed.png");
+    render(
+        &asset("seed.xml"),
+        &out,
+        &["--width", "32", "--height", "24", "--spp", "1"],
+    );
+    let decoder = png::Decoder::new(std::io::BufReader::new(
+        std::fs::File::open(&out).expect("the PNG exists"),
+    ));
+    let reader = decoder.read_info().expect("a PNG");
+    let text: Vec<(String, String)> = reader
+        .info()
+        .utf8_text
+        .iter()
+        .map(|c| (c.keyword.clone(), c.get_text().expect("utf-8")))
+        .collect();
+    let get = |k: &str| {
+        text.iter()
+            .find(|(key, _)| key == k)
+            .map(|(_, v)| v.as_str())
+    };
+    assert!(
+        get("raylab:camera").is_some_and(|c| c.contains("w=32 h=24")),
+        "{text:?}"
+    );
+    assert!(
+        get("raylab:scene").is_some_and(|s| s.ends_with("seed.xml")),
+        "{text:?}"
+    );
+    assert_eq!(get("raylab:spp"), Some("1"));
+}

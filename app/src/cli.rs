@@ -24,6 +24,36 @@ pub struct Cli {
 pub enum Command {
     /// Render a scene to an image without a window (PNG: 8-bit sRGB; EXR: linear float32).
     Render(RenderArgs),
+    /// Measure the interactive window's responsiveness without a display.
+    Bench(BenchArgs),
+}
+
+/// Arguments of `raylab bench`.
+#[derive(Debug, clap::Args)]
+pub struct BenchArgs {
+    /// Which benchmark.
+    #[arg(value_enum)]
+    pub which: BenchKind,
+    /// The scene (default: assets/scenes/seed.xml).
+    #[arg(long)]
+    pub scene: Option<PathBuf>,
+    /// Image width.
+    #[arg(long, default_value_t = 1280)]
+    pub width: u32,
+    /// Image height.
+    #[arg(long, default_value_t = 720)]
+    pub height: u32,
+    /// How many edits to time.
+    #[arg(long, default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..=10000))]
+    pub edits: u32,
+}
+
+/// The benchmarks `raylab bench` runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum BenchKind {
+    /// Edit → first preview on screen → first full pass, and the UI's frame
+    /// time while the tracer keeps every core busy.
+    Interactive,
 }
 
 /// Arguments of `raylab render`.

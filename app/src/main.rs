@@ -1,5 +1,6 @@
 //! The `raylab` program: the desktop window (`raylab [SCENE]`) and the command line.
 
+mod bench_cmd;
 mod cli;
 mod gui;
 mod output;
@@ -60,6 +61,13 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
         None => run_window(cli.scene.unwrap_or_else(default_scene)),
+        Some(Command::Bench(args)) => match bench_cmd::run(&args, default_scene()) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(error) => {
+                eprintln!("error: {error:#}");
+                ExitCode::from(2)
+            }
+        },
         Some(Command::Render(args)) => match render_cmd::run(&args) {
             Ok(elapsed) => {
                 println!(

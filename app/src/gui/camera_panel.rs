@@ -1,7 +1,7 @@
 //! The camera panel: the lecture's inputs P0, t, u, θ, d, w, h as editable
 //! values, and its derived quantities r, ρ, H_d, W_d, C00 read-only.
 
-use super::widgets::vec3_row;
+use super::widgets::{self, vec3_row};
 use glam::Vec3;
 use renderer::Camera;
 use scene::Scene;
@@ -45,7 +45,7 @@ pub fn show(ui: &mut egui::Ui, scene: &mut Scene, camera: Option<&Camera>) -> bo
             ui.horizontal(|ui| {
                 if ui
                     .add(
-                        egui::DragValue::new(&mut d)
+                        widgets::drag(&mut d)
                             .speed(0.05)
                             .range(1e-4..=1e6)
                             .prefix("d "),
@@ -69,19 +69,11 @@ pub fn show(ui: &mut egui::Ui, scene: &mut Scene, camera: Option<&Camera>) -> bo
             ui.horizontal(|ui| {
                 let max = scene::Camera::MAX_SIZE;
                 changed |= ui
-                    .add(
-                        egui::DragValue::new(&mut cam.width)
-                            .range(1..=max)
-                            .prefix("w "),
-                    )
+                    .add(widgets::drag(&mut cam.width).range(1..=max).prefix("w "))
                     .changed();
                 ui.label("×");
                 changed |= ui
-                    .add(
-                        egui::DragValue::new(&mut cam.height)
-                            .range(1..=max)
-                            .prefix("h "),
-                    )
+                    .add(widgets::drag(&mut cam.height).range(1..=max).prefix("h "))
                     .changed();
             });
             ui.end_row();

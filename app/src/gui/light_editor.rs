@@ -40,7 +40,7 @@ pub fn show(ui: &mut egui::Ui, light: &mut Light) -> bool {
             });
             changed |= ui
                 .add(
-                    egui::DragValue::new(&mut light.intensity)
+                    widgets::drag(&mut light.intensity)
                         .speed(0.05)
                         .range(0.0..=1e6)
                         .prefix("intensity "),

@@ -3,6 +3,7 @@
 //! renders: after every edit it snapshots the scene for the progressive
 //! session and shows the newest frame the session hands back.
 
+pub mod bench;
 mod camera_panel;
 mod commands;
 mod document;

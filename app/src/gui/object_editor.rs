@@ -107,9 +107,7 @@ fn shape_rows(ui: &mut egui::Ui, shape: &mut Shape, anchor: Option<Vec3>) -> boo
         }
         Shape::Floor { y } => {
             ui.label("Height y");
-            changed |= ui
-                .add(egui::DragValue::new(y).speed(0.02).prefix("y "))
-                .changed();
+            changed |= ui.add(widgets::drag(y).speed(0.02).prefix("y ")).changed();
             ui.end_row();
         }
     }

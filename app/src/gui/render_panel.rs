@@ -1,6 +1,7 @@
 //! Integrator settings: intersection method, bounce depth, samples per pixel.
 
 use super::document::RenderSettings;
+use super::widgets;
 use renderer::Method;
 
 /// Samples per pixel offered when the user turns a target back on.
@@ -29,7 +30,7 @@ pub fn show(ui: &mut egui::Ui, settings: &mut RenderSettings) -> bool {
             ui.label("Max depth");
             changed |= ui
                 .add(
-                    egui::DragValue::new(&mut settings.max_depth)
+                    widgets::drag(&mut settings.max_depth)
                         .range(0..=64)
                         .prefix("bounces "),
                 )
@@ -45,11 +46,7 @@ pub fn show(ui: &mut egui::Ui, settings: &mut RenderSettings) -> bool {
                 }
                 if let Some(target) = &mut settings.target_spp {
                     changed |= ui
-                        .add(
-                            egui::DragValue::new(target)
-                                .range(1..=65536)
-                                .prefix("target spp "),
-                        )
+                        .add(widgets::drag(target).range(1..=65536).prefix("target spp "))
                         .changed();
                 }
             });

@@ -3,6 +3,13 @@
 
 use glam::Vec3;
 
+/// A drag value whose typed text must be a finite number: "NaN" or "inf"
+/// typed into a field is refused, so the scene never holds them.
+pub fn drag<Num: egui::emath::Numeric>(value: &mut Num) -> egui::DragValue<'_> {
+    egui::DragValue::new(value)
+        .custom_parser(|text| text.trim().parse::<f64>().ok().filter(|v| v.is_finite()))
+}
+
 /// Three drag values for a vector, labelled x, y, z.
 pub fn vec3(ui: &mut egui::Ui, v: &mut Vec3, speed: f32) -> bool {
     let mut changed = false;
@@ -12,11 +19,7 @@ pub fn vec3(ui: &mut egui::Ui, v: &mut Vec3, speed: f32) -> bool {
             .zip([&mut v.x, &mut v.y, &mut v.z])
         {
             changed |= ui
-                .add(
-                    egui::DragValue::new(c)
-                        .speed(speed)
-                        .prefix(format!("{axis} ")),
-                )
+                .add(drag(c).speed(speed).prefix(format!("{axis} ")))
                 .changed();
         }
     });
@@ -36,7 +39,7 @@ pub fn length_row(ui: &mut egui::Ui, label: &str, value: &mut f32) -> bool {
     ui.label(label);
     let changed = ui
         .add(
-            egui::DragValue::new(value)
+            drag(value)
                 .speed(0.01)
                 .range(1e-3..=1e5)
                 .prefix(format!("{label} ")),

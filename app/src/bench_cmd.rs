@@ -1,0 +1,58 @@
+//! `raylab bench`: responsiveness figures of the window, measured headless.
+
+use crate::cli::{BenchArgs, BenchKind};
+use crate::gui::bench::{self, quantile};
+use anyhow::Result;
+use std::path::PathBuf;
+use std::time::Duration;
+
+fn ms(d: Duration) -> f64 {
+    d.as_secs_f64() * 1e3
+}
+
+/// Runs the benchmark `args` asks for and prints its figures.
+pub fn run(args: &BenchArgs, default_scene: PathBuf) -> Result<()> {
+    match args.which {
+        BenchKind::Interactive => interactive(args, default_scene),
+    }
+}
+
+fn interactive(args: &BenchArgs, default_scene: PathBuf) -> Result<()> {
+    let path = args.scene.clone().unwrap_or(default_scene);
+    let mut scene = scene::read_file(&path)?;
+    scene.camera.width = args.width;
+    scene.camera.height = args.height;
+    renderer::World::from_scene(&scene)?;
+    let threads = rayon::current_num_threads();
+    println!(
+        "{} at {}×{}, {} edits of θ, {threads} tracer threads",
+        path.display(),
+        args.width,
+        args.height,
+        args.edits
+    );
+    let mut report = bench::interactive(scene, Some(path), args.edits);
+    if report.to_full_pass.len() < args.edits as usize {
+        anyhow::bail!(
+            "only {} of {} edits reached a full pass within 10 s",
+            report.to_full_pass.len(),
+            args.edits
+        );
+    }
+    let line = |name: &str, values: &mut [Duration]| {
+        println!(
+            "{name:<34} median {:>7.1} ms   p95 {:>7.1} ms   max {:>7.1} ms",
+            ms(quantile(values, 0.5)),
+            ms(quantile(values, 0.95)),
+            ms(quantile(values, 1.0)),
+        );
+    };
+    line("edit → first preview on screen", &mut report.to_preview);
+    line("edit → first full pass on screen", &mut report.to_full_pass);
+    line("UI frame time while rendering", &mut report.frame_times);
+    println!(
+        "({} UI frames; targets: preview ≤ 16 ms, full pass ≤ 150 ms, UI frame < 16 ms)",
+        report.frame_times.len()
+    );
+    Ok(())
+}

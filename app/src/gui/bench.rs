@@ -1,0 +1,101 @@
+//! `raylab bench interactive`: the window's own code driven headless by an
+//! egui context, timing what a user feels — from an edit to the first
+//! preview on screen and to the first full-resolution pass — and the UI
+//! thread's frame time while the tracer keeps every core busy.
+
+use super::RaylabApp;
+use renderer::progressive::Step;
+use scene::Scene;
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+/// What one run measured.
+#[derive(Clone, Debug, Default)]
+pub struct Report {
+    /// Edit → the frame that first shows a preview of the new job.
+    pub to_preview: Vec<Duration>,
+    /// Edit → the frame that first shows a full pass of the new job.
+    pub to_full_pass: Vec<Duration>,
+    /// CPU time of every UI frame (layout and tessellation) while rendering.
+    pub frame_times: Vec<Duration>,
+}
+
+/// The `q`-quantile of `values` (sorted in place).
+pub fn quantile(values: &mut [Duration], q: f64) -> Duration {
+    values.sort_unstable();
+    let Some(last) = values.len().checked_sub(1) else {
+        return Duration::ZERO;
+    };
+    values[((last as f64) * q).round() as usize]
+}
+
+/// How long one display frame lasts at 60 Hz: the UI loop's pace.
+const FRAME: Duration = Duration::from_micros(16_667);
+
+/// Runs `edits` θ edits on `scene` and times each until its first full pass.
+pub fn interactive(scene: Scene, path: Option<PathBuf>, edits: u32) -> Report {
+    let ctx = egui::Context::default();
+    let mut app = RaylabApp::new(scene, path);
+    app.doc.state.render.target_spp = None; // refine forever: the tracer never idles
+    let input = || egui::RawInput {
+        screen_rect: Some(egui::Rect::from_min_size(
+            egui::Pos2::ZERO,
+            egui::vec2(1920.0, 1080.0),
+        )),
+        ..Default::default()
+    };
+    let frame = |app: &mut RaylabApp| -> Duration {
+        let start = Instant::now();
+        let mut output = ctx.run_ui(input(), |ui| app.show(ui));
+        let _ = ctx.tessellate(output.shapes, output.pixels_per_point);
+        // No GPU here: the texture uploads are what egui-wgpu would do with these.
+        output.textures_delta.clear();
+        start.elapsed()
+    };
+    // Warm up: the first job, rendered to a few passes.
+    let warm_up = Instant::now() + Duration::from_secs(5);
+    while Instant::now() < warm_up
+        && !matches!(app.frame.as_ref().map(|f| f.step), Some(Step::Passes { spp }) if spp >= 2)
+    {
+        frame(&mut app);
+        std::thread::sleep(Duration::from_millis(1));
+    }
+    let mut report = Report::default();
+    for edit in 0..edits {
+        // Edit θ as a drag in the panel would, then run frames as the display would.
+        app.doc.state.scene.camera.theta_deg = 24.0 + (edit % 5) as f32;
+        let edited = Instant::now();
+        let mut preview = None;
+        let deadline = edited + Duration::from_secs(10);
+        while Instant::now() < deadline {
+            let took = frame(&mut app);
+            report.frame_times.push(took);
+            let shown = app
+                .frame
+                .as_ref()
+                .filter(|f| f.generation == app.generation)
+                .map(|f| f.step);
+            match shown {
+                Some(Step::Preview { .. }) if preview.is_none() => preview = Some(edited.elapsed()),
+                Some(Step::Passes { .. }) => {
+                    report
+                        .to_preview
+                        .push(preview.unwrap_or_else(|| edited.elapsed()));
+                    report.to_full_pass.push(edited.elapsed());
+                    break;
+                }
+                _ => {}
+            }
+            // Wait for the next frame, or less when the tracer asks to repaint.
+            std::thread::sleep(FRAME.saturating_sub(took).min(Duration::from_millis(1)));
+        }
+        // Let the tracer keep both cores busy for a while before the next edit.
+        let busy = Instant::now() + Duration::from_millis(300);
+        while Instant::now() < busy {
+            let took = frame(&mut app);
+            report.frame_times.push(took);
+            std::thread::sleep(FRAME.saturating_sub(took));
+        }
+    }
+    report
+}
