@@ -48,6 +48,10 @@ fn interactive(args: &BenchArgs, default_scene: PathBuf) -> Result<()> {
         );
     };
     line("edit → first preview on screen", &mut report.to_preview);
+    line(
+        "  of which the render thread",
+        &mut report.preview_handed_over,
+    );
     line("edit → first full pass on screen", &mut report.to_full_pass);
     line("UI frame time while rendering", &mut report.frame_times);
     println!(

@@ -6,11 +6,12 @@
 //! [`ProgressiveRenderer::submit`] returns. Nothing here ever blocks the caller
 //! on rendering.
 
-use crate::film::Film;
+use crate::film::{Film, linear_to_srgb8};
 use crate::integrator::RenderOptions;
 use crate::preview::preview;
 use crate::world::World;
 use glam::Vec3;
+use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard, PoisonError};
 use std::thread::JoinHandle;
@@ -56,6 +57,9 @@ pub struct RenderedFrame {
     pub height: u32,
     /// Linear radiance, row by row from the top.
     pub pixels: Vec<Vec3>,
+    /// The same pixels as 8-bit sRGB RGBA (opaque), converted on the render
+    /// thread so that showing a frame costs the UI only a copy.
+    pub srgba8: Vec<[u8; 4]>,
     /// Which step this is.
     pub step: Step,
     /// Time from the submit to this frame.
@@ -221,6 +225,31 @@ fn work(shared: &Shared) {
     }
 }
 
+/// Linear radiance to opaque 8-bit sRGB RGBA, in parallel; a run of equal
+/// pixels (a preview's blocks) is converted once.
+fn to_srgba8(pixels: &[Vec3]) -> Vec<[u8; 4]> {
+    const CHUNK: usize = 4096;
+    let mut out = vec![[0u8, 0, 0, 255]; pixels.len()];
+    out.par_chunks_mut(CHUNK)
+        .zip(pixels.par_chunks(CHUNK))
+        .for_each(|(out, pixels)| {
+            let mut last: Option<(Vec3, [u8; 4])> = None;
+            for (o, &c) in out.iter_mut().zip(pixels) {
+                let rgba = match last {
+                    Some((previous, rgba)) if previous == c => rgba,
+                    _ => {
+                        let [r, g, b] = linear_to_srgb8(c);
+                        let rgba = [r, g, b, 255];
+                        last = Some((c, rgba));
+                        rgba
+                    }
+                };
+                *o = rgba;
+            }
+        });
+    out
+}
+
 /// Renders one preview or one full pass of `c` and publishes it unless stale.
 fn step(shared: &Shared, c: &mut Current) {
     let stale = || shared.generation.load(Ordering::SeqCst) != c.generation;
@@ -249,10 +278,12 @@ fn step(shared: &Shared, c: &mut Current) {
                 samples / c.pass_time.as_secs_f64().max(1e-9),
             )
         };
+    let srgba8 = to_srgba8(&pixels);
     let frame = RenderedFrame {
         generation: c.generation,
         width: c.film.width(),
         height: c.film.height(),
+        srgba8,
         pixels,
         step,
         since_submit: c.submitted.elapsed(),

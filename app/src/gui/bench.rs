@@ -16,6 +16,8 @@ pub struct Report {
     pub to_preview: Vec<Duration>,
     /// Edit → the frame that first shows a full pass of the new job.
     pub to_full_pass: Vec<Duration>,
+    /// Edit → the render thread handing over that first preview.
+    pub preview_handed_over: Vec<Duration>,
     /// CPU time of every UI frame (layout and tessellation) while rendering.
     pub frame_times: Vec<Duration>,
 }
@@ -74,9 +76,12 @@ pub fn interactive(scene: Scene, path: Option<PathBuf>, edits: u32) -> Report {
                 .frame
                 .as_ref()
                 .filter(|f| f.generation == app.generation)
-                .map(|f| f.step);
-            match shown {
-                Some(Step::Preview { .. }) if preview.is_none() => preview = Some(edited.elapsed()),
+                .map(|f| (f.step, f.since_submit));
+            match shown.map(|(step, _)| step) {
+                Some(Step::Preview { .. }) if preview.is_none() => {
+                    preview = Some(edited.elapsed());
+                    report.preview_handed_over.extend(shown.map(|(_, t)| t));
+                }
                 Some(Step::Passes { .. }) => {
                     report
                         .to_preview

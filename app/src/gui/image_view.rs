@@ -63,16 +63,16 @@ impl Default for ImageView {
 }
 
 impl ImageView {
-    /// Writes `frame` as 8-bit sRGB into the one texture: in place when the
+    /// Writes `frame`'s 8-bit sRGB pixels into the one texture: in place when the
     /// size is unchanged, re-created only when the image size changes.
     pub fn show_frame(&mut self, ctx: &egui::Context, frame: &RenderedFrame) {
-        let bytes: Vec<u8> = frame
-            .pixels
-            .iter()
-            .flat_map(|&c| renderer::film::linear_to_srgb8(c))
-            .collect();
         let size = [frame.width as usize, frame.height as usize];
-        let image = egui::ColorImage::from_rgb(size, &bytes);
+        let pixels = frame
+            .srgba8
+            .iter()
+            .map(|&[r, g, b, a]| egui::Color32::from_rgba_premultiplied(r, g, b, a))
+            .collect();
+        let image = egui::ColorImage::new(size, pixels);
         match &mut self.texture {
             Some(texture) if self.size == size => {
                 texture.set_partial([0, 0], image, TEXTURE_OPTIONS)

@@ -41,12 +41,12 @@ pub fn save(path: &Path, frame: &RenderedFrame, provenance: &Provenance) -> anyh
 
 /// The frame as the 8-bit sRGB picture shown on screen, for the clipboard.
 pub fn color_image(frame: &RenderedFrame) -> egui::ColorImage {
-    let bytes: Vec<u8> = frame
-        .pixels
+    let pixels = frame
+        .srgba8
         .iter()
-        .flat_map(|&c| renderer::film::linear_to_srgb8(c))
+        .map(|&[r, g, b, a]| egui::Color32::from_rgba_premultiplied(r, g, b, a))
         .collect();
-    egui::ColorImage::from_rgb([frame.width as usize, frame.height as usize], &bytes)
+    egui::ColorImage::new([frame.width as usize, frame.height as usize], pixels)
 }
 
 #[cfg(test)]
