@@ -83,10 +83,15 @@ pub fn show(
                     (Step::Preview { stride }, _) => {
                         ui.label(format!("preview: every {stride}th pixel"))
                     }
+                    // One sample per pixel per pass: passes and spp move together.
                     (Step::Passes { spp }, Some(target)) => {
-                        ui.label(format!("{spp} / {target} spp"))
+                        ui.label(format!("{spp} / {target} spp"));
+                        ui.weak(format!("{spp} passes"))
                     }
-                    (Step::Passes { spp }, None) => ui.label(format!("{spp} spp")),
+                    (Step::Passes { spp }, None) => {
+                        ui.label(format!("{spp} spp"));
+                        ui.weak(format!("{spp} passes"))
+                    }
                 };
                 ui.separator();
                 ui.label(format!(
