@@ -26,6 +26,7 @@ pub struct Film {
     sum: Vec<Vec3>,
     passes: u32,
     discarded: u64,
+    rays: u64,
 }
 
 impl Film {
@@ -37,6 +38,7 @@ impl Film {
             sum: vec![Vec3::ZERO; width as usize * height as usize],
             passes: 0,
             discarded: 0,
+            rays: 0,
         }
     }
 
@@ -60,6 +62,11 @@ impl Film {
         self.discarded
     }
 
+    /// Rays traced for the passes so far: camera, secondary and shadow rays.
+    pub fn rays(&self) -> u64 {
+        self.rays
+    }
+
     /// Adds one sample to every pixel (pass k traces sample index k), in parallel over bands of rows.
     pub fn add_pass(&mut self, world: &World, options: &RenderOptions) {
         let completed = self.add_pass_unless(world, options, &|| false);
@@ -76,14 +83,15 @@ impl Film {
         cancelled: &(dyn Fn() -> bool + Sync),
     ) -> bool {
         let (width, sample) = (self.width as usize, self.passes);
-        let (discarded, skipped): (u64, u64) = self
+        let (discarded, skipped, rays): (u64, u64, u64) = self
             .sum
             .par_chunks_mut(width * BAND_ROWS)
             .enumerate()
             .map(|(band, rows)| {
                 if cancelled() {
-                    return (0, 1);
+                    return (0, 1, 0);
                 }
+                let rays_before = crate::ray_count::rays_on_this_thread();
                 let mut bad = 0;
                 for (k, acc) in rows.iter_mut().enumerate() {
                     let (i, j) = ((k % width) as u32, (band * BAND_ROWS + k / width) as u32);
@@ -94,10 +102,12 @@ impl Film {
                         bad += 1;
                     }
                 }
-                (bad, 0)
+                let rays = crate::ray_count::rays_on_this_thread() - rays_before;
+                (bad, 0, rays)
             })
-            .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
+            .reduce(|| (0, 0, 0), |a, b| (a.0 + b.0, a.1 + b.1, a.2 + b.2));
         self.discarded += discarded;
+        self.rays += rays;
         self.passes += 1;
         skipped == 0
     }

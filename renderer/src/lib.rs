@@ -15,6 +15,7 @@ pub mod optics;
 pub mod preview;
 pub mod progressive;
 pub mod ray;
+pub mod ray_count;
 pub mod sampler;
 pub mod shapes;
 pub mod texture;

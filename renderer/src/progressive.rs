@@ -66,6 +66,8 @@ pub struct RenderedFrame {
     pub since_submit: Duration,
     /// Full-pass camera samples per second so far (0 for previews).
     pub samples_per_second: f64,
+    /// Full-pass rays per second so far, every kind of ray counted (0 for previews).
+    pub rays_per_second: f64,
     /// Samples left out because they were NaN or infinite.
     pub discarded: u64,
 }
@@ -254,12 +256,13 @@ fn to_srgba8(pixels: &[Vec3]) -> Vec<[u8; 4]> {
 fn step(shared: &Shared, c: &mut Current) {
     let stale = || shared.generation.load(Ordering::SeqCst) != c.generation;
     let world = Arc::clone(&c.job.world);
-    let (pixels, step, samples_per_second) =
+    let (pixels, step, samples_per_second, rays_per_second) =
         if let Some(&stride) = PREVIEW_STRIDES.get(c.next_preview) {
             c.next_preview += 1;
             (
                 preview(&world, &c.job.options, stride),
                 Step::Preview { stride },
+                0.0,
                 0.0,
             )
         } else {
@@ -276,6 +279,7 @@ fn step(shared: &Shared, c: &mut Current) {
                     spp: c.film.passes(),
                 },
                 samples / c.pass_time.as_secs_f64().max(1e-9),
+                c.film.rays() as f64 / c.pass_time.as_secs_f64().max(1e-9),
             )
         };
     let srgba8 = to_srgba8(&pixels);
@@ -288,6 +292,7 @@ fn step(shared: &Shared, c: &mut Current) {
         step,
         since_submit: c.submitted.elapsed(),
         samples_per_second,
+        rays_per_second,
         discarded: c.film.discarded(),
     };
     {

@@ -78,6 +78,7 @@ impl World {
 
     /// The nearest hit along the ray (every shape is tested; a BVH comes later).
     pub fn intersect(&self, ray: &Ray, method: Method) -> Option<Hit> {
+        crate::ray_count::count_ray();
         let mut nearest: Option<Hit> = None;
         let mut search = *ray;
         for (index, shape) in self.shapes.iter().enumerate() {
@@ -94,6 +95,7 @@ impl World {
 
     /// True when anything lies on the ray inside its interval (shadow rays).
     pub fn occluded(&self, ray: &Ray, method: Method) -> bool {
+        crate::ray_count::count_ray();
         self.shapes
             .iter()
             .any(|shape| shape.intersect(ray, method).is_some())

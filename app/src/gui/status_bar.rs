@@ -14,6 +14,8 @@ pub struct Shown {
     pub since_edit: Duration,
     /// Camera samples per second of the full passes.
     pub samples_per_second: f64,
+    /// Rays (every kind) per second of the full passes.
+    pub rays_per_second: f64,
     /// NaN/∞ samples left out.
     pub discarded: u64,
 }
@@ -25,6 +27,7 @@ impl Shown {
             step: frame.step,
             since_edit: frame.since_submit,
             samples_per_second: frame.samples_per_second,
+            rays_per_second: frame.rays_per_second,
             discarded: frame.discarded,
         }
     }
@@ -100,7 +103,11 @@ pub fn show(
                 ));
                 if s.samples_per_second > 0.0 {
                     ui.separator();
-                    ui.label(format!("{:.2} M samples/s", s.samples_per_second / 1e6));
+                    ui.label(format!(
+                        "{:.2} M rays/s ({:.2} M samples/s)",
+                        s.rays_per_second / 1e6,
+                        s.samples_per_second / 1e6
+                    ));
                 }
                 if s.discarded > 0 {
                     ui.separator();

@@ -1,0 +1,66 @@
+//! The film counts every ray it traces: camera rays, and the secondary rays
+//! a mirror spawns, exactly.
+
+use renderer::sampler::Sampler;
+use renderer::{Film, Method, RenderOptions, World};
+use scene::{Light, LightKind, Object, Scene, Shape};
+
+/// A sphere of `material` lit only by ambient light (so no shadow rays).
+fn world(material: &str) -> World {
+    let scene = Scene {
+        camera: scene::Camera {
+            width: 40,
+            height: 30,
+            ..Default::default()
+        },
+        lights: vec![Light {
+            name: None,
+            kind: LightKind::Ambient,
+            color: glam::Vec3::ONE,
+            intensity: 0.5,
+        }],
+        objects: vec![Object {
+            name: None,
+            shape: Shape::default_for_tag("sphere").expect("sphere"),
+            material: Some(material.to_owned()),
+            params: Default::default(),
+        }],
+        ..Default::default()
+    };
+    World::from_scene(&scene).expect("valid")
+}
+
+/// Pixels whose first-pass camera ray (the same jitter the film uses) hits.
+fn hits(world: &World, options: &RenderOptions) -> u64 {
+    let mut count = 0;
+    for j in 0..world.camera.h {
+        for i in 0..world.camera.w {
+            let mut sampler = Sampler::for_sample(options.seed, i, j, 0);
+            let ray = world.camera.ray(i, j, sampler.next_2d());
+            count += u64::from(world.intersect(&ray, Method::Robust).is_some());
+        }
+    }
+    count
+}
+
+#[test]
+fn a_matte_scene_without_lights_traces_one_ray_per_pixel() {
+    let world = world("matte");
+    let mut film = Film::new(world.camera.w, world.camera.h);
+    film.add_pass(&world, &RenderOptions::default());
+    assert_eq!(film.rays(), 40 * 30);
+    film.add_pass(&world, &RenderOptions::default());
+    assert_eq!(film.rays(), 2 * 40 * 30);
+}
+
+#[test]
+fn a_mirror_sphere_adds_one_reflected_ray_per_hit() {
+    let world = world("mirror");
+    let options = RenderOptions::default();
+    let hit = hits(&world, &options);
+    assert!(hit > 100, "the sphere fills part of the image ({hit})");
+    let mut film = Film::new(world.camera.w, world.camera.h);
+    film.add_pass(&world, &options);
+    // A ray reflected off a lone convex sphere escapes: one more ray per hit.
+    assert_eq!(film.rays(), 40 * 30 + hit);
+}
