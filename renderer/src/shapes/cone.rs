@@ -2,6 +2,7 @@
 //! space, restricted to the nappe 0 ≤ y ≤ H, plus the base disk.
 
 use super::Surface;
+use super::bound::BoundingSphere;
 use super::cylinder::shift_near;
 use super::quadratic::solve_quadratic;
 use crate::frame::Frame;
@@ -18,6 +19,8 @@ pub struct Cone {
     radius: f32,
     /// H, the height of the apex above the base.
     height: f32,
+    /// Rays that miss it skip the exact test.
+    bound: BoundingSphere,
 }
 
 impl Cone {
@@ -25,10 +28,24 @@ impl Cone {
     /// it along +y, rotated by `rotate_deg` degrees (x, then y, then z) about `base`.
     pub fn new(base: Vec3, radius: f32, height: f32, rotate_deg: Vec3) -> Self {
         debug_assert!(radius >= 0.0 && height >= 0.0, "r {radius} h {height}");
+        let frame = Frame::from_euler_degrees(base, rotate_deg);
+        let (radius, height) = (radius.abs(), height.abs());
+        // The smallest enclosing sphere: through the apex and the base rim
+        // when the cone is taller than wide, else the base disk's own sphere.
+        let (centre_y, enclosing) = if height > radius {
+            let y = (height * height - radius * radius) / (2.0 * height);
+            (y, height - y)
+        } else {
+            (0.0, radius)
+        };
         Self {
-            frame: Frame::from_euler_degrees(base, rotate_deg),
-            radius: radius.abs(),
-            height: height.abs(),
+            frame,
+            radius,
+            height,
+            bound: BoundingSphere::new(
+                frame.point_to_world(Vec3::new(0.0, centre_y, 0.0)),
+                enclosing,
+            ),
         }
     }
 
@@ -40,7 +57,17 @@ impl Cone {
     /// solved in the stable form, so a ray parallel to a generator (a = 0)
     /// gets its single linear root. Roots on the mirror nappe (y > H) or
     /// below the base (y < 0) are rejected; the base disk is the other candidate.
+    /// A loose world-space bounding sphere first turns clear misses away
+    /// without the object-space transform; the answer is the same either way.
     pub fn intersect(&self, ray: &Ray) -> Option<f32> {
+        if !self.bound.may_hit(ray) {
+            return None;
+        }
+        self.intersect_exact(ray)
+    }
+
+    /// [`Cone::intersect`] without the bounding-sphere test.
+    fn intersect_exact(&self, ray: &Ray) -> Option<f32> {
         let local = self.frame.ray_to_object(ray);
         let (r2, h) = (self.radius * self.radius, self.height);
         let (shift, o, d) = shift_near(&local, Vec3::new(0.0, 0.5 * h, 0.0));
@@ -224,6 +251,27 @@ mod tests {
         let ray = Ray::new(Vec3::new(0.0, 5.0, 1.0), -Vec3::Y);
         let a = c.intersect(&ray).expect("side");
         assert!((a - 4.5).abs() < 1e-5, "{a}");
+    }
+
+    #[test]
+    fn the_bounding_sphere_only_skips_rays_that_miss() {
+        for (k, (radius, height, rotate)) in [
+            (0.8, 2.0, Vec3::ZERO),
+            (2.0, 0.5, Vec3::new(30.0, 40.0, 50.0)),
+            (1.0, 1.0, Vec3::new(90.0, 0.0, 0.0)),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let c = Cone::new(Vec3::new(-2.25, 0.0, 3.0), radius, height, rotate);
+            let rejected = super::super::bound::testing::rays_around(&c.bound, k as u64, |ray| {
+                assert_eq!(c.intersect(ray), c.intersect_exact(ray), "{ray:?}");
+            });
+            assert!(
+                rejected > 3_000,
+                "the bound turns clear misses away ({rejected})"
+            );
+        }
     }
 
     fn any_vec(r: f32) -> impl Strategy<Value = Vec3> {

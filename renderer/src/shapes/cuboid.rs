@@ -2,6 +2,7 @@
 //! zero direction components and rays lying in a face plane never produce NaN.
 
 use super::Surface;
+use super::bound::BoundingSphere;
 use crate::frame::Frame;
 use crate::ray::Ray;
 use glam::Vec3;
@@ -13,6 +14,8 @@ pub struct Cuboid {
     frame: Frame,
     /// Half the edge lengths, ≥ 0.
     half: Vec3,
+    /// Rays that miss it skip the exact test.
+    bound: BoundingSphere,
 }
 
 impl Cuboid {
@@ -20,9 +23,11 @@ impl Cuboid {
     /// rotated by `rotate_deg` degrees about x, then y, then z (about the centre).
     pub fn new(center: Vec3, size: Vec3, rotate_deg: Vec3) -> Self {
         debug_assert!(size.is_finite() && size.min_element() >= 0.0, "size {size}");
+        let half = 0.5 * size.abs();
         Self {
             frame: Frame::from_euler_degrees(center, rotate_deg),
-            half: 0.5 * size.abs(),
+            half,
+            bound: BoundingSphere::new(center, half.length()),
         }
     }
 
@@ -33,7 +38,17 @@ impl Cuboid {
     /// constrain the ray if the origin lies inside it (boundary included), and
     /// misses otherwise. Only the slab distances t_near (entry) and t_far
     /// (exit) are candidates, and each must itself lie inside the interval.
+    /// A loose world-space bounding sphere first turns clear misses away
+    /// without the object-space transform; the answer is the same either way.
     pub fn intersect(&self, ray: &Ray) -> Option<f32> {
+        if !self.bound.may_hit(ray) {
+            return None;
+        }
+        self.intersect_exact(ray)
+    }
+
+    /// [`Cuboid::intersect`] without the bounding-sphere test.
+    fn intersect_exact(&self, ray: &Ray) -> Option<f32> {
         let local = self.frame.ray_to_object(ray);
         let (o, d) = (local.origin.to_array(), local.dir.to_array());
         let h = self.half.to_array();
@@ -228,6 +243,26 @@ mod tests {
         let ray = Ray::new(Vec3::ZERO, Vec3::X);
         assert_eq!(b.intersect(&ray), Some(9.0));
         assert_eq!(b.surface(&ray, 9.0).normal, -Vec3::X);
+    }
+
+    #[test]
+    fn the_bounding_sphere_only_skips_rays_that_miss() {
+        for (k, (size, rotate)) in [
+            (Vec3::splat(1.5), Vec3::ZERO),
+            (Vec3::new(3.0, 0.1, 1.0), Vec3::new(30.0, 40.0, 50.0)),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let b = Cuboid::new(Vec3::new(2.3, 0.75, 0.0), size, rotate);
+            let rejected = super::super::bound::testing::rays_around(&b.bound, k as u64, |ray| {
+                assert_eq!(b.intersect(ray), b.intersect_exact(ray), "{ray:?}");
+            });
+            assert!(
+                rejected > 3_000,
+                "the bound turns clear misses away ({rejected})"
+            );
+        }
     }
 
     fn any_vec(r: f32) -> impl Strategy<Value = Vec3> {

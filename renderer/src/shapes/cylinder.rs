@@ -2,6 +2,7 @@
 //! restricted to 0 ≤ y ≤ H, plus the two cap disks.
 
 use super::Surface;
+use super::bound::BoundingSphere;
 use super::quadratic::solve_quadratic;
 use crate::frame::Frame;
 use crate::ray::Ray;
@@ -17,6 +18,8 @@ pub struct Cylinder {
     radius: f32,
     /// H, the height.
     height: f32,
+    /// Rays that miss it skip the exact test.
+    bound: BoundingSphere,
 }
 
 impl Cylinder {
@@ -24,10 +27,16 @@ impl Cylinder {
     /// along +y, rotated by `rotate_deg` degrees (x, then y, then z) about `base`.
     pub fn new(base: Vec3, radius: f32, height: f32, rotate_deg: Vec3) -> Self {
         debug_assert!(radius >= 0.0 && height >= 0.0, "r {radius} h {height}");
+        let frame = Frame::from_euler_degrees(base, rotate_deg);
+        let (radius, height) = (radius.abs(), height.abs());
         Self {
-            frame: Frame::from_euler_degrees(base, rotate_deg),
-            radius: radius.abs(),
-            height: height.abs(),
+            frame,
+            radius,
+            height,
+            bound: BoundingSphere::new(
+                frame.point_to_world(Vec3::new(0.0, 0.5 * height, 0.0)),
+                radius.hypot(0.5 * height),
+            ),
         }
     }
 
@@ -38,7 +47,17 @@ impl Cylinder {
     /// the side's roots with 0 ≤ y ≤ H and the caps' hits with x² + z² ≤ R².
     /// A ray along the axis (no side quadratic: a = b = 0) sees only the caps;
     /// a ray parallel to the caps (d_y = 0) sees only the side.
+    /// A loose world-space bounding sphere first turns clear misses away
+    /// without the object-space transform; the answer is the same either way.
     pub fn intersect(&self, ray: &Ray) -> Option<f32> {
+        if !self.bound.may_hit(ray) {
+            return None;
+        }
+        self.intersect_exact(ray)
+    }
+
+    /// [`Cylinder::intersect`] without the bounding-sphere test.
+    fn intersect_exact(&self, ray: &Ray) -> Option<f32> {
         let local = self.frame.ray_to_object(ray);
         let (r2, h) = (self.radius * self.radius, self.height);
         let (shift, o, d) = shift_near(&local, Vec3::new(0.0, 0.5 * h, 0.0));
@@ -201,6 +220,26 @@ mod tests {
         let a = c.intersect(&ray).expect("side");
         assert!((a - 4.0).abs() < 1e-5, "{a}");
         assert!((c.surface(&ray, a).normal - Vec3::Y).length() < 1e-6);
+    }
+
+    #[test]
+    fn the_bounding_sphere_only_skips_rays_that_miss() {
+        for (k, (radius, height, rotate)) in [
+            (0.6, 1.8, Vec3::ZERO),
+            (2.0, 0.3, Vec3::new(30.0, 40.0, 50.0)),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let c = Cylinder::new(Vec3::new(1.0, 2.0, -3.0), radius, height, rotate);
+            let rejected = super::super::bound::testing::rays_around(&c.bound, k as u64, |ray| {
+                assert_eq!(c.intersect(ray), c.intersect_exact(ray), "{ray:?}");
+            });
+            assert!(
+                rejected > 3_000,
+                "the bound turns clear misses away ({rejected})"
+            );
+        }
     }
 
     fn any_vec(r: f32) -> impl Strategy<Value = Vec3> {

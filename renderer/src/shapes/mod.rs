@@ -6,6 +6,7 @@
 //! to run against every candidate; [`Shape::surface`] computes the hit point
 //! and normal for the one closest hit.
 
+mod bound;
 mod cone;
 mod cuboid;
 mod cylinder;

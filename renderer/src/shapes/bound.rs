@@ -1,0 +1,134 @@
+//! A loose bounding sphere in world space: a cheap test that lets a shape
+//! skip its object-space transform and exact intersection for rays that
+//! clearly pass it by, without ever changing which rays hit it.
+
+use crate::ray::Ray;
+use glam::Vec3;
+
+/// Relative slack on the shape's enclosing radius.
+const RADIUS_SLACK: f32 = 0.05;
+/// Slack per unit of the centre's largest coordinate (covers the rounding of
+/// the centre and of the shape's own transform far from the world origin).
+const POSITION_SLACK: f32 = 1.0e-4;
+/// Slack per unit of distance from the ray's origin to the centre (covers
+/// the exact tests' rounding for far rays, including their nearly tangent
+/// roots, whose error grows like the square root of that distance).
+const DISTANCE_SLACK: f32 = 1.0e-2;
+
+/// A sphere enclosing a shape with generous slack: a ray it rejects misses
+/// the shape in exact arithmetic by far more than any rounding of the
+/// shape's exact test, so that test would have reported no hit either.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BoundingSphere {
+    /// The centre, in world space.
+    center: Vec3,
+    /// The square of the enclosing radius plus the slack that does not depend on the ray.
+    radius_sq: f32,
+}
+
+impl BoundingSphere {
+    /// The bound of a shape lying wholly within `radius` of `center`.
+    pub fn new(center: Vec3, radius: f32) -> Self {
+        let radius =
+            radius.abs() * (1.0 + RADIUS_SLACK) + POSITION_SLACK * center.abs().max_element();
+        Self {
+            center,
+            radius_sq: radius * radius,
+        }
+    }
+
+    /// False only when the ray certainly misses the sphere: its line passes
+    /// too far from the centre, or the sphere lies wholly before t_min or
+    /// wholly beyond t_max. No division or square root: this runs for every
+    /// ray and shape. Degenerate or non-finite rays are never rejected
+    /// (every comparison with NaN is false).
+    #[inline]
+    pub fn may_hit(&self, ray: &Ray) -> bool {
+        let d = ray.dir;
+        let f = ray.origin - self.center;
+        let (dd, ff, fd) = (d.length_squared(), f.length_squared(), f.dot(d));
+        let reach_sq = self.radius_sq + DISTANCE_SLACK * DISTANCE_SLACK * ff;
+        // ‖f‖² ‖d‖² − (f · d)² is ‖d‖² times the squared distance from the
+        // centre to the line; its cancellation error is far below the slack.
+        if ff * dd - fd * fd > reach_sq * dd {
+            return false;
+        }
+        // Starting outside and moving away: the sphere is wholly behind.
+        let start = f + ray.t_min * d;
+        if start.length_squared() > reach_sq && start.dot(d) > 0.0 {
+            return false;
+        }
+        // Ending outside and still approaching: the sphere is wholly beyond.
+        if ray.t_max.is_finite() {
+            let end = f + ray.t_max * d;
+            if end.length_squared() > reach_sq && end.dot(d) < 0.0 {
+                return false;
+            }
+        }
+        true
+    }
+}
+
+/// Rays for checking that a bound never changes a shape's answer.
+#[cfg(test)]
+pub(super) mod testing {
+    use super::*;
+    use crate::sampler::Sampler;
+
+    /// Calls `check` on 20 000 rays around the bound `b` (its slack
+    /// included): from inside it, just outside and up to 10⁴ radii away,
+    /// aimed within 1.5 radii of the centre so that many pass the shape's
+    /// silhouette closely, a third of them with a finite t_max ending near
+    /// the shape. Returns how many `b` rejected.
+    pub fn rays_around(b: &BoundingSphere, seed: u64, mut check: impl FnMut(&Ray)) -> usize {
+        let radius = b.radius_sq.sqrt();
+        let mut rejected = 0;
+        for k in 0..20_000u32 {
+            let mut s = Sampler::for_sample(seed, k, 0, 0);
+            let distance = radius * 10f32.powf(5.0 * s.next_f32() - 1.0);
+            let origin = b.center + distance * s.next_direction();
+            let target = b.center + 1.5 * radius * s.next_f32().cbrt() * s.next_direction();
+            let Some(dir) = (target - origin).try_normalize() else {
+                continue;
+            };
+            let mut ray = Ray::new(origin, dir);
+            if k % 3 == 0 {
+                ray = ray.with_t_max((target - origin).length() * (0.5 + s.next_f32()));
+            }
+            rejected += usize::from(!b.may_hit(&ray));
+            check(&ray);
+        }
+        rejected
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rays_through_or_near_the_sphere_may_hit_and_clear_misses_do_not() {
+        let bound = BoundingSphere::new(Vec3::ZERO, 1.0);
+        let toward = |o: Vec3, target: Vec3| Ray::new(o, (target - o).normalize());
+        let eye = Vec3::new(0.0, 0.0, 10.0);
+        assert!(bound.may_hit(&toward(eye, Vec3::ZERO)));
+        assert!(bound.may_hit(&toward(eye, Vec3::new(1.0, 0.0, 0.0))));
+        assert!(!bound.may_hit(&toward(eye, Vec3::new(2.0, 0.0, 0.0))));
+        // Pointing away, or stopping short of the sphere.
+        assert!(!bound.may_hit(&Ray::new(eye, Vec3::Z)));
+        assert!(!bound.may_hit(&toward(eye, Vec3::ZERO).with_t_max(8.0)));
+        assert!(bound.may_hit(&toward(eye, Vec3::ZERO).with_t_max(9.5)));
+    }
+
+    #[test]
+    fn degenerate_rays_are_never_rejected() {
+        let bound = BoundingSphere::new(Vec3::ZERO, 1.0);
+        let zero = Ray {
+            origin: Vec3::new(0.0, 0.0, 10.0),
+            dir: Vec3::ZERO,
+            t_min: 0.0,
+            t_max: f32::INFINITY,
+        };
+        assert!(bound.may_hit(&zero));
+    }
+}
