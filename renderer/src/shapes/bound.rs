@@ -42,7 +42,7 @@ impl BoundingSphere {
     /// wholly beyond t_max. No division or square root: this runs for every
     /// ray and shape. Degenerate or non-finite rays are never rejected
     /// (every comparison with NaN is false).
-    #[inline]
+    #[inline(always)]
     pub fn may_hit(&self, ray: &Ray) -> bool {
         let d = ray.dir;
         let f = ray.origin - self.center;
@@ -53,17 +53,17 @@ impl BoundingSphere {
         if ff * dd - fd * fd > reach_sq * dd {
             return false;
         }
+        // Where the ray starts and ends, relative to the centre: with
+        // p(t) = f + t d, ‖p(t)‖² = ff + t (2 fd + t dd) and p(t) · d = fd + t dd
+        // (t = ∞ gives ∞ or NaN below, never a rejection).
+        let (t0, t1) = (ray.t_min, ray.t_max);
         // Starting outside and moving away: the sphere is wholly behind.
-        let start = f + ray.t_min * d;
-        if start.length_squared() > reach_sq && start.dot(d) > 0.0 {
+        if ff + t0 * (2.0 * fd + t0 * dd) > reach_sq && fd + t0 * dd > 0.0 {
             return false;
         }
         // Ending outside and still approaching: the sphere is wholly beyond.
-        if ray.t_max.is_finite() {
-            let end = f + ray.t_max * d;
-            if end.length_squared() > reach_sq && end.dot(d) < 0.0 {
-                return false;
-            }
+        if ff + t1 * (2.0 * fd + t1 * dd) > reach_sq && fd + t1 * dd < 0.0 {
+            return false;
         }
         true
     }
