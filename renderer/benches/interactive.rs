@@ -1,9 +1,11 @@
 //! Latency of an edit on the seed scene at 1280×720: the first coarse preview
 //! (every 8th pixel) and the first full-resolution pass, the two steps the
-//! interactive app shows after every edit (targets: 16 ms and 150 ms).
+//! interactive app shows after every edit (targets: 16 ms and 150 ms), and
+//! the whole sequence the progressive session traces after an edit (previews
+//! 8, 4, 2, then the first pass, each taking the samples of the one before).
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use renderer::preview::preview;
+use renderer::preview::{PreviewSamples, preview};
 use renderer::{Film, RenderOptions, World};
 use std::path::Path;
 
@@ -29,6 +31,20 @@ fn edit_latency(c: &mut Criterion) {
         b.iter(|| {
             let mut film = Film::new(world.camera.w, world.camera.h);
             film.add_pass(&world, &options);
+            film
+        })
+    });
+    group.bench_function("previews-8-4-2-then-first-pass", |b| {
+        b.iter(|| {
+            let mut samples: Option<PreviewSamples> = None;
+            for stride in [8, 4, 2] {
+                let next = PreviewSamples::trace(&world, &options, stride, samples.as_ref());
+                std::hint::black_box(next.image());
+                samples = Some(next);
+            }
+            let mut film = Film::new(world.camera.w, world.camera.h);
+            let known = samples.expect("three previews");
+            film.add_pass_reusing(&world, &options, &known, &|| false);
             film
         })
     });

@@ -1,6 +1,7 @@
 //! Progressive accumulation: each pass adds one jittered sample per pixel.
 
 use crate::integrator::{RenderOptions, whitted};
+use crate::preview::PreviewSamples;
 use crate::sampler::Sampler;
 use crate::world::World;
 use glam::Vec3;
@@ -82,6 +83,34 @@ impl Film {
         options: &RenderOptions,
         cancelled: &(dyn Fn() -> bool + Sync),
     ) -> bool {
+        self.add_pass_inner(world, options, None, cancelled)
+    }
+
+    /// Like [`Film::add_pass_unless`], but the first pass takes the samples
+    /// that `known` holds instead of tracing them again: `known` must come
+    /// from the same world and options (a preview of this very job). The film
+    /// is bit for bit the same; [`Film::rays`] counts only the rays traced here.
+    pub fn add_pass_reusing(
+        &mut self,
+        world: &World,
+        options: &RenderOptions,
+        known: &PreviewSamples,
+        cancelled: &(dyn Fn() -> bool + Sync),
+    ) -> bool {
+        let known = known
+            .is_for(self.width, self.height)
+            .then_some(known)
+            .filter(|_| self.passes == 0);
+        self.add_pass_inner(world, options, known, cancelled)
+    }
+
+    fn add_pass_inner(
+        &mut self,
+        world: &World,
+        options: &RenderOptions,
+        known: Option<&PreviewSamples>,
+        cancelled: &(dyn Fn() -> bool + Sync),
+    ) -> bool {
         let (width, sample) = (self.width as usize, self.passes);
         let (discarded, skipped, rays): (u64, u64, u64) = self
             .sum
@@ -93,13 +122,25 @@ impl Film {
                 }
                 let rays_before = crate::ray_count::rays_on_this_thread();
                 let mut bad = 0;
-                for (k, acc) in rows.iter_mut().enumerate() {
-                    let (i, j) = ((k % width) as u32, (band * BAND_ROWS + k / width) as u32);
-                    let value = sample_pixel(world, options, i, j, sample);
-                    if value.is_finite() {
-                        *acc += value;
-                    } else {
-                        bad += 1;
+                for (row, accs) in rows.chunks_mut(width).enumerate() {
+                    let j = (band * BAND_ROWS + row) as u32;
+                    // Blocks of pixels whose first sample may be known (no
+                    // division per pixel): the whole row when none is.
+                    let known_row = known.and_then(|k| k.row(j));
+                    let stride = known_row.map_or(width, |(_, stride)| stride as usize);
+                    for (block, accs) in accs.chunks_mut(stride).enumerate() {
+                        for (k, acc) in accs.iter_mut().enumerate() {
+                            let i = (block * stride + k) as u32;
+                            let value = match known_row {
+                                Some((values, _)) if k == 0 => values[block],
+                                _ => sample_pixel(world, options, i, j, sample),
+                            };
+                            if value.is_finite() {
+                                *acc += value;
+                            } else {
+                                bad += 1;
+                            }
+                        }
                     }
                 }
                 let rays = crate::ray_count::rays_on_this_thread() - rays_before;

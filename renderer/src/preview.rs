@@ -1,5 +1,9 @@
 //! Coarse previews: one ray per block of pixels, so a first image of an edit
 //! is on screen within a display frame.
+//!
+//! A preview traces sample 0 of every `stride`-th pixel in both directions,
+//! the very samples that finer previews and the first full pass trace again;
+//! [`PreviewSamples`] keeps them so that they are traced once per edit.
 
 use crate::film::sample_pixel;
 use crate::integrator::RenderOptions;
@@ -7,26 +11,129 @@ use crate::world::World;
 use glam::Vec3;
 use rayon::prelude::*;
 
+/// Sample 0 of pixel (i, j) for every i and j that are multiples of the
+/// stride, exactly as [`sample_pixel`] returns it (NaN and infinities kept).
+#[derive(Clone, Debug)]
+pub struct PreviewSamples {
+    stride: u32,
+    width: u32,
+    height: u32,
+    /// Samples per row: ⌈width / stride⌉.
+    columns: usize,
+    /// Row by row from the top.
+    values: Vec<Vec3>,
+}
+
+impl PreviewSamples {
+    /// Traces the samples of stride `stride`, taking those that `coarser`
+    /// (samples of the same world and options, every stride it holds being a
+    /// multiple of this one) already holds.
+    pub fn trace(
+        world: &World,
+        options: &RenderOptions,
+        stride: u32,
+        coarser: Option<&PreviewSamples>,
+    ) -> Self {
+        let (width, height) = (world.camera.w, world.camera.h);
+        let stride = stride.max(1);
+        let columns = width.div_ceil(stride) as usize;
+        let rows = height.div_ceil(stride) as usize;
+        let coarser =
+            coarser.filter(|c| c.is_for(width, height) && c.stride.is_multiple_of(stride));
+        let mut values = vec![Vec3::ZERO; columns * rows];
+        values
+            .par_chunks_mut(columns)
+            .enumerate()
+            .for_each(|(row, out)| {
+                let j = row as u32 * stride;
+                // Runs of `ratio` samples whose first one may be known (no
+                // division per sample): the whole row when none is.
+                let known = coarser.and_then(|c| c.row(j));
+                let ratio = known.map_or(out.len(), |(_, coarse)| (coarse / stride) as usize);
+                for (run, out) in out.chunks_mut(ratio).enumerate() {
+                    for (k, value) in out.iter_mut().enumerate() {
+                        let i = ((run * ratio + k) as u32) * stride;
+                        *value = match known {
+                            Some((values, _)) if k == 0 => values[run],
+                            _ => sample_pixel(world, options, i, j, 0),
+                        };
+                    }
+                }
+            });
+        Self {
+            stride,
+            width,
+            height,
+            columns,
+            values,
+        }
+    }
+
+    /// The stride: one sample per `stride` × `stride` block.
+    pub fn stride(&self) -> u32 {
+        self.stride
+    }
+
+    /// True when these are samples of a `width` × `height` image.
+    pub fn is_for(&self, width: u32, height: u32) -> bool {
+        (self.width, self.height) == (width, height)
+    }
+
+    /// How many samples these are.
+    pub fn len(&self) -> usize {
+        self.values.len()
+    }
+
+    /// True when there are none (never, for a valid camera).
+    pub fn is_empty(&self) -> bool {
+        self.values.is_empty()
+    }
+
+    /// Sample 0 of pixel (i, j), when it is one of these.
+    pub fn get(&self, i: u32, j: u32) -> Option<Vec3> {
+        (i < self.width
+            && j < self.height
+            && i.is_multiple_of(self.stride)
+            && j.is_multiple_of(self.stride))
+        .then(|| {
+            self.values[(j / self.stride) as usize * self.columns + (i / self.stride) as usize]
+        })
+    }
+
+    /// The samples of pixel row `j` (pixels 0, stride, 2 stride …) and the
+    /// stride, when that row is one of these.
+    pub fn row(&self, j: u32) -> Option<(&[Vec3], u32)> {
+        (j < self.height && j.is_multiple_of(self.stride)).then(|| {
+            let start = (j / self.stride) as usize * self.columns;
+            (&self.values[start..start + self.columns], self.stride)
+        })
+    }
+
+    /// The preview image, row by row from the top: each block shows the
+    /// sample of its top-left pixel (black where that sample is not finite).
+    pub fn image(&self) -> Vec<Vec3> {
+        let (w, stride) = (self.width as usize, self.stride as usize);
+        let mut pixels = vec![Vec3::ZERO; w * self.height as usize];
+        pixels
+            .par_chunks_mut(w * stride)
+            .zip(self.values.par_chunks(self.columns))
+            .for_each(|(rows, samples)| {
+                for (block, &value) in rows[..w].chunks_mut(stride).zip(samples) {
+                    block.fill(if value.is_finite() { value } else { Vec3::ZERO });
+                }
+                let (first, rest) = rows.split_at_mut(w);
+                for row in rest.chunks_mut(w) {
+                    row.copy_from_slice(first);
+                }
+            });
+        pixels
+    }
+}
+
 /// An image where each `stride` × `stride` block shows sample 0 of its
 /// top-left pixel, row by row from the top. Stride 1 is one full sample.
 pub fn preview(world: &World, options: &RenderOptions, stride: u32) -> Vec<Vec3> {
-    let (w, h) = (world.camera.w as usize, world.camera.h as usize);
-    let stride = stride.max(1) as usize;
-    let mut pixels = vec![Vec3::ZERO; w * h];
-    pixels
-        .par_chunks_mut(w * stride)
-        .enumerate()
-        .for_each(|(block_row, rows)| {
-            let j = block_row * stride;
-            for bi in (0..w).step_by(stride) {
-                let value = sample_pixel(world, options, bi as u32, j as u32, 0);
-                let value = if value.is_finite() { value } else { Vec3::ZERO };
-                for row in rows.chunks_mut(w) {
-                    row[bi..(bi + stride).min(w)].fill(value);
-                }
-            }
-        });
-    pixels
+    PreviewSamples::trace(world, options, stride, None).image()
 }
 
 #[cfg(test)]
@@ -64,6 +171,46 @@ mod tests {
             let corner = sample_pixel(&world, &options, (i / 8 * 8) as u32, (j / 8 * 8) as u32, 0);
             assert_eq!(coarse[j * 37 + i], corner, "pixel ({i}, {j})");
         }
+    }
+
+    #[test]
+    fn finer_samples_taken_from_coarser_ones_equal_samples_traced_afresh() {
+        let world = world();
+        let options = RenderOptions::default();
+        let coarse = PreviewSamples::trace(&world, &options, 8, None);
+        let reusing = PreviewSamples::trace(&world, &options, 4, Some(&coarse));
+        let fresh = PreviewSamples::trace(&world, &options, 4, None);
+        assert_eq!(reusing.values, fresh.values);
+        assert_eq!(reusing.image(), preview(&world, &options, 4));
+    }
+
+    #[test]
+    fn samples_are_held_for_exactly_the_pixels_on_the_stride_grid() {
+        let world = world();
+        let samples = PreviewSamples::trace(&world, &RenderOptions::default(), 4, None);
+        assert_eq!(samples.len(), 10 * 6);
+        for j in 0..world.camera.h + 4 {
+            for i in 0..world.camera.w + 4 {
+                let on_grid = i % 4 == 0 && j % 4 == 0 && i < 37 && j < 21;
+                assert_eq!(samples.get(i, j).is_some(), on_grid, "({i}, {j})");
+            }
+        }
+    }
+
+    #[test]
+    fn a_first_pass_reusing_a_preview_is_the_same_film_with_fewer_rays_traced() {
+        let world = world();
+        let options = RenderOptions::default();
+        let known = PreviewSamples::trace(&world, &options, 2, None);
+        let mut traced = Film::new(37, 21);
+        let mut reusing = Film::new(37, 21);
+        for _ in 0..2 {
+            traced.add_pass(&world, &options);
+            assert!(reusing.add_pass_reusing(&world, &options, &known, &|| false));
+            assert_eq!(reusing.linear(), traced.linear(), "bit for bit");
+        }
+        assert_eq!(reusing.discarded(), traced.discarded());
+        assert!(reusing.rays() < traced.rays());
     }
 
     #[test]

@@ -8,7 +8,7 @@
 
 use crate::film::{Film, linear_to_srgb8};
 use crate::integrator::RenderOptions;
-use crate::preview::preview;
+use crate::preview::PreviewSamples;
 use crate::world::World;
 use glam::Vec3;
 use rayon::prelude::*;
@@ -64,7 +64,8 @@ pub struct RenderedFrame {
     pub step: Step,
     /// Time from the submit to this frame.
     pub since_submit: Duration,
-    /// Full-pass camera samples per second so far (0 for previews).
+    /// Full-pass camera samples per second so far, counting only those the
+    /// passes traced (0 for previews).
     pub samples_per_second: f64,
     /// Full-pass rays per second so far, every kind of ray counted (0 for previews).
     pub rays_per_second: f64,
@@ -173,6 +174,10 @@ struct Current {
     submitted: Instant,
     film: Film,
     next_preview: usize,
+    /// The latest preview's samples, until the first pass has taken them.
+    preview_samples: Option<PreviewSamples>,
+    /// Samples the passes took from a preview instead of tracing them.
+    reused: u64,
     pass_time: Duration,
 }
 
@@ -208,6 +213,8 @@ fn work(shared: &Shared) {
                         submitted,
                         film,
                         next_preview: 0,
+                        preview_samples: None,
+                        reused: 0,
                         pass_time: Duration::ZERO,
                     });
                     break;
@@ -253,26 +260,37 @@ fn to_srgba8(pixels: &[Vec3]) -> Vec<[u8; 4]> {
 }
 
 /// Renders one preview or one full pass of `c` and publishes it unless stale.
+/// Each preview traces only the samples the previous one did not, and the
+/// first pass only those no preview did: after an edit, every sample 0 is
+/// traced once.
 fn step(shared: &Shared, c: &mut Current) {
     let stale = || shared.generation.load(Ordering::SeqCst) != c.generation;
     let world = Arc::clone(&c.job.world);
     let (pixels, step, samples_per_second, rays_per_second) =
         if let Some(&stride) = PREVIEW_STRIDES.get(c.next_preview) {
             c.next_preview += 1;
-            (
-                preview(&world, &c.job.options, stride),
-                Step::Preview { stride },
-                0.0,
-                0.0,
-            )
+            let samples =
+                PreviewSamples::trace(&world, &c.job.options, stride, c.preview_samples.as_ref());
+            let pixels = samples.image();
+            c.preview_samples = Some(samples);
+            (pixels, Step::Preview { stride }, 0.0, 0.0)
         } else {
             let started = Instant::now();
-            if !c.film.add_pass_unless(&world, &c.job.options, &stale) {
+            let completed = match c.preview_samples.take() {
+                Some(known) => {
+                    c.reused += known.len() as u64;
+                    c.film
+                        .add_pass_reusing(&world, &c.job.options, &known, &stale)
+                }
+                None => c.film.add_pass_unless(&world, &c.job.options, &stale),
+            };
+            if !completed {
                 return;
             }
             c.pass_time += started.elapsed();
             let samples =
-                f64::from(c.film.passes()) * f64::from(c.film.width()) * f64::from(c.film.height());
+                f64::from(c.film.passes()) * f64::from(c.film.width()) * f64::from(c.film.height())
+                    - c.reused as f64;
             (
                 c.film.linear(),
                 Step::Passes {
