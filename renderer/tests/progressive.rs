@@ -98,6 +98,13 @@ fn previews_come_first_and_passes_add_up_to_the_offline_render() {
         "bit for bit"
     );
     assert!(last.samples_per_second > 0.0);
+    // Every traced sample is at least its camera ray.
+    assert!(last.rays_per_second >= last.samples_per_second);
+    assert!(
+        frames
+            .iter()
+            .all(|f| matches!(f.step, Step::Passes { .. }) || f.rays_per_second == 0.0)
+    );
 }
 
 #[test]

@@ -1,5 +1,5 @@
-//! The film counts every ray it traces: camera rays, and the secondary rays
-//! a mirror spawns, exactly.
+//! The film counts every ray it traces: camera rays, the shadow rays of
+//! diffuse hits and the secondary rays a mirror spawns, exactly.
 
 use renderer::sampler::Sampler;
 use renderer::{Film, Method, RenderOptions, World};
@@ -7,18 +7,26 @@ use scene::{Light, LightKind, Object, Scene, Shape};
 
 /// A sphere of `material` lit only by ambient light (so no shadow rays).
 fn world(material: &str) -> World {
+    world_lit(
+        material,
+        Light {
+            name: None,
+            kind: LightKind::Ambient,
+            color: glam::Vec3::ONE,
+            intensity: 0.5,
+        },
+    )
+}
+
+/// A sphere of `material` lit by `light` alone, seen by a framing camera.
+fn world_lit(material: &str, light: Light) -> World {
     let scene = Scene {
         camera: scene::Camera {
             width: 40,
             height: 30,
             ..Default::default()
         },
-        lights: vec![Light {
-            name: None,
-            kind: LightKind::Ambient,
-            color: glam::Vec3::ONE,
-            intensity: 0.5,
-        }],
+        lights: vec![light],
         objects: vec![Object {
             name: None,
             shape: Shape::default_for_tag("sphere").expect("sphere"),
@@ -62,5 +70,31 @@ fn a_mirror_sphere_adds_one_reflected_ray_per_hit() {
     let mut film = Film::new(world.camera.w, world.camera.h);
     film.add_pass(&world, &options);
     // A ray reflected off a lone convex sphere escapes: one more ray per hit.
+    assert_eq!(film.rays(), 40 * 30 + hit);
+}
+
+#[test]
+fn a_point_light_at_the_eye_adds_one_shadow_ray_per_diffuse_hit() {
+    // Every point the camera sees faces a light at the eye, so each pixel
+    // whose camera ray hits the matte sphere casts exactly one shadow ray.
+    let eye = world("matte").camera.p0;
+    let world = world_lit(
+        "matte",
+        Light {
+            name: None,
+            kind: LightKind::Point { position: eye },
+            color: glam::Vec3::ONE,
+            intensity: 10.0,
+        },
+    );
+    assert_eq!(
+        world.camera.p0, eye,
+        "lights do not move the framing camera"
+    );
+    let options = RenderOptions::default();
+    let hit = hits(&world, &options);
+    assert!(hit > 100, "the sphere fills part of the image ({hit})");
+    let mut film = Film::new(world.camera.w, world.camera.h);
+    film.add_pass(&world, &options);
     assert_eq!(film.rays(), 40 * 30 + hit);
 }
