@@ -391,6 +391,18 @@ impl Shape {
         })
     }
 
+    /// The anchor (centre or base) of a shape that has one, for editing:
+    /// `None` for triangles, planes and the floor.
+    pub fn anchor_mut(&mut self) -> Option<&mut Option<Vec3>> {
+        match self {
+            Shape::Sphere { center, .. }
+            | Shape::Box { center, .. }
+            | Shape::Torus { center, .. } => Some(center),
+            Shape::Cylinder { base, .. } | Shape::Cone { base, .. } => Some(base),
+            Shape::Triangle { .. } | Shape::Plane { .. } | Shape::Floor { .. } => None,
+        }
+    }
+
     /// Every shape element name, for error suggestions.
     pub const TAGS: [&'static str; 8] = [
         "sphere", "box", "cylinder", "cone", "torus", "triangle", "plane", "floor",

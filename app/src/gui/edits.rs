@@ -131,66 +131,17 @@ fn floor_height(scene: &Scene) -> f32 {
         .unwrap_or(0.0)
 }
 
-/// `shape` moved by `by` (placed shapes only; automatic ones stay automatic).
-fn translated(shape: Shape, by: Vec3) -> Shape {
-    match shape {
-        Shape::Sphere { center, radius } => Shape::Sphere {
-            center: center.map(|c| c + by),
-            radius,
-        },
-        Shape::Box {
-            center,
-            size,
-            rotate,
-        } => Shape::Box {
-            center: center.map(|c| c + by),
-            size,
-            rotate,
-        },
-        Shape::Cylinder {
-            base,
-            radius,
-            height,
-            rotate,
-        } => Shape::Cylinder {
-            base: base.map(|c| c + by),
-            radius,
-            height,
-            rotate,
-        },
-        Shape::Cone {
-            base,
-            radius,
-            height,
-            rotate,
-        } => Shape::Cone {
-            base: base.map(|c| c + by),
-            radius,
-            height,
-            rotate,
-        },
-        Shape::Torus {
-            center,
-            major,
-            minor,
-            rotate,
-        } => Shape::Torus {
-            center: center.map(|c| c + by),
-            major,
-            minor,
-            rotate,
-        },
-        Shape::Triangle { t0, t1, t2 } => Shape::Triangle {
-            t0: t0 + by,
-            t1: t1 + by,
-            t2: t2 + by,
-        },
-        Shape::Plane { point, normal } => Shape::Plane {
-            point: point + by,
-            normal,
-        },
-        Shape::Floor { y } => Shape::Floor { y },
+/// `shape` moved by `by`: placed anchors and triangle vertices move,
+/// automatic anchors stay automatic, infinite planes stay put.
+fn translated(mut shape: Shape, by: Vec3) -> Shape {
+    if let Shape::Triangle { t0, t1, t2 } = &mut shape {
+        for v in [t0, t1, t2] {
+            *v += by;
+        }
+    } else if let Some(Some(anchor)) = shape.anchor_mut() {
+        *anchor += by;
     }
+    shape
 }
 
 /// `shape` with its anchor set so that it rests on the floor where the
@@ -237,11 +188,7 @@ pub fn place_in_view(shape: Shape, resolved: &ResolvedScene, floor_y: f32) -> Sh
         }
         anchor += right * (width + GAP) * 0.5;
     }
-    let placed = layout::geometry_at(&shape, anchor);
-    with_anchor(
-        shape,
-        super::object_editor::resolved_anchor(&placed).unwrap_or(anchor),
-    )
+    with_anchor(shape, anchor)
 }
 
 /// True when two boxes share interior points.
@@ -250,52 +197,11 @@ fn overlaps(a: &Aabb, b: &Aabb) -> bool {
 }
 
 /// `shape` with its anchor (centre or base) fixed at `anchor`.
-fn with_anchor(shape: Shape, anchor: Vec3) -> Shape {
-    match shape {
-        Shape::Sphere { radius, .. } => Shape::Sphere {
-            center: Some(anchor),
-            radius,
-        },
-        Shape::Box { size, rotate, .. } => Shape::Box {
-            center: Some(anchor),
-            size,
-            rotate,
-        },
-        Shape::Cylinder {
-            radius,
-            height,
-            rotate,
-            ..
-        } => Shape::Cylinder {
-            base: Some(anchor),
-            radius,
-            height,
-            rotate,
-        },
-        Shape::Cone {
-            radius,
-            height,
-            rotate,
-            ..
-        } => Shape::Cone {
-            base: Some(anchor),
-            radius,
-            height,
-            rotate,
-        },
-        Shape::Torus {
-            major,
-            minor,
-            rotate,
-            ..
-        } => Shape::Torus {
-            center: Some(anchor),
-            major,
-            minor,
-            rotate,
-        },
-        other => other,
+fn with_anchor(mut shape: Shape, anchor: Vec3) -> Shape {
+    if let Some(slot) = shape.anchor_mut() {
+        *slot = Some(anchor);
     }
+    shape
 }
 
 #[cfg(test)]
