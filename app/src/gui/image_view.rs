@@ -66,13 +66,8 @@ impl ImageView {
     /// Writes `frame`'s 8-bit sRGB pixels into the one texture: in place when the
     /// size is unchanged, re-created only when the image size changes.
     pub fn show_frame(&mut self, ctx: &egui::Context, frame: &RenderedFrame) {
-        let size = [frame.width as usize, frame.height as usize];
-        let pixels = frame
-            .srgba8
-            .iter()
-            .map(|&[r, g, b, a]| egui::Color32::from_rgba_premultiplied(r, g, b, a))
-            .collect();
-        let image = egui::ColorImage::new(size, pixels);
+        let image = super::screenshot::color_image(frame);
+        let size = image.size;
         match &mut self.texture {
             Some(texture) if self.size == size => {
                 texture.set_partial([0, 0], image, TEXTURE_OPTIONS)

@@ -39,7 +39,7 @@ pub fn save(path: &Path, frame: &RenderedFrame, provenance: &Provenance) -> anyh
     }
 }
 
-/// The frame as the 8-bit sRGB picture shown on screen, for the clipboard.
+/// The frame as the 8-bit sRGB picture shown on screen (the texture and the clipboard).
 pub fn color_image(frame: &RenderedFrame) -> egui::ColorImage {
     let pixels = frame
         .srgba8
