@@ -41,11 +41,10 @@ fn run_window(path: PathBuf) -> ExitCode {
         "raylab",
         options,
         Box::new(move |cc| {
-            Ok(Box::new(gui::RaylabApp::with_storage(
-                scene,
-                Some(path),
-                cc.storage,
-            )))
+            Ok(Box::new(
+                gui::RaylabApp::with_storage(scene, Some(path), cc.storage)
+                    .with_gpu(cc.wgpu_render_state.clone()),
+            ))
         }),
     );
     match result {

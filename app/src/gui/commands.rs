@@ -37,6 +37,8 @@ pub enum Command {
     ActualSize,
     /// Show or hide the help overlay.
     ToggleHelp,
+    /// Show or hide the 3D debug view.
+    ToggleDebugView,
 }
 
 const fn ctrl(key: Key) -> KeyboardShortcut {
@@ -62,10 +64,11 @@ const SHORTCUTS: [(KeyboardShortcut, fn() -> Command); 9] = [
 ];
 
 /// Single keys, active only while no text field has the keyboard.
-const KEYS: [(Key, fn() -> Command); 5] = [
+const KEYS: [(Key, fn() -> Command); 6] = [
     (Key::F, || Command::Fit),
     (Key::Num1, || Command::ActualSize),
     (Key::H, || Command::ToggleHelp),
+    (Key::G, || Command::ToggleDebugView),
     (Key::Delete, || Command::Edit(Action::Delete)),
     (Key::D, || Command::Edit(Action::Duplicate)),
 ];
@@ -181,6 +184,9 @@ pub fn menu_bar(ui: &mut egui::Ui, state: &MenuState) -> Option<Command> {
             }
             if item(ui, "Image at 100 % (1)", None, true) {
                 chosen = Some(Command::ActualSize);
+            }
+            if item(ui, "3D debug view (G)", None, true) {
+                chosen = Some(Command::ToggleDebugView);
             }
             if item(ui, "Mouse and keys help (H)", None, true) {
                 chosen = Some(Command::ToggleHelp);

@@ -26,6 +26,8 @@ pub enum Zoom {
 pub struct Gestures {
     /// The pixel (i, j) clicked with the primary button.
     pub clicked_pixel: Option<[u32; 2]>,
+    /// The pixel (i, j) under the pointer while Alt is held.
+    pub hovered_pixel: Option<[u32; 2]>,
     /// Orbit drag (left or middle button, no modifier).
     pub orbit: egui::Vec2,
     /// Pan drag (Shift).
@@ -76,6 +78,32 @@ impl ImageView {
             None => self.texture = Some(ctx.load_texture("render", image, TEXTURE_OPTIONS)),
         }
         self.size = size;
+    }
+
+    /// The square pixel (i, j) covered when the image was drawn last, in screen points.
+    pub fn pixel_rect(&self, [i, j]: [u32; 2]) -> Option<egui::Rect> {
+        let rect = self.last_rect?;
+        let [w, h] = self.size.map(|s| s as f32);
+        let size = egui::vec2(rect.width() / w, rect.height() / h);
+        ((i as f32) < w && (j as f32) < h).then(|| {
+            egui::Rect::from_min_size(rect.min + egui::vec2(i as f32, j as f32) * size, size)
+        })
+    }
+
+    /// The pixel (i, j) under screen point `pos`, if the image covers it.
+    fn pixel_at(
+        &self,
+        rect: egui::Rect,
+        pos: egui::Pos2,
+        ppp: f32,
+        scale: f32,
+    ) -> Option<[u32; 2]> {
+        if !rect.contains(pos) {
+            return None;
+        }
+        let p = (pos - rect.min) * ppp / scale;
+        Some([p.x as u32, p.y as u32])
+            .filter(|[i, j]| (*i as usize) < self.size[0] && (*j as usize) < self.size[1])
     }
 
     /// Where the centre of pixel (i, j) was drawn last, in screen points.
@@ -150,11 +178,13 @@ impl ImageView {
             ui.input(|i| (i.modifiers, i.smooth_scroll_delta, i.zoom_delta()));
         if response.clicked()
             && let Some(pos) = response.interact_pointer_pos()
-            && rect.contains(pos)
         {
-            let p = (pos - rect.min) * ppp / scale;
-            gestures.clicked_pixel = Some([p.x as u32, p.y as u32])
-                .filter(|[i, j]| (*i as usize) < self.size[0] && (*j as usize) < self.size[1]);
+            gestures.clicked_pixel = self.pixel_at(rect, pos, ppp, scale);
+        }
+        if modifiers.alt
+            && let Some(pos) = response.hover_pos()
+        {
+            gestures.hovered_pixel = self.pixel_at(rect, pos, ppp, scale);
         }
         let camera_drag = response.dragged_by(egui::PointerButton::Primary)
             || response.dragged_by(egui::PointerButton::Middle);

@@ -6,11 +6,13 @@
 pub mod bench;
 mod camera_panel;
 mod commands;
+mod debug_view;
 mod document;
 mod edits;
 mod files;
 mod history;
 mod image_view;
+mod inspected;
 mod light_editor;
 mod navigation;
 mod object_editor;
@@ -106,6 +108,14 @@ pub struct RaylabApp {
     title: String,
     /// The UI thread's frame times.
     frame_times: status_bar::FrameTimes,
+    /// The wgpu device and egui's renderer, when the window draws with wgpu.
+    gpu: Option<eframe::egui_wgpu::RenderState>,
+    /// The 3D debug view is shown beside the image.
+    show_debug: bool,
+    /// The 3D debug view's state.
+    debug: debug_view::DebugView,
+    /// The pixel under inspection.
+    inspected: Option<inspected::InspectedPixel>,
 }
 
 impl RaylabApp {
@@ -134,7 +144,18 @@ impl RaylabApp {
             show_help: false,
             title: String::new(),
             frame_times: status_bar::FrameTimes::default(),
+            gpu: None,
+            show_debug: false,
+            debug: debug_view::DebugView::default(),
+            inspected: None,
         }
+    }
+
+    /// Lets the app draw with wgpu itself (the debug view); without it the
+    /// debug view says it cannot draw.
+    pub fn with_gpu(mut self, gpu: Option<eframe::egui_wgpu::RenderState>) -> Self {
+        self.gpu = gpu;
+        self
     }
 
     /// An app restoring its settings from eframe's storage.
@@ -192,6 +213,9 @@ impl RaylabApp {
                     options,
                     target_spp: target,
                 });
+                if let Some(inspected) = &mut self.inspected {
+                    *inspected = inspected.follow(&prepared.world.camera);
+                }
                 self.prepared = Some(prepared);
                 self.error = None;
             }
@@ -257,6 +281,10 @@ impl RaylabApp {
                 Some(object) => Selection::Object(object),
                 None => Selection::None,
             };
+            self.inspect(pixel, false);
+        }
+        if let Some(pixel) = gestures.hovered_pixel {
+            self.inspect(pixel, true);
         }
         let moved = gestures.orbit != egui::Vec2::ZERO
             || gestures.pan != egui::Vec2::ZERO
@@ -288,6 +316,97 @@ impl RaylabApp {
         cam.eye = Some(view.eye);
         cam.toward = Some(view.toward());
         self.navigation = dragging.then_some(view);
+    }
+
+    /// Inspects pixel (i, j); a pinned pixel moves only on a click, not on hover.
+    fn inspect(&mut self, pixel: [u32; 2], hover: bool) {
+        let inspected = match self.inspected {
+            Some(current) if current.pixel == pixel => current,
+            Some(current) if current.pinned && hover => current,
+            Some(current) => inspected::InspectedPixel {
+                pixel,
+                point: None,
+                ..current
+            },
+            None => inspected::InspectedPixel::new(pixel),
+        };
+        self.inspected = Some(inspected);
+        self.remember_inspected_point();
+    }
+
+    /// Records the point the inspected pixel's centre ray hits, which an
+    /// unpinned inspection follows when the camera moves.
+    fn remember_inspected_point(&mut self) {
+        let (Some(inspected), Some(prepared)) = (&mut self.inspected, &self.prepared) else {
+            return;
+        };
+        let [i, j] = inspected.pixel;
+        let ray = prepared.world.camera.center_ray(i, j);
+        inspected.point = prepared
+            .world
+            .intersect(&ray, self.doc.state.render.method)
+            .map(|hit| ray.at(hit.alpha));
+    }
+
+    /// The toolbar above the image.
+    fn toolbar(&mut self, ui: &mut egui::Ui) {
+        ui.horizontal(|ui| {
+            ui.toggle_value(&mut self.show_debug, "3D debug view")
+                .on_hover_text(
+                    "The camera, the view window with C00 and its pixel grid, and the \
+                     inspected pixel's rays in 3D (G)",
+                );
+        });
+    }
+
+    /// The 3D debug view of the prepared scene.
+    fn debug_view(&mut self, ui: &mut egui::Ui) {
+        let Some(prepared) = &self.prepared else {
+            ui.label("Nothing to show: the scene cannot be rendered.");
+            return;
+        };
+        if let Some(gpu) = &self.gpu {
+            debug_view::DebugRenderer::install(gpu);
+        }
+        let geometry: Vec<scene::Geometry> = prepared
+            .resolved
+            .objects
+            .iter()
+            .map(|o| o.geometry)
+            .collect();
+        let selected_object = match self.selection {
+            Selection::Object(k) => Some(k),
+            _ => None,
+        };
+        let inputs = debug_view::Inputs {
+            world: &prepared.world,
+            geometry: &geometry,
+            selected_object,
+            pixel: self.inspected.map(|p| p.pixel),
+            rays: &[],
+            options: self.debug.options,
+        };
+        self.debug.show(ui, &inputs, self.gpu.is_some());
+    }
+
+    /// Outlines the inspected pixel on the image.
+    fn mark_inspected_pixel(&self, ui: &egui::Ui) {
+        if let Some(rect) = self.inspected.and_then(|p| self.image.pixel_rect(p.pixel)) {
+            let rect = rect.expand(2.0);
+            let painter = ui.painter();
+            painter.rect_stroke(
+                rect,
+                0.0,
+                egui::Stroke::new(3.0, egui::Color32::BLACK),
+                egui::StrokeKind::Outside,
+            );
+            painter.rect_stroke(
+                rect,
+                0.0,
+                egui::Stroke::new(1.5, debug_view::drawing::palette::PRIMARY),
+                egui::StrokeKind::Outside,
+            );
+        }
     }
 
     /// Carries out `command`.
@@ -326,6 +445,7 @@ impl RaylabApp {
             Command::Fit => self.image.fit(),
             Command::ActualSize => self.image.actual_size(),
             Command::ToggleHelp => self.show_help = !self.show_help,
+            Command::ToggleDebugView => self.show_debug = !self.show_debug,
         }
         self.selection = self.selection.valid_in(&self.doc.state.scene);
     }
@@ -694,7 +814,17 @@ impl RaylabApp {
                     });
             });
         egui::CentralPanel::default().show(ui, |ui| {
+            self.toolbar(ui);
+            if self.show_debug {
+                let half = 0.5 * ui.available_width();
+                egui::Panel::right("debug_view")
+                    .resizable(true)
+                    .default_size(half)
+                    .size_range(160.0..=(ui.available_width() - 160.0).max(160.0))
+                    .show(ui, |ui| self.debug_view(ui));
+            }
             let gestures = self.image.ui(ui);
+            self.mark_inspected_pixel(ui);
             let dragging = ctx.input(|i| i.pointer.any_down());
             self.navigate(&gestures, dragging);
         });

@@ -1,0 +1,570 @@
+//! What the debug view draws, built on the CPU from the prepared world: the
+//! scene's shapes, a ground grid and world axes, the ray-tracing camera at P0
+//! with t, u, r, the view volume, the view window at distance d with its
+//! pixel grid, C00 and P_ij, and rays. Everything comes from the tracer's own
+//! [`Camera`], so the picture is the lecture's geometry, not a copy of it.
+
+use super::gpu::{GpuSegment, GpuVertex};
+use super::tessellate::{MeshVertex, tessellate};
+use egui::Color32;
+use glam::Vec3;
+use renderer::{Camera, World};
+use scene::Geometry;
+
+/// Grid lines per side of the view window at most; coarser grids show every n-th line.
+const MAX_GRID_LINES: u32 = 64;
+
+/// Colours of the drawing.
+pub mod palette {
+    use egui::Color32;
+    /// r, x: red.
+    pub const R: Color32 = Color32::from_rgb(230, 70, 60);
+    /// u, y: green.
+    pub const U: Color32 = Color32::from_rgb(90, 200, 80);
+    /// t, z: blue.
+    pub const T: Color32 = Color32::from_rgb(70, 130, 240);
+    /// The view window and its corners.
+    pub const WINDOW: Color32 = Color32::from_rgb(235, 235, 235);
+    /// C00.
+    pub const C00: Color32 = Color32::from_rgb(255, 150, 40);
+    /// The selected pixel's P_ij and primary ray.
+    pub const PRIMARY: Color32 = Color32::from_rgb(255, 220, 60);
+    /// A shadow ray that reaches its light.
+    pub const SHADOW_FREE: Color32 = Color32::from_rgb(120, 240, 140);
+    /// A shadow ray stopped by a blocker.
+    pub const SHADOW_BLOCKED: Color32 = Color32::from_rgb(255, 70, 90);
+    /// Mirror reflections.
+    pub const REFLECTION: Color32 = Color32::from_rgb(80, 220, 255);
+    /// Refractions.
+    pub const REFRACTION: Color32 = Color32::from_rgb(230, 110, 255);
+    /// Surface normals at hits.
+    pub const NORMAL: Color32 = Color32::from_rgb(250, 250, 250);
+    /// The selected object.
+    pub const SELECTED: Color32 = Color32::from_rgb(255, 160, 30);
+}
+
+/// Which kind of ray a drawn segment is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RayKind {
+    /// From P0 through the view window.
+    Primary,
+    /// Toward a light; `blocked` when something lies in between.
+    Shadow {
+        /// Stopped at a blocker.
+        blocked: bool,
+    },
+    /// Mirror reflection.
+    Reflection,
+    /// Refraction into or out of glass.
+    Refraction,
+}
+
+/// One ray of the selected pixel, ready to draw.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DrawnRay {
+    /// Which kind.
+    pub kind: RayKind,
+    /// Where it starts.
+    pub from: Vec3,
+    /// Where it ends: its hit, its light, its blocker, or far away on a miss.
+    pub to: Vec3,
+    /// The unit normal at `to` when the ray hit a surface there.
+    pub normal: Option<Vec3>,
+    /// For primary rays: the point on the view window it passes through.
+    pub window_point: Option<Vec3>,
+}
+
+/// Which primary rays to draw besides the selected pixel's.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Fan {
+    /// None.
+    #[default]
+    Off,
+    /// Every n-th pixel of every n-th row.
+    Sparse,
+    /// Every pixel (or every n-th) of the selected pixel's row j.
+    Row,
+    /// Every pixel (or every n-th) of the selected pixel's column i.
+    Column,
+}
+
+/// The user's choices of what to draw.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DrawOptions {
+    /// Shaded solids (else wireframes).
+    pub solid: bool,
+    /// The ground grid and world axes.
+    pub grid: bool,
+    /// The view window's pixel grid.
+    pub pixel_grid: bool,
+    /// The fan of primary rays.
+    pub fan: Fan,
+    /// Pixels between fan rays.
+    pub fan_every: u32,
+}
+
+impl Default for DrawOptions {
+    fn default() -> Self {
+        Self {
+            solid: true,
+            grid: true,
+            pixel_grid: true,
+            fan: Fan::Off,
+            fan_every: 64,
+        }
+    }
+}
+
+/// Text placed at a point in the world.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Label {
+    /// Where.
+    pub at: Vec3,
+    /// What it says.
+    pub text: String,
+    /// Its colour.
+    pub color: Color32,
+}
+
+/// A dot at a point in the world, drawn on top of everything.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Marker {
+    /// Where.
+    pub at: Vec3,
+    /// Its colour.
+    pub color: Color32,
+}
+
+/// What to draw from.
+pub struct Inputs<'a> {
+    /// The prepared scene (camera, shapes, materials).
+    pub world: &'a World,
+    /// Each object's resolved geometry, in object-id order.
+    pub geometry: &'a [Geometry],
+    /// The selected object, drawn highlighted.
+    pub selected_object: Option<usize>,
+    /// The selected pixel (i, j).
+    pub pixel: Option<[u32; 2]>,
+    /// The selected pixel's rays.
+    pub rays: &'a [DrawnRay],
+    /// What to draw.
+    pub options: DrawOptions,
+}
+
+/// The finished drawing.
+#[derive(Debug, Default)]
+pub struct Drawing {
+    /// Shaded triangles.
+    pub triangles: Vec<GpuVertex>,
+    /// Wide line segments.
+    pub segments: Vec<GpuSegment>,
+    /// Text labels.
+    pub labels: Vec<Label>,
+    /// Dots.
+    pub markers: Vec<Marker>,
+    /// The points the observer should see when it frames the drawing.
+    pub frame_points: Vec<Vec3>,
+    /// The view window's grid shows every n-th pixel line.
+    pub grid_every: u32,
+}
+
+impl Drawing {
+    fn line(&mut self, a: Vec3, b: Vec3, color: Color32, width: f32) {
+        // The shader writes these values as they are: premultiplied sRGB.
+        let c = color.to_array().map(|v| f32::from(v) / 255.0);
+        self.segments
+            .push([a.x, a.y, a.z, b.x, b.y, b.z, c[0], c[1], c[2], c[3], width]);
+    }
+
+    fn label(&mut self, at: Vec3, text: impl Into<String>, color: Color32) {
+        self.labels.push(Label {
+            at,
+            text: text.into(),
+            color,
+        });
+    }
+
+    fn marker(&mut self, at: Vec3, color: Color32) {
+        self.markers.push(Marker { at, color });
+    }
+}
+
+/// The centre and radius of a sphere around the scene's bounded objects and
+/// the eye P0 (infinite planes do not count).
+fn scene_sphere(geometry: &[Geometry], eye: Vec3) -> (Vec3, f32) {
+    let (mut lo, mut hi) = (eye, eye);
+    for g in geometry {
+        if let Some(b) = scene::layout::bounds(g) {
+            lo = lo.min(b.min);
+            hi = hi.max(b.max);
+        }
+    }
+    (0.5 * (lo + hi), (0.5 * (hi - lo).length()).max(1e-2))
+}
+
+/// The smallest of 1, 2, 5, 10, 20, 50, … pixels between grid lines that
+/// keeps at most [`MAX_GRID_LINES`] lines along the longer side.
+pub fn grid_every(w: u32, h: u32) -> u32 {
+    let longest = w.max(h);
+    let mut step = 1u32;
+    for k in 0.. {
+        let candidate = [1, 2, 5][k % 3] * 10u32.saturating_pow((k / 3) as u32);
+        step = candidate;
+        if longest / candidate <= MAX_GRID_LINES {
+            break;
+        }
+    }
+    step
+}
+
+/// The four corners of the view window: C00, then clockwise as seen from P0
+/// (top right, bottom right, bottom left).
+pub fn window_corners(camera: &Camera) -> [Vec3; 4] {
+    let right = camera.w_d * camera.r;
+    let down = -camera.h_d * camera.u;
+    [
+        camera.c00,
+        camera.c00 + right,
+        camera.c00 + right + down,
+        camera.c00 + down,
+    ]
+}
+
+/// Builds the drawing.
+pub fn build(inputs: &Inputs<'_>) -> Drawing {
+    let camera = &inputs.world.camera;
+    let options = inputs.options;
+    let (centre, radius) = scene_sphere(inputs.geometry, camera.p0);
+    let mut drawing = Drawing::default();
+    objects(&mut drawing, inputs, centre, radius);
+    if options.grid {
+        ground(&mut drawing, centre, radius);
+    }
+    camera_and_window(&mut drawing, camera, options, radius);
+    fan(&mut drawing, inputs, radius);
+    if let Some([i, j]) = inputs.pixel {
+        let p_ij = camera.pixel_center(i, j);
+        drawing.marker(p_ij, palette::PRIMARY);
+        drawing.label(p_ij, format!("P_ij ({i}, {j})"), palette::PRIMARY);
+    }
+    rays(&mut drawing, inputs.rays, radius);
+
+    drawing.frame_points = vec![centre - Vec3::splat(radius), centre + Vec3::splat(radius)];
+    drawing.frame_points.push(camera.p0);
+    // The window is framed too unless it lies far beyond the scene (the default
+    // d = h / (2 tan θ) puts it hundreds of units away for a scene of a few).
+    let corners = window_corners(camera);
+    if corners.iter().all(|c| c.distance(centre) < 4.0 * radius) {
+        drawing.frame_points.extend(corners);
+    }
+    drawing
+}
+
+fn objects(drawing: &mut Drawing, inputs: &Inputs<'_>, centre: Vec3, radius: f32) {
+    let mut mesh: Vec<MeshVertex> = Vec::new();
+    for (index, geometry) in inputs.geometry.iter().enumerate() {
+        mesh.clear();
+        tessellate(geometry, centre, 2.0 * radius, &mut mesh);
+        let selected = inputs.selected_object == Some(index);
+        let material = inputs.world.materials.get(index);
+        let base = material.map_or(Vec3::splat(0.7), |m| m.color);
+        // An infinite plane is only a backdrop here: dimmed so it does not outshine the rest.
+        let base = if matches!(geometry, Geometry::Plane { .. }) {
+            0.3 * base
+        } else {
+            base
+        };
+        let color = if selected {
+            base.lerp(Vec3::new(1.0, 0.45, 0.05), 0.6)
+        } else {
+            base
+        };
+        if inputs.options.solid {
+            drawing.triangles.extend(mesh.iter().map(|v| {
+                [
+                    v.position.x,
+                    v.position.y,
+                    v.position.z,
+                    v.normal.x,
+                    v.normal.y,
+                    v.normal.z,
+                    color.x,
+                    color.y,
+                    color.z,
+                ]
+            }));
+        }
+        let wire = if selected {
+            Some((palette::SELECTED, 1.5))
+        } else if !inputs.options.solid {
+            let [r, g, b] = scene_srgb(base);
+            Some((Color32::from_rgb(r, g, b), 1.0))
+        } else {
+            None
+        };
+        if let Some((color, width)) = wire {
+            for tri in mesh.chunks_exact(3) {
+                for k in 0..3 {
+                    drawing.line(tri[k].position, tri[(k + 1) % 3].position, color, width);
+                }
+            }
+        }
+    }
+}
+
+/// A linear colour as 8-bit sRGB, lifted so dark materials stay visible as lines.
+fn scene_srgb(linear: Vec3) -> [u8; 3] {
+    let c = Color32::from(egui::Rgba::from_rgb(linear.x, linear.y, linear.z));
+    let lift = |v: u8| v.max(60);
+    [lift(c.r()), lift(c.g()), lift(c.b())]
+}
+
+/// A ground grid in the plane y = 0 around the scene and the world axes at the origin.
+fn ground(drawing: &mut Drawing, centre: Vec3, radius: f32) {
+    let step = 10f32.powf((radius / 4.0).log10().floor());
+    let half = (2.0 * radius / step).ceil() * step;
+    let (cx, cz) = (
+        (centre.x / step).round() * step,
+        (centre.z / step).round() * step,
+    );
+    let lines = (2.0 * half / step).round() as i32;
+    let grey = Color32::from_rgba_premultiplied(90, 90, 90, 160);
+    for k in 0..=lines {
+        let offset = -half + k as f32 * step;
+        drawing.line(
+            Vec3::new(cx + offset, 0.0, cz - half),
+            Vec3::new(cx + offset, 0.0, cz + half),
+            grey,
+            1.0,
+        );
+        drawing.line(
+            Vec3::new(cx - half, 0.0, cz + offset),
+            Vec3::new(cx + half, 0.0, cz + offset),
+            grey,
+            1.0,
+        );
+    }
+    let length = 0.3 * radius;
+    for (axis, color, name) in [
+        (Vec3::X, palette::R, "x"),
+        (Vec3::Y, palette::U, "y"),
+        (Vec3::Z, palette::T, "z"),
+    ] {
+        drawing.line(Vec3::ZERO, axis * length, color, 2.0);
+        drawing.label(axis * length, name, color);
+    }
+}
+
+/// The camera at P0 with t, u, r, the view volume and the view window.
+fn camera_and_window(drawing: &mut Drawing, camera: &Camera, options: DrawOptions, radius: f32) {
+    let p0 = camera.p0;
+    let length = 0.25 * radius;
+    drawing.marker(p0, palette::WINDOW);
+    drawing.label(p0, "P0", palette::WINDOW);
+    for (axis, color, name) in [
+        (camera.t, palette::T, "t"),
+        (camera.u, palette::U, "u"),
+        (camera.r, palette::R, "r"),
+    ] {
+        drawing.line(p0, p0 + axis * length, color, 3.0);
+        drawing.label(p0 + axis * length, name, color);
+    }
+
+    let corners = window_corners(camera);
+    // The view volume: from P0 through the window's corners, on to the far
+    // side of the scene when the window is nearer than that.
+    let reach = p0.distance(corners[0]).max(2.5 * radius);
+    let faint = Color32::from_rgba_premultiplied(140, 140, 160, 150);
+    for &corner in &corners {
+        let dir = (corner - p0).normalize_or_zero();
+        drawing.line(p0, corner, palette::WINDOW, 1.0);
+        if reach > p0.distance(corner) {
+            drawing.line(corner, p0 + dir * reach, faint, 1.0);
+        }
+    }
+    for k in 0..4 {
+        drawing.line(corners[k], corners[(k + 1) % 4], palette::WINDOW, 2.0);
+    }
+    drawing.grid_every = grid_every(camera.w, camera.h);
+    if options.pixel_grid {
+        let every = drawing.grid_every;
+        let grid = Color32::from_rgba_premultiplied(150, 150, 150, 170);
+        let right = camera.r * (camera.w_d / camera.w as f32);
+        let down = -camera.u * (camera.h_d / camera.h as f32);
+        for i in (every..camera.w).step_by(every as usize) {
+            let top = camera.c00 + right * i as f32;
+            drawing.line(top, top + down * camera.h as f32, grid, 1.0);
+        }
+        for j in (every..camera.h).step_by(every as usize) {
+            let left = camera.c00 + down * j as f32;
+            drawing.line(left, left + right * camera.w as f32, grid, 1.0);
+        }
+    }
+    drawing.marker(camera.c00, palette::C00);
+    drawing.label(camera.c00, "C00", palette::C00);
+    let mid_top = 0.5 * (corners[0] + corners[1]);
+    drawing.label(
+        mid_top,
+        format!("view window, d = {}", short(camera.d)),
+        palette::WINDOW,
+    );
+}
+
+/// A number short enough for a label.
+fn short(x: f32) -> String {
+    if x.abs() >= 100.0 {
+        format!("{x:.0}")
+    } else {
+        format!("{x:.3}")
+    }
+}
+
+/// A fan of primary rays through P_ij of many pixels, to their first hits.
+fn fan(drawing: &mut Drawing, inputs: &Inputs<'_>, radius: f32) {
+    let camera = &inputs.world.camera;
+    let every = inputs.options.fan_every.max(1);
+    let pixels: Vec<[u32; 2]> = match (inputs.options.fan, inputs.pixel) {
+        (Fan::Off, _) => Vec::new(),
+        (Fan::Sparse, _) => (every / 2..camera.h)
+            .step_by(every as usize)
+            .flat_map(|j| {
+                (every / 2..camera.w)
+                    .step_by(every as usize)
+                    .map(move |i| [i, j])
+            })
+            .collect(),
+        (Fan::Row, Some([_, j])) => (0..camera.w)
+            .step_by(every as usize)
+            .map(|i| [i, j])
+            .collect(),
+        (Fan::Column, Some([i, _])) => (0..camera.h)
+            .step_by(every as usize)
+            .map(|j| [i, j])
+            .collect(),
+        (Fan::Row | Fan::Column, None) => Vec::new(),
+    };
+    let color = Color32::from_rgba_premultiplied(200, 175, 50, 170);
+    for [i, j] in pixels {
+        let ray = camera.center_ray(i, j);
+        let end = match inputs.world.intersect(&ray, renderer::Method::Robust) {
+            Some(hit) => ray.at(hit.alpha),
+            None => ray.at(3.0 * radius),
+        };
+        drawing.line(ray.origin, end, color, 1.0);
+    }
+}
+
+/// The selected pixel's rays, each coloured by kind, with the normal at each hit.
+fn rays(drawing: &mut Drawing, rays: &[DrawnRay], radius: f32) {
+    for ray in rays {
+        let (color, width) = match ray.kind {
+            RayKind::Primary => (palette::PRIMARY, 3.0),
+            RayKind::Shadow { blocked: false } => (palette::SHADOW_FREE, 2.0),
+            RayKind::Shadow { blocked: true } => (palette::SHADOW_BLOCKED, 2.0),
+            RayKind::Reflection => (palette::REFLECTION, 2.5),
+            RayKind::Refraction => (palette::REFRACTION, 2.5),
+        };
+        drawing.line(ray.from, ray.to, color, width);
+        if let Some(window) = ray.window_point
+            && window.distance(ray.from) > ray.to.distance(ray.from)
+        {
+            // The ray's way on from its hit to the view window it passed through.
+            drawing.line(ray.to, window, color.gamma_multiply(0.35), 1.0);
+        }
+        if let Some(normal) = ray.normal {
+            drawing.line(ray.to, ray.to + normal * 0.2 * radius, palette::NORMAL, 2.0);
+            drawing.marker(ray.to, color);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn seed() -> (World, Vec<Geometry>) {
+        let path =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/seed.xml");
+        let scene = scene::read_file(&path).expect("the seed scene loads");
+        let resolved = scene::resolve(&scene).expect("the seed scene resolves");
+        let world = World::new(&resolved).expect("the seed scene renders");
+        let geometry = resolved.objects.iter().map(|o| o.geometry).collect();
+        (world, geometry)
+    }
+
+    #[test]
+    fn grid_lines_are_every_pixel_when_few_and_sparser_when_many() {
+        assert_eq!(grid_every(16, 9), 1);
+        assert_eq!(grid_every(64, 48), 1);
+        assert_eq!(grid_every(128, 72), 2);
+        assert_eq!(grid_every(1280, 720), 20);
+        assert_eq!(grid_every(4000, 10), 100);
+    }
+
+    #[test]
+    fn window_corners_are_c00_plus_the_window_edges() {
+        let (world, _) = seed();
+        let c = &world.camera;
+        let [c00, top_right, bottom_right, bottom_left] = window_corners(c);
+        assert_eq!(c00, c.c00);
+        assert!((top_right.distance(c00) - c.w_d).abs() < 1e-3 * c.w_d);
+        assert!((bottom_left.distance(c00) - c.h_d).abs() < 1e-3 * c.h_d);
+        assert!((bottom_right - top_right - (bottom_left - c00)).length() < 1e-3 * c.h_d);
+        // P_ij of the first and last pixels lie half a pixel inside the corners.
+        let first = c.pixel_center(0, 0);
+        let half_pixel = 0.5 * (c.w_d / c.w as f32) * c.r - 0.5 * (c.h_d / c.h as f32) * c.u;
+        assert!(first.distance(c00 + half_pixel) < 1e-3 * c.h_d);
+    }
+
+    #[test]
+    fn the_drawing_labels_p0_t_u_r_and_c00_and_marks_the_selected_p_ij() {
+        let (world, geometry) = seed();
+        let drawing = build(&Inputs {
+            world: &world,
+            geometry: &geometry,
+            selected_object: None,
+            pixel: Some([10, 20]),
+            rays: &[],
+            options: DrawOptions::default(),
+        });
+        for name in ["P0", "t", "u", "r", "C00", "P_ij (10, 20)"] {
+            assert!(
+                drawing.labels.iter().any(|l| l.text == name),
+                "no label {name}"
+            );
+        }
+        let p_ij = world.camera.pixel_center(10, 20);
+        assert!(drawing.markers.iter().any(|m| m.at == p_ij));
+        assert!(drawing.markers.iter().any(|m| m.at == world.camera.c00));
+        assert!(!drawing.triangles.is_empty());
+    }
+
+    #[test]
+    fn a_sparse_fan_draws_one_ray_per_fan_pixel() {
+        let (world, geometry) = seed();
+        let plain = build(&Inputs {
+            world: &world,
+            geometry: &geometry,
+            selected_object: None,
+            pixel: None,
+            rays: &[],
+            options: DrawOptions::default(),
+        });
+        let options = DrawOptions {
+            fan: Fan::Sparse,
+            fan_every: 100,
+            ..DrawOptions::default()
+        };
+        let with_fan = build(&Inputs {
+            world: &world,
+            geometry: &geometry,
+            selected_object: None,
+            pixel: None,
+            rays: &[],
+            options,
+        });
+        let (w, h) = (world.camera.w, world.camera.h);
+        let expected = (50..w).step_by(100).count() * (50..h).step_by(100).count();
+        assert_eq!(with_fan.segments.len() - plain.segments.len(), expected);
+    }
+}

@@ -1,0 +1,300 @@
+//! The debug view: the lecture's board drawing in 3D, live. A free observer
+//! camera (its own orbit, pan and zoom) looks at the scene, the ray-tracing
+//! camera at P0 with t, u and r, the view volume, the view window at distance
+//! d with its pixel grid and C00, and the selected pixel's P_ij and rays.
+//! Drawn with wgpu inside egui through a paint callback; labels are egui text.
+
+pub mod drawing;
+mod gpu;
+pub mod observer;
+mod tessellate;
+
+pub use drawing::{DrawOptions, DrawnRay, Fan, Inputs, RayKind};
+pub use gpu::DebugRenderer;
+
+use drawing::{Drawing, Label, Marker, palette};
+use glam::Vec3;
+use gpu::{DebugCallback, GpuScene};
+use observer::Observer;
+use std::sync::Arc;
+
+/// Orbit speed of the observer, radians per point dragged.
+const ORBIT_SPEED: f32 = 0.01;
+/// Zoom speed: the distance shrinks by e^(speed · points scrolled).
+const ZOOM_SPEED: f32 = 0.003;
+
+/// What the drawing was built from; a change rebuilds it.
+#[derive(Clone, Debug, PartialEq)]
+struct Key {
+    world: usize,
+    options: DrawOptions,
+    selected_object: Option<usize>,
+    pixel: Option<[u32; 2]>,
+    rays: Vec<DrawnRay>,
+}
+
+/// The built drawing as the GPU and the painter use it.
+struct Built {
+    key: Key,
+    scene: Arc<GpuScene>,
+    labels: Vec<Label>,
+    markers: Vec<Marker>,
+    frame_points: Vec<Vec3>,
+    grid_every: u32,
+}
+
+/// The debug view's state: what to draw and from where.
+#[derive(Default)]
+pub struct DebugView {
+    /// What to draw.
+    pub options: DrawOptions,
+    /// The observer; framed on the scene when first shown.
+    observer: Option<Observer>,
+    built: Option<Built>,
+    versions: u64,
+}
+
+impl DebugView {
+    /// Rebuilds the drawing when its inputs changed.
+    fn update(&mut self, inputs: &Inputs<'_>) {
+        let key = Key {
+            world: std::ptr::from_ref(inputs.world) as usize,
+            options: inputs.options,
+            selected_object: inputs.selected_object,
+            pixel: inputs.pixel,
+            rays: inputs.rays.to_vec(),
+        };
+        if self.built.as_ref().is_some_and(|b| b.key == key) {
+            return;
+        }
+        let Drawing {
+            triangles,
+            segments,
+            labels,
+            markers,
+            frame_points,
+            grid_every,
+            ..
+        } = drawing::build(inputs);
+        self.versions += 1;
+        self.built = Some(Built {
+            key,
+            scene: Arc::new(GpuScene {
+                version: self.versions,
+                triangles,
+                segments,
+            }),
+            labels,
+            markers,
+            frame_points,
+            grid_every,
+        });
+    }
+
+    /// Frames the observer on the drawing (scene, camera and, when near, the view window).
+    fn frame(&mut self, inputs: &Inputs<'_>) {
+        if let Some(built) = &self.built {
+            let camera = &inputs.world.camera;
+            self.observer = Some(Observer::framing(
+                &built.frame_points,
+                camera.p0,
+                camera.t,
+                camera.u,
+            ));
+        }
+    }
+
+    /// The toolbar of drawing options above the view.
+    fn toolbar(&mut self, ui: &mut egui::Ui, inputs: &Inputs<'_>) {
+        ui.horizontal_wrapped(|ui| {
+            let o = &mut self.options;
+            ui.selectable_value(&mut o.solid, true, "Solid");
+            ui.selectable_value(&mut o.solid, false, "Wireframe");
+            ui.separator();
+            ui.checkbox(&mut o.grid, "Ground grid");
+            ui.checkbox(&mut o.pixel_grid, "Pixel grid");
+            ui.separator();
+            egui::ComboBox::new("fan", "ray fan")
+                .selected_text(match o.fan {
+                    Fan::Off => "none",
+                    Fan::Sparse => "sparse",
+                    Fan::Row => "row j",
+                    Fan::Column => "column i",
+                })
+                .show_ui(ui, |ui| {
+                    ui.selectable_value(&mut o.fan, Fan::Off, "none");
+                    ui.selectable_value(&mut o.fan, Fan::Sparse, "sparse: every n-th pixel");
+                    ui.selectable_value(&mut o.fan, Fan::Row, "row j of the inspected pixel");
+                    ui.selectable_value(&mut o.fan, Fan::Column, "column i of the inspected pixel");
+                });
+            if o.fan != Fan::Off {
+                ui.label("every");
+                ui.add(
+                    egui::DragValue::new(&mut o.fan_every)
+                        .range(1..=4096)
+                        .suffix(" px"),
+                );
+            }
+            ui.separator();
+            if ui
+                .button("Frame")
+                .on_hover_text("Look at the scene, the camera and the view window again")
+                .clicked()
+            {
+                self.observer = None;
+            }
+        });
+        let _ = inputs;
+    }
+
+    /// Shows the view filling `ui`. `gpu` says whether wgpu can paint it
+    /// (the pipelines are installed).
+    pub fn show(&mut self, ui: &mut egui::Ui, inputs: &Inputs<'_>, gpu: bool) {
+        self.toolbar(ui, inputs);
+        let inputs = Inputs {
+            options: self.options,
+            ..*inputs
+        };
+        self.update(&inputs);
+        if self.observer.is_none() {
+            self.frame(&inputs);
+        }
+        let (rect, response) =
+            ui.allocate_exact_size(ui.available_size(), egui::Sense::click_and_drag());
+        self.navigate(ui, rect, &response);
+        let (Some(observer), Some(built)) = (self.observer, &self.built) else {
+            return;
+        };
+        let painter = ui.painter_at(rect);
+        let background = egui::Color32::from_rgb(28, 30, 36);
+        if gpu {
+            let view = observer.view;
+            let light = (view.eye - view.target
+                + 0.5 * view.distance() * view.up.normalize_or(Vec3::Y))
+            .normalize_or(Vec3::Y);
+            painter.add(gpu::paint_callback(
+                rect,
+                DebugCallback {
+                    scene: Arc::clone(&built.scene),
+                    view_proj: observer.view_proj(rect.aspect_ratio()),
+                    light,
+                    background,
+                },
+            ));
+        } else {
+            painter.rect_filled(rect, 0.0, background);
+            painter.text(
+                rect.center(),
+                egui::Align2::CENTER_CENTER,
+                "The 3D view needs the wgpu renderer.",
+                egui::FontId::proportional(14.0),
+                egui::Color32::LIGHT_GRAY,
+            );
+        }
+        for marker in &built.markers {
+            if let Some(at) = observer.project(rect, marker.at) {
+                painter.circle(
+                    at,
+                    3.5,
+                    marker.color,
+                    egui::Stroke::new(1.0, egui::Color32::BLACK),
+                );
+            }
+        }
+        let font = egui::FontId::proportional(13.0);
+        for label in &built.labels {
+            if let Some(at) = observer.project(rect, label.at) {
+                boxed_text(
+                    &painter,
+                    at + egui::vec2(5.0, -5.0),
+                    &label.text,
+                    &font,
+                    label.color,
+                );
+            }
+        }
+        legend(&painter, rect, built.grid_every);
+    }
+
+    /// Drag orbits the observer, Shift-drag or right-drag pans, the wheel zooms.
+    fn navigate(&mut self, ui: &egui::Ui, rect: egui::Rect, response: &egui::Response) {
+        let Some(observer) = self.observer.as_mut() else {
+            return;
+        };
+        let shift = ui.input(|i| i.modifiers.shift);
+        let delta = response.drag_delta();
+        if response.dragged_by(egui::PointerButton::Secondary)
+            || (shift && response.dragged_by(egui::PointerButton::Primary))
+        {
+            let scale = observer.units_per_point(rect);
+            observer.view = observer.view.pan(-delta.x * scale, delta.y * scale);
+        } else if response.dragged_by(egui::PointerButton::Primary)
+            || response.dragged_by(egui::PointerButton::Middle)
+        {
+            observer.view = observer
+                .view
+                .orbit(-delta.x * ORBIT_SPEED, -delta.y * ORBIT_SPEED);
+        }
+        if response.hovered() {
+            let scroll = ui.input(|i| i.smooth_scroll_delta.y);
+            if scroll != 0.0 {
+                observer.view = observer.view.dolly((-scroll * ZOOM_SPEED).exp());
+            }
+        }
+    }
+}
+
+/// Text with its bottom-left corner at `at`, on a dark box so it reads over anything.
+fn boxed_text(
+    painter: &egui::Painter,
+    at: egui::Pos2,
+    text: &str,
+    font: &egui::FontId,
+    color: egui::Color32,
+) {
+    let galley = painter.layout_no_wrap(text.to_owned(), font.clone(), color);
+    let rect = egui::Rect::from_min_size(at - egui::vec2(0.0, galley.size().y), galley.size());
+    painter.rect_filled(rect.expand(2.0), 3.0, egui::Color32::from_black_alpha(170));
+    painter.galley(rect.min, galley, color);
+}
+
+/// The colour key in the view's corner.
+fn legend(painter: &egui::Painter, rect: egui::Rect, grid_every: u32) {
+    let grid = if grid_every == 1 {
+        "pixel grid: every pixel".to_owned()
+    } else {
+        format!("pixel grid: every {grid_every}th line")
+    };
+    let entries = [
+        (palette::PRIMARY, "primary ray, P_ij".to_owned()),
+        (palette::SHADOW_FREE, "shadow ray, light reached".to_owned()),
+        (palette::SHADOW_BLOCKED, "shadow ray, blocked".to_owned()),
+        (palette::REFLECTION, "reflection".to_owned()),
+        (palette::REFRACTION, "refraction".to_owned()),
+        (palette::NORMAL, "normal at a hit".to_owned()),
+        (palette::C00, "C00".to_owned()),
+        (egui::Color32::GRAY, grid),
+    ];
+    let font = egui::FontId::proportional(12.0);
+    let line = 15.0;
+    let top_left = rect.left_bottom() + egui::vec2(8.0, -8.0 - line * entries.len() as f32);
+    let key = egui::Rect::from_min_size(top_left, egui::vec2(190.0, line * entries.len() as f32));
+    painter.rect_filled(key.expand(4.0), 4.0, egui::Color32::from_black_alpha(170));
+    for (k, (color, text)) in entries.iter().enumerate() {
+        let y = top_left.y + k as f32 * line + 0.5 * line;
+        painter.line_segment(
+            [egui::pos2(top_left.x, y), egui::pos2(top_left.x + 16.0, y)],
+            egui::Stroke::new(3.0, *color),
+        );
+        painter.text(
+            egui::pos2(top_left.x + 22.0, y),
+            egui::Align2::LEFT_CENTER,
+            text,
+            font.clone(),
+            egui::Color32::LIGHT_GRAY,
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,100 @@
+//! The debug view drawn for real, headless, with wgpu on Mesa's software
+//! Vulkan (lavapipe), and compared with a committed snapshot.
+
+use super::*;
+use eframe::egui_wgpu::{RendererOptions, WgpuSetup};
+use eframe::wgpu;
+use egui_kittest::Harness;
+use egui_kittest::wgpu::{WgpuTestRenderer, create_render_state, default_wgpu_setup};
+use renderer::World;
+use scene::Geometry;
+
+/// A render state on Vulkan only: GL rasterises lines slightly differently,
+/// and the snapshot must not depend on which adapter wgpu picks first.
+fn vulkan_render_state() -> eframe::egui_wgpu::RenderState {
+    let mut setup = default_wgpu_setup();
+    if let WgpuSetup::CreateNew(new) = &mut setup {
+        new.instance_descriptor.backends = wgpu::Backends::VULKAN;
+    }
+    create_render_state(setup, RendererOptions::PREDICTABLE)
+}
+
+/// The lecture's scene with a small image (so the pixel grid shows every
+/// pixel) and the view window one unit in front of P0.
+fn small_seed() -> (World, Vec<Geometry>) {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/seed.xml");
+    let mut scene = scene::read_file(&path).expect("the seed scene loads");
+    scene.camera.width = 32;
+    scene.camera.height = 18;
+    scene.camera.d = Some(1.0);
+    let resolved = scene::resolve(&scene).expect("the seed scene resolves");
+    let world = World::new(&resolved).expect("the seed scene renders");
+    let geometry = resolved.objects.iter().map(|o| o.geometry).collect();
+    (world, geometry)
+}
+
+struct State {
+    view: DebugView,
+    world: World,
+    geometry: Vec<Geometry>,
+    pixel: [u32; 2],
+    rays: Vec<DrawnRay>,
+}
+
+/// The primary ray through P_ij of `pixel` to its hit, with the normal there.
+fn primary_ray(world: &World, [i, j]: [u32; 2]) -> DrawnRay {
+    let ray = world.camera.center_ray(i, j);
+    let hit = world
+        .intersect(&ray, renderer::Method::Robust)
+        .expect("the pixel shows an object");
+    DrawnRay {
+        kind: RayKind::Primary,
+        from: ray.origin,
+        to: ray.at(hit.alpha),
+        normal: Some(world.surface(&ray, hit).normal),
+        window_point: Some(world.camera.pixel_center(i, j)),
+    }
+}
+
+#[test]
+fn debug_view_snapshot_shows_camera_window_c00_and_a_ray() {
+    let render_state = vulkan_render_state();
+    DebugRenderer::install(&render_state);
+    let (world, geometry) = small_seed();
+    // A pixel left of the image centre, on the red sphere.
+    let pixel = [12, 10];
+    let rays = vec![primary_ray(&world, pixel)];
+    let state = State {
+        view: DebugView::default(),
+        world,
+        geometry,
+        pixel,
+        rays,
+    };
+    let mut harness = Harness::builder()
+        .with_size(egui::vec2(720.0, 480.0))
+        .renderer(WgpuTestRenderer::from_render_state(render_state))
+        .build_ui_state(
+            |ui, s: &mut State| {
+                let inputs = Inputs {
+                    world: &s.world,
+                    geometry: &s.geometry,
+                    selected_object: None,
+                    pixel: Some(s.pixel),
+                    rays: &s.rays,
+                    options: s.view.options,
+                };
+                s.view.show(ui, &inputs, true);
+            },
+            state,
+        );
+    harness.run_steps(2);
+    let image = harness.render().expect("the view renders");
+    let out = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/tmp");
+    std::fs::create_dir_all(&out).expect("target/tmp");
+    image.save(out.join("debug_view.png")).expect("saved");
+    // The 3D drawing is there, not a blank: the background and many other colours.
+    let distinct: std::collections::HashSet<[u8; 4]> = image.pixels().map(|p| p.0).collect();
+    assert!(distinct.len() > 200, "only {} colours", distinct.len());
+    harness.snapshot("debug_view_seed");
+}
