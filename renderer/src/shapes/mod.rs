@@ -29,7 +29,8 @@ use glam::Vec3;
 use scene::Geometry;
 
 /// Which intersection formula to use where the lecture gives one.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Method {
     /// The lecture's formulas exactly: the sphere's quadratic in α, the
     /// triangle's ray–plane α followed by the 2×2 barycentric solve.
