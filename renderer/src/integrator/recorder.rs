@@ -9,8 +9,9 @@ use crate::world::Hit;
 use glam::Vec3;
 use serde::Serialize;
 
-/// What a traced ray is for.
+/// What a traced ray is for (lower-case names in JSON).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum RayKind {
     /// R_ij = (P0, v_ij), the camera ray through the pixel.
     Primary,
