@@ -243,3 +243,149 @@ fn rendered_png_records_the_camera_and_the_scene_file() {
     );
     assert_eq!(get("raylab:spp"), Some("1"));
 }
+
+/// Runs `raylab inspect` with `args`, requires success and parses its JSON.
+fn inspect_json(args: &[&str]) -> serde_json::Value {
+    let mut all = vec!["inspect"];
+    all.extend_from_slice(args);
+    let output = raylab(&all);
+    assert!(
+        output.status.success(),
+        "raylab {all:?} failed: {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    serde_json::from_slice(&output.stdout).unwrap_or_else(|e| {
+        panic!(
+            "stdout is not JSON ({e}):\n{}",
+            String::from_utf8_lossy(&output.stdout)
+        )
+    })
+}
+
+fn vec3(value: &serde_json::Value) -> [f64; 3] {
+    let a = value.as_array().expect("a vector is a JSON array");
+    assert_eq!(a.len(), 3, "{value}");
+    [0, 1, 2].map(|k| a[k].as_f64().expect("a number"))
+}
+
+#[test]
+fn inspect_prints_the_ray_tree_of_the_centre_pixel_of_seed_as_json() {
+    // seed.xml places its cone, sphere and box side by side in document
+    // order on the floor, and the default camera frames them about their
+    // middle: the centre of the image sees the sphere, object 1.
+    let seed = asset("seed.xml");
+    let json = inspect_json(&[
+        seed.to_str().expect("utf-8"),
+        "--pixel",
+        "16",
+        "10",
+        "--width",
+        "32",
+        "--height",
+        "20",
+    ]);
+    assert_eq!(
+        (json["i"].as_u64(), json["j"].as_u64()),
+        (Some(16), Some(10))
+    );
+    assert!(json["sample"].is_null(), "the centre ray: no sample index");
+    let v = vec3(&json["v_ij"]);
+    let length = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    assert!((length - 1.0).abs() < 1e-6, "v_ij is a unit vector: {v:?}");
+    assert_eq!(vec3(&json["p_ij"]), vec3(&json["window_point"]));
+
+    let rays = json["rays"].as_array().expect("rays");
+    let primary = &rays[0];
+    assert_eq!(primary["kind"], "primary");
+    assert!(primary["parent"].is_null());
+    assert_eq!(vec3(&primary["direction"]), v);
+    assert_eq!(primary["object"]["index"], 1, "{primary}");
+    assert!(
+        primary["object"]["name"]
+            .as_str()
+            .is_some_and(|n| n.starts_with("sphere")),
+        "{primary}"
+    );
+    assert_eq!(primary["shape"], "sphere");
+    let alpha = primary["alpha"].as_f64().expect("α");
+    assert_eq!(primary["sphere"]["roots"]["near"].as_f64(), Some(alpha));
+    for key in ["point", "normal", "origin", "contribution", "weight"] {
+        vec3(&primary[key]);
+    }
+    assert!(
+        rays.iter()
+            .any(|r| r["kind"] == "shadow" && r["parent"] == 0 && r["light"].is_u64()),
+        "the sphere's hit casts shadow rays: {json}"
+    );
+
+    // The contributions add up to the colour.
+    let color = vec3(&json["color"]);
+    let mut sum = [0.0; 3];
+    for ray in rays {
+        let c = vec3(&ray["contribution"]);
+        (0..3).for_each(|k| sum[k] += c[k]);
+    }
+    for k in 0..3 {
+        assert!(
+            (sum[k] - color[k]).abs() <= 1e-5 * color[k].abs() + 1e-12,
+            "{sum:?} vs {color:?}"
+        );
+    }
+}
+
+#[test]
+fn inspected_sample_zero_equals_the_pixel_of_a_one_sample_render() {
+    use exr::prelude::*;
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("glass.exr");
+    let size = ["--width", "40", "--height", "25"];
+    let mut args = vec!["--spp", "1", "--seed", "11"];
+    args.extend_from_slice(&size);
+    render(&asset("glass.xml"), &out, &args);
+    let image = read_all_flat_layers_from_file(&out).expect("reads");
+    let channels: Vec<Vec<f32>> = image.layer_data[0]
+        .channel_data
+        .list
+        .iter()
+        .map(|c| c.sample_data.values_as_f32().collect())
+        .collect();
+    let glass = asset("glass.xml");
+    for (i, j) in [(9usize, 15usize), (20, 12), (33, 18)] {
+        let (si, sj) = (i.to_string(), j.to_string());
+        let mut args = vec![glass.to_str().expect("utf-8"), "--pixel", &si, &sj];
+        args.extend_from_slice(&["--sample", "0", "--seed", "11"]);
+        args.extend_from_slice(&size);
+        let json = inspect_json(&args);
+        assert_eq!(json["sample"], 0);
+        // JSON prints each f32 in its shortest round-tripping form.
+        let color = vec3(&json["color"]).map(|x| x as f32);
+        // EXR channels are stored alphabetically: B, G, R.
+        let pixel = [2, 1, 0].map(|c| channels[c][j * 40 + i]);
+        assert_eq!(color, pixel, "pixel ({i}, {j})");
+    }
+}
+
+#[test]
+fn inspect_of_a_pixel_outside_the_image_names_the_valid_range() {
+    let output = raylab(&[
+        "inspect",
+        asset("seed.xml").to_str().expect("utf-8"),
+        "--pixel",
+        "32",
+        "5",
+        "--width",
+        "32",
+        "--height",
+        "20",
+    ]);
+    assert_eq!(output.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.contains("(32, 5)")
+            && stderr.contains("32×20")
+            && stderr.contains("0..=31")
+            && stderr.contains("0..=19"),
+        "{stderr}"
+    );
+    assert!(output.stdout.is_empty(), "no JSON for a refused pixel");
+}

@@ -1,4 +1,4 @@
-//! The command line: `raylab render SCENE -o OUT …`.
+//! The command line: `raylab render SCENE -o OUT …`, `raylab inspect SCENE --pixel I J …`.
 
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
@@ -26,6 +26,37 @@ pub enum Command {
     Render(RenderArgs),
     /// Measure the interactive window's responsiveness without a display.
     Bench(BenchArgs),
+    /// Re-trace one sample of one pixel and print its ray tree as JSON.
+    Inspect(InspectArgs),
+}
+
+/// Arguments of `raylab inspect`.
+#[derive(Debug, clap::Args)]
+pub struct InspectArgs {
+    /// The scene file (raylab XML).
+    pub scene: PathBuf,
+    /// The pixel (i, j): column i from the left, row j from the top.
+    #[arg(long, num_args = 2, value_names = ["I", "J"], required = true)]
+    pub pixel: Vec<u32>,
+    /// Re-trace sample K exactly as `raylab render` traces it (pass K of the
+    /// film); without it, the ray through the pixel centre P_ij.
+    #[arg(long, value_name = "K")]
+    pub sample: Option<u32>,
+    /// Image width w in pixels (overrides the scene's camera).
+    #[arg(long)]
+    pub width: Option<u32>,
+    /// Image height h in pixels (overrides the scene's camera).
+    #[arg(long)]
+    pub height: Option<u32>,
+    /// Seed of the random sample positions (as given to `raylab render`).
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Intersection formulas for spheres and triangles.
+    #[arg(long, value_enum, default_value_t = MethodArg::Robust)]
+    pub method: MethodArg,
+    /// Maximum reflection/refraction depth.
+    #[arg(long, default_value_t = 8)]
+    pub max_depth: u32,
 }
 
 /// Arguments of `raylab bench`.
@@ -94,6 +125,15 @@ pub enum MethodArg {
     Lecture,
     /// Numerically robust formulas (default).
     Robust,
+}
+
+impl From<MethodArg> for renderer::Method {
+    fn from(arg: MethodArg) -> Self {
+        match arg {
+            MethodArg::Lecture => renderer::Method::Lecture,
+            MethodArg::Robust => renderer::Method::Robust,
+        }
+    }
 }
 
 /// `--aov`.

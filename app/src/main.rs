@@ -3,6 +3,7 @@
 mod bench_cmd;
 mod cli;
 mod gui;
+mod inspect_cmd;
 mod output;
 mod render_cmd;
 
@@ -62,6 +63,16 @@ fn main() -> ExitCode {
         None => run_window(cli.scene.unwrap_or_else(default_scene)),
         Some(Command::Bench(args)) => match bench_cmd::run(&args, default_scene()) {
             Ok(()) => ExitCode::SUCCESS,
+            Err(error) => {
+                eprintln!("error: {error:#}");
+                ExitCode::from(2)
+            }
+        },
+        Some(Command::Inspect(args)) => match inspect_cmd::run(&args) {
+            Ok(json) => {
+                println!("{json}");
+                ExitCode::SUCCESS
+            }
             Err(error) => {
                 eprintln!("error: {error:#}");
                 ExitCode::from(2)

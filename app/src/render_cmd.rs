@@ -1,10 +1,10 @@
 //! `raylab render`: a scene to an image file, no window.
 
-use crate::cli::{AovArg, MethodArg, RenderArgs};
+use crate::cli::{AovArg, RenderArgs};
 use crate::output::{Format, Provenance, write_exr, write_png};
 use anyhow::Result;
 use renderer::aov::{self, Aov};
-use renderer::{Film, Method, RenderOptions, World};
+use renderer::{Film, RenderOptions, World};
 use std::time::{Duration, Instant};
 
 /// A failure the user can fix, reported as one line with exit code 2.
@@ -25,10 +25,7 @@ pub fn run(args: &RenderArgs) -> Result<Duration> {
     let world = World::from_scene(&scene)
         .map_err(|e| UserError(format!("{}: {e}", args.scene.display())))?;
     let options = RenderOptions {
-        method: match args.method {
-            MethodArg::Lecture => Method::Lecture,
-            MethodArg::Robust => Method::Robust,
-        },
+        method: args.method.into(),
         max_depth: args.max_depth,
         seed: args.seed,
     };

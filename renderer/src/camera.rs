@@ -146,7 +146,13 @@ impl Camera {
 
     /// P_ij = C00 + (i + ½)(W_d/w) r − (j + ½)(H_d/h) u, the centre of pixel (i, j) on the view window.
     pub fn pixel_center(&self, i: u32, j: u32) -> Vec3 {
-        self.p0 + self.window_offset(i, j, Vec2::splat(0.5)).as_vec3()
+        self.window_point(i, j, Vec2::splat(0.5))
+    }
+
+    /// The point of the view window at pixel coordinates (i + x, j + y): P_ij
+    /// with the ½ replaced by `offset` (where a jittered sample's ray passes).
+    pub fn window_point(&self, i: u32, j: u32, offset: Vec2) -> Vec3 {
+        self.p0 + self.window_offset(i, j, offset).as_vec3()
     }
 
     /// v_ij = (P_ij − P0)/‖P_ij − P0‖ with the ½ replaced by `offset` in [0, 1)²

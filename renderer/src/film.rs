@@ -4,7 +4,7 @@ use crate::integrator::{RenderOptions, whitted};
 use crate::preview::PreviewSamples;
 use crate::sampler::Sampler;
 use crate::world::World;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
 /// Rows per parallel work item: bands of rows are the tiles rayon shares out.
@@ -14,9 +14,14 @@ const BAND_ROWS: usize = 4;
 /// jittered point (i + x, j + y) on the view window, seeded from
 /// (seed, pixel, sample) alone, so it can be re-traced exactly at any time.
 pub fn sample_pixel(world: &World, options: &RenderOptions, i: u32, j: u32, sample: u32) -> Vec3 {
-    let mut sampler = Sampler::for_sample(options.seed, i, j, sample);
-    let ray = world.camera.ray(i, j, sampler.next_2d());
+    let ray = world.camera.ray(i, j, sample_offset(options, i, j, sample));
     whitted(world, &ray, options)
+}
+
+/// (x, y) in [0, 1)², where sample `sample` of pixel (i, j) passes through
+/// the pixel: the jitter replacing the lecture's (½, ½) in P_ij.
+pub fn sample_offset(options: &RenderOptions, i: u32, j: u32, sample: u32) -> Vec2 {
+    Sampler::for_sample(options.seed, i, j, sample).next_2d()
 }
 
 /// A sum of samples per pixel, all pixels having the same sample count.

@@ -8,6 +8,7 @@ pub mod aov;
 pub mod camera;
 pub mod film;
 pub mod frame;
+pub mod inspect;
 pub mod integrator;
 pub mod light;
 pub mod offset;
@@ -23,6 +24,7 @@ pub mod world;
 
 pub use camera::Camera;
 pub use film::Film;
+pub use inspect::{Inspection, inspect_pixel};
 pub use integrator::RenderOptions;
 pub use shapes::Method;
 pub use world::{RenderError, World};

@@ -1,8 +1,10 @@
 //! Integrators: how a ray's radiance is estimated.
 
+pub mod recorder;
 pub mod whitted;
 
-pub use whitted::whitted;
+pub use recorder::{NoRecorder, Note, RayKind, Recorder};
+pub use whitted::{whitted, whitted_recorded};
 
 use crate::shapes::Method;
 

@@ -1,8 +1,13 @@
 //! Whitted's recursive ray tracer: ambient + Σ lights (shadow ray, Lambert +
 //! Blinn-Phong), mirror reflection, and refraction with Fresnel and total
 //! internal reflection.
+//!
+//! One integrator serves the image and the pixel inspector: it is generic
+//! over a [`Recorder`], told about every ray beside the radiance computation.
+//! The image uses [`NoRecorder`], whose empty calls compile away.
 
 use super::RenderOptions;
+use super::recorder::{NoRecorder, Note, RayKind, Recorder};
 use crate::offset::offset_ray_origin;
 use crate::optics::{fresnel_dielectric, fresnel_schlick, reflect, refract};
 use crate::ray::Ray;
@@ -14,16 +19,37 @@ use std::f32::consts::PI;
 
 /// The radiance arriving along `ray`, recursing at most `options.max_depth` bounces.
 pub fn whitted(world: &World, ray: &Ray, options: &RenderOptions) -> Vec3 {
-    trace(world, ray, options, 0)
+    whitted_recorded(world, ray, options, &mut NoRecorder)
 }
 
-fn trace(world: &World, ray: &Ray, options: &RenderOptions, depth: u32) -> Vec3 {
+/// [`whitted`], telling `recorder` about every ray it traces (the camera ray
+/// `ray` first); the radiance is bit for bit the same for any recorder.
+pub fn whitted_recorded<R: Recorder>(
+    world: &World,
+    ray: &Ray,
+    options: &RenderOptions,
+    recorder: &mut R,
+) -> Vec3 {
+    let node = recorder.primary(ray);
+    trace(world, ray, options, 0, recorder, node)
+}
+
+fn trace<R: Recorder>(
+    world: &World,
+    ray: &Ray,
+    options: &RenderOptions,
+    depth: u32,
+    rec: &mut R,
+    node: R::Node,
+) -> Vec3 {
     let Some(hit) = world.intersect(ray, options.method) else {
+        rec.miss(node, world.ambient);
         return world.ambient;
     };
     let surface = world.surface(ray, hit);
     let material = &world.materials[hit.object as usize];
     let front = ray.dir.dot(surface.normal) < 0.0;
+    rec.hit(node, ray, hit, &surface, front);
     // The normal on the side the ray came from.
     let n = if front {
         surface.normal
@@ -32,22 +58,41 @@ fn trace(world: &World, ray: &Ray, options: &RenderOptions, depth: u32) -> Vec3 
     };
     let point = surface.point;
     let mut radiance = if front { material.emission } else { Vec3::ZERO };
+    rec.local(node, radiance);
 
     let can_recurse = depth < options.max_depth;
     let spawn = |dir: Vec3| {
         let side = if dir.dot(n) >= 0.0 { n } else { -n };
         Ray::new(offset_ray_origin(point, side), dir)
     };
+    // A reflected or refracted ray, recorded as `node`'s child carrying `factor`.
+    let bounce = |rec: &mut R, kind: RayKind, dir: Vec3, factor: Vec3| {
+        let next = spawn(dir);
+        let child = rec.bounce(node, kind, &next, depth + 1, factor);
+        trace(world, &next, options, depth + 1, rec, child)
+    };
 
     match material.base {
         BaseMaterial::Matte | BaseMaterial::Plastic | BaseMaterial::Marble => {
             let albedo = albedo_at(material, point);
             let diffuse_weight = 1.0 - material.reflectivity;
-            radiance +=
-                diffuse_weight * direct(world, options, material, albedo, point, n, -ray.dir);
-            if material.reflectivity > 0.0 && can_recurse {
-                let mirrored = trace(world, &spawn(reflect(ray.dir, n)), options, depth + 1);
-                radiance += material.reflectivity * mirrored;
+            rec.local(node, diffuse_weight * (albedo * world.ambient));
+            let at = Shading {
+                material,
+                albedo,
+                point,
+                n,
+                to_eye: -ray.dir,
+            };
+            radiance += diffuse_weight * direct(world, options, &at, diffuse_weight, rec, node);
+            if material.reflectivity > 0.0 {
+                if can_recurse {
+                    let factor = Vec3::splat(material.reflectivity);
+                    let mirrored = bounce(rec, RayKind::Reflection, reflect(ray.dir, n), factor);
+                    radiance += material.reflectivity * mirrored;
+                } else {
+                    rec.note(node, Note::DepthLimit);
+                }
             }
         }
         BaseMaterial::Mirror | BaseMaterial::Metal => {
@@ -57,8 +102,10 @@ fn trace(world: &World, ray: &Ray, options: &RenderOptions, depth: u32) -> Vec3 
                 } else {
                     material.color
                 };
-                radiance +=
-                    reflectance * trace(world, &spawn(reflect(ray.dir, n)), options, depth + 1);
+                radiance += reflectance
+                    * bounce(rec, RayKind::Reflection, reflect(ray.dir, n), reflectance);
+            } else {
+                rec.note(node, Note::DepthLimit);
             }
         }
         BaseMaterial::Glass => {
@@ -70,12 +117,22 @@ fn trace(world: &World, ray: &Ray, options: &RenderOptions, depth: u32) -> Vec3 
                     material.ior
                 };
                 let fresnel = fresnel_dielectric(-ray.dir.dot(n), eta);
-                let reflected = trace(world, &spawn(reflect(ray.dir, n)), options, depth + 1);
+                let reflected = bounce(
+                    rec,
+                    RayKind::Reflection,
+                    reflect(ray.dir, n),
+                    Vec3::splat(fresnel),
+                );
                 radiance += fresnel * reflected;
                 if let Some(dir) = refract(ray.dir, n, eta) {
-                    let transmitted = trace(world, &spawn(dir), options, depth + 1);
+                    let tint = (1.0 - fresnel) * material.color;
+                    let transmitted = bounce(rec, RayKind::Refraction, dir, tint);
                     radiance += (1.0 - fresnel) * material.color * transmitted;
+                } else {
+                    rec.note(node, Note::TotalInternalReflection);
                 }
+            } else {
+                rec.note(node, Note::DepthLimit);
             }
         }
     }
@@ -90,21 +147,32 @@ pub fn albedo_at(material: &Material, point: Vec3) -> Vec3 {
     }
 }
 
-/// Ambient plus direct light from every point and directional light that the
-/// shadow ray finds unblocked: Lambert (albedo/π · E cos θ) plus a normalised
-/// Blinn-Phong highlight.
-fn direct(
-    world: &World,
-    options: &RenderOptions,
-    material: &Material,
+/// A diffuse hit as [`direct`] shades it.
+struct Shading<'a> {
+    material: &'a Material,
     albedo: Vec3,
     point: Vec3,
+    /// The unit normal on the side the ray came from.
     n: Vec3,
     to_eye: Vec3,
+}
+
+/// Ambient plus direct light from every point and directional light that the
+/// shadow ray finds unblocked: Lambert (albedo/π · E cos θ) plus a normalised
+/// Blinn-Phong highlight. `scale` is the weight the caller gives the result,
+/// told to the recorder with each shadow ray.
+fn direct<R: Recorder>(
+    world: &World,
+    options: &RenderOptions,
+    at: &Shading,
+    scale: f32,
+    rec: &mut R,
+    node: R::Node,
 ) -> Vec3 {
+    let (material, albedo, point, n) = (at.material, at.albedo, at.point, at.n);
     let mut radiance = albedo * world.ambient;
     let origin = offset_ray_origin(point, n);
-    for light in &world.lights {
+    for (index, light) in world.lights.iter().enumerate() {
         let Some(sample) = light.sample(point) else {
             continue;
         };
@@ -114,16 +182,22 @@ fn direct(
         }
         let shadow = Ray::new(origin, sample.to_light).with_t_max(sample.distance);
         if world.occluded(&shadow, options.method) {
+            rec.shadow(node, index, &shadow, scale, None);
             continue;
         }
         let irradiance = sample.irradiance * cos;
-        radiance += albedo / PI * irradiance;
+        let lambert = albedo / PI * irradiance;
+        radiance += lambert;
+        let mut lit = lambert;
         if material.specular > 0.0 {
-            let half = (sample.to_light + to_eye).normalize_or_zero();
+            let half = (sample.to_light + at.to_eye).normalize_or_zero();
             let lobe = n.dot(half).max(0.0).powf(material.shininess);
             let normalisation = (material.shininess + 8.0) / (8.0 * PI);
-            radiance += material.specular * normalisation * lobe * irradiance;
+            let highlight = material.specular * normalisation * lobe * irradiance;
+            radiance += highlight;
+            lit += highlight;
         }
+        rec.shadow(node, index, &shadow, scale, Some(lit));
     }
     radiance
 }

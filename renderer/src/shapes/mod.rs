@@ -20,16 +20,17 @@ pub use cone::Cone;
 pub use cuboid::Cuboid;
 pub use cylinder::Cylinder;
 pub use plane::Plane;
-pub use sphere::Sphere;
+pub use sphere::{Sphere, SphereQuadratic, SphereRoots};
 pub use torus::Torus;
-pub use triangle::Triangle;
+pub use triangle::{Triangle, TriangleHit};
 
 use crate::ray::Ray;
 use glam::Vec3;
 use scene::Geometry;
 
 /// Which intersection formula to use where the lecture gives one.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Method {
     /// The lecture's formulas exactly: the sphere's quadratic in α, the
     /// triangle's ray–plane α followed by the 2×2 barycentric solve.
@@ -99,6 +100,20 @@ impl Shape {
                 rotate,
             } => Shape::Torus(Torus::new(center, major, minor, rotate)),
             Geometry::Plane { point, normal } => Shape::Plane(Plane::new(point, normal)),
+        }
+    }
+
+    /// The shape's kind as scene files name it ("sphere", "triangle", "box",
+    /// "cylinder", "cone", "torus", "plane").
+    pub fn kind_name(&self) -> &'static str {
+        match self {
+            Shape::Sphere(_) => "sphere",
+            Shape::Triangle(_) => "triangle",
+            Shape::Box(_) => "box",
+            Shape::Cylinder(_) => "cylinder",
+            Shape::Cone(_) => "cone",
+            Shape::Torus(_) => "torus",
+            Shape::Plane(_) => "plane",
         }
     }
 

@@ -3,6 +3,7 @@
 use super::{Method, Surface};
 use crate::ray::Ray;
 use glam::Vec3;
+use serde::Serialize;
 
 /// A sphere with centre C and radius r.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -14,12 +15,29 @@ pub struct Sphere {
 }
 
 /// The two roots of the sphere's quadratic in α, as the pixel inspector shows them.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct SphereRoots {
     /// The smaller root.
     pub near: f32,
     /// The larger root.
     pub far: f32,
+}
+
+/// The sphere's quadratic a α² + b α + c = 0 for one ray, as a method forms
+/// it: the lecture's ‖v‖² α² − 2 (u · v) α + ‖u‖² − r² with u = C − P0.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct SphereQuadratic {
+    /// a = ‖v‖².
+    pub a: f32,
+    /// b = −2 (u · v).
+    pub b: f32,
+    /// c = ‖u‖² − r².
+    pub c: f32,
+    /// b² − 4ac; the robust method forms it as 4a (r² − ‖f + (b'/a) v‖²)
+    /// with f = P0 − C and b' = −f · v. Negative: the ray misses.
+    pub discriminant: f32,
+    /// The real roots, if any (exactly those [`Sphere::intersect`] chooses from).
+    pub roots: Option<SphereRoots>,
 }
 
 impl Sphere {
@@ -29,6 +47,7 @@ impl Sphere {
     }
 
     /// α of the nearest hit inside the ray's interval.
+    #[inline]
     pub fn intersect(&self, ray: &Ray, method: Method) -> Option<f32> {
         let roots = self.roots(ray, method)?;
         [roots.near, roots.far]
@@ -37,36 +56,54 @@ impl Sphere {
     }
 
     /// The real roots of the quadratic in α, if any.
+    #[inline]
     pub fn roots(&self, ray: &Ray, method: Method) -> Option<SphereRoots> {
+        self.quadratic(ray, method).roots
+    }
+
+    /// The quadratic in α with its coefficients and roots, as `method`
+    /// computes them: what [`Sphere::intersect`] decides from.
+    #[inline]
+    pub fn quadratic(&self, ray: &Ray, method: Method) -> SphereQuadratic {
         match method {
-            Method::Lecture => self.lecture_roots(ray),
-            Method::Robust => self.robust_roots(ray),
+            Method::Lecture => self.lecture_quadratic(ray),
+            Method::Robust => self.robust_quadratic(ray),
         }
     }
 
     /// The lecture: with u = C − P0, the roots of
     /// ‖v‖² α² − 2 (u · v) α + ‖u‖² − r² by the textbook formula.
-    fn lecture_roots(&self, ray: &Ray) -> Option<SphereRoots> {
+    #[inline]
+    fn lecture_quadratic(&self, ray: &Ray) -> SphereQuadratic {
         let u = self.center - ray.origin;
         let v = ray.dir;
         let a = v.dot(v);
         let b = -2.0 * u.dot(v);
         let c = u.dot(u) - self.radius * self.radius;
         let disc = b * b - 4.0 * a * c;
-        if !(disc >= 0.0) {
-            return None;
+        let roots = if disc >= 0.0 {
+            let root = disc.sqrt();
+            let near = (-b - root) / (2.0 * a);
+            let far = (-b + root) / (2.0 * a);
+            (near.is_finite() && far.is_finite()).then_some(SphereRoots { near, far })
+        } else {
+            None
+        };
+        SphereQuadratic {
+            a,
+            b,
+            c,
+            discriminant: disc,
+            roots,
         }
-        let root = disc.sqrt();
-        let near = (-b - root) / (2.0 * a);
-        let far = (-b + root) / (2.0 * a);
-        (near.is_finite() && far.is_finite()).then_some(SphereRoots { near, far })
     }
 
     /// Ray Tracing Gems ch. 7 (Haines et al.): with f = P0 − C and
-    /// b = −f · v, the discriminant is formed as a (r² − ‖f + (b/a) v‖²),
+    /// b' = −f · v, the discriminant is formed as a (r² − ‖f + (b'/a) v‖²),
     /// which keeps its precision when the sphere is small and far away, and
-    /// the roots are c/q and q/a with q = b + sign(b)√disc.
-    fn robust_roots(&self, ray: &Ray) -> Option<SphereRoots> {
+    /// the roots are c/q and q/a with q = b' + sign(b')√disc.
+    #[inline]
+    fn robust_quadratic(&self, ray: &Ray) -> SphereQuadratic {
         let f = ray.origin - self.center;
         let v = ray.dir;
         let a = v.dot(v);
@@ -74,13 +111,23 @@ impl Sphere {
         let c = f.dot(f) - self.radius * self.radius;
         let l = f + (b / a) * v;
         let disc = a * (self.radius * self.radius - l.dot(l));
-        if !(disc >= 0.0) {
-            return None;
+        let roots = if disc >= 0.0 {
+            let q = b + disc.sqrt().copysign(b);
+            let (r0, r1) = if q == 0.0 { (0.0, 0.0) } else { (c / q, q / a) };
+            let (near, far) = if r0 <= r1 { (r0, r1) } else { (r1, r0) };
+            (near.is_finite() && far.is_finite()).then_some(SphereRoots { near, far })
+        } else {
+            None
+        };
+        // In the lecture's form: b = −2 (u · v) = 2 (f · v) = −2b', and the
+        // discriminant b² − 4ac = 4 (b'² − ac) = 4 disc (both exact in binary).
+        SphereQuadratic {
+            a,
+            b: -2.0 * b,
+            c,
+            discriminant: 4.0 * disc,
+            roots,
         }
-        let q = b + disc.sqrt().copysign(b);
-        let (r0, r1) = if q == 0.0 { (0.0, 0.0) } else { (c / q, q / a) };
-        let (near, far) = if r0 <= r1 { (r0, r1) } else { (r1, r0) };
-        (near.is_finite() && far.is_finite()).then_some(SphereRoots { near, far })
     }
 
     /// The hit point reprojected onto the sphere, and the outward normal.
@@ -185,6 +232,53 @@ mod tests {
         let surf = s.surface(&ray, alpha);
         assert!((surf.point - Vec3::new(1.0, 2.0, 5.0)).length() < 1e-6);
         assert!((surf.normal - Vec3::Z).length() < 1e-6);
+    }
+
+    #[test]
+    fn quadratic_of_a_ray_through_the_centre_has_roots_at_distance_minus_and_plus_radius() {
+        // P0 = (0, 0, 5), v = −z, C = 0, r = 1: u = C − P0 = (0, 0, −5), so
+        // a = ‖v‖² = 1, b = −2 (u · v) = −10, c = ‖u‖² − r² = 24,
+        // b² − 4ac = 4, roots (10 ∓ 2)/2 = 4 and 6.
+        let ray = Ray::new(Vec3::new(0.0, 0.0, 5.0), -Vec3::Z);
+        for m in METHODS {
+            let q = unit_sphere().quadratic(&ray, m);
+            assert_eq!(
+                (q.a, q.b, q.c, q.discriminant),
+                (1.0, -10.0, 24.0, 4.0),
+                "{m:?}"
+            );
+            assert_eq!(
+                q.roots,
+                Some(SphereRoots {
+                    near: 4.0,
+                    far: 6.0
+                }),
+                "{m:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn quadratic_of_a_missing_ray_has_a_negative_discriminant_and_no_roots() {
+        // 1.5 beside the axis: u = (−1.5, 0, −5), b = −2 (u · v) = −10,
+        // c = 2.25 + 25 − 1 = 26.25, b² − 4ac = 100 − 105 = −5.
+        let ray = Ray::new(Vec3::new(1.5, 0.0, 5.0), -Vec3::Z);
+        for m in METHODS {
+            let q = unit_sphere().quadratic(&ray, m);
+            assert!(q.discriminant < 0.0, "{m:?} {q:?}");
+            assert_eq!(q.roots, None, "{m:?}");
+        }
+    }
+
+    #[test]
+    fn quadratic_roots_are_the_ones_intersect_chooses_from() {
+        // From inside, the near root is negative and intersect takes the far one.
+        let ray = Ray::new(Vec3::new(0.0, 0.0, 0.5), -Vec3::Z);
+        for m in METHODS {
+            let roots = unit_sphere().quadratic(&ray, m).roots.expect("two roots");
+            assert_eq!((roots.near, roots.far), (-0.5, 1.5), "{m:?}");
+            assert_eq!(unit_sphere().intersect(&ray, m), Some(roots.far), "{m:?}");
+        }
     }
 
     proptest! {

@@ -4,6 +4,7 @@
 use super::{Method, Surface};
 use crate::ray::Ray;
 use glam::{DVec3, Vec3};
+use serde::Serialize;
 
 /// The triangle T with vertices t0, t1, t2 (edges v1 = t1 − t0, v2 = t2 − t0).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -17,7 +18,7 @@ pub struct Triangle {
 }
 
 /// A hit with the lecture's unknowns: P0 + α v = t0 + β v1 + γ v2.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct TriangleHit {
     /// α, the distance along the ray.
     pub alpha: f32,
@@ -38,7 +39,8 @@ impl Triangle {
         self.hit(ray, method).map(|h| h.alpha)
     }
 
-    /// The hit with its barycentric coordinates.
+    /// The hit with its barycentric coordinates β, γ as `method` computes
+    /// them (what the pixel inspector shows); its α is [`Triangle::intersect`]'s.
     pub fn hit(&self, ray: &Ray, method: Method) -> Option<TriangleHit> {
         match method {
             Method::Lecture => self.lecture_hit(ray),

@@ -1,0 +1,103 @@
+//! What the Whitted integrator tells an observer while it traces: the hook
+//! the pixel inspector uses to rebuild one sample as a ray tree. The image
+//! is traced with [`NoRecorder`], whose calls are empty and compile away, so
+//! the image and the inspector run the same integrator.
+
+use crate::ray::Ray;
+use crate::shapes::Surface;
+use crate::world::Hit;
+use glam::Vec3;
+use serde::Serialize;
+
+/// What a traced ray is for (lower-case names in JSON).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum RayKind {
+    /// R_ij = (P0, v_ij), the camera ray through the pixel.
+    Primary,
+    /// From a hit point toward a light, to test whether the light is blocked.
+    Shadow,
+    /// The mirror direction at a hit (mirror, metal, reflective plastic and marble, glass).
+    Reflection,
+    /// The transmitted direction through glass (Snell's law).
+    Refraction,
+}
+
+/// An event that shaped a hit's subtree without tracing a ray.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Note {
+    /// A reflection or refraction would have followed, but `max_depth` stopped it.
+    DepthLimit,
+    /// Glass reflected everything: no refracted ray exists (total internal reflection).
+    TotalInternalReflection,
+}
+
+/// An observer of the Whitted integrator. Every call is made beside the
+/// radiance computation, never inside it, so a recorder cannot change the
+/// result; nodes are the recorder's handles to the rays it was told about.
+pub trait Recorder {
+    /// A handle to a recorded ray (`()` when nothing is kept).
+    type Node: Copy;
+
+    /// The camera ray starts the tree (depth 0).
+    fn primary(&mut self, ray: &Ray) -> Self::Node;
+
+    /// A reflected or refracted ray of bounce `depth` leaves `parent`'s hit
+    /// point; `parent`'s radiance gains `factor` × the radiance it brings back
+    /// (reflectivity, reflectance, Fresnel F or (1 − F)·tint).
+    fn bounce(
+        &mut self,
+        parent: Self::Node,
+        kind: RayKind,
+        ray: &Ray,
+        depth: u32,
+        factor: Vec3,
+    ) -> Self::Node;
+
+    /// `node` left the scene and sees `radiance` (the ambient background).
+    fn miss(&mut self, node: Self::Node, radiance: Vec3);
+
+    /// `node` hit `hit`, at `surface`, on the front side when `front`.
+    fn hit(&mut self, node: Self::Node, ray: &Ray, hit: Hit, surface: &Surface, front: bool);
+
+    /// `node`'s hit point adds `radiance` of its own: emission, or the
+    /// ambient term ambient·albedo·(1 − reflectivity).
+    fn local(&mut self, node: Self::Node, radiance: Vec3);
+
+    /// A shadow ray toward light `light` left `node`'s hit point. `lit` is
+    /// `None` when something blocks it, else the Lambert + specular radiance
+    /// it lets through, which `node` adds scaled by `scale` (1 − reflectivity).
+    fn shadow(&mut self, node: Self::Node, light: usize, ray: &Ray, scale: f32, lit: Option<Vec3>);
+
+    /// Something shaped `node`'s subtree without tracing a ray.
+    fn note(&mut self, node: Self::Node, note: Note);
+}
+
+/// The recorder of the image: keeps nothing, costs nothing.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct NoRecorder;
+
+impl Recorder for NoRecorder {
+    type Node = ();
+
+    #[inline(always)]
+    fn primary(&mut self, _: &Ray) {}
+
+    #[inline(always)]
+    fn bounce(&mut self, _: (), _: RayKind, _: &Ray, _: u32, _: Vec3) {}
+
+    #[inline(always)]
+    fn miss(&mut self, _: (), _: Vec3) {}
+
+    #[inline(always)]
+    fn hit(&mut self, _: (), _: &Ray, _: Hit, _: &Surface, _: bool) {}
+
+    #[inline(always)]
+    fn local(&mut self, _: (), _: Vec3) {}
+
+    #[inline(always)]
+    fn shadow(&mut self, _: (), _: usize, _: &Ray, _: f32, _: Option<Vec3>) {}
+
+    #[inline(always)]
+    fn note(&mut self, _: (), _: Note) {}
+}
