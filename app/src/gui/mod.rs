@@ -13,6 +13,7 @@ mod files;
 mod history;
 mod image_view;
 mod inspected;
+mod inspector_panel;
 mod light_editor;
 mod navigation;
 mod object_editor;
@@ -116,7 +117,24 @@ pub struct RaylabApp {
     debug: debug_view::DebugView,
     /// The pixel under inspection.
     inspected: Option<inspected::InspectedPixel>,
+    /// Its ray tree, with what it was traced from.
+    inspection: Option<(InspectionKey, renderer::Inspection)>,
+    /// The trees of all its samples so far, when the debug view draws them all.
+    sample_rays: Option<(InspectionKey, Vec<debug_view::DrawnRay>)>,
 }
+
+/// What an inspection was traced from: the world, the options, the pixel and
+/// the sample (or, for all samples, their count).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct InspectionKey {
+    world: usize,
+    options: RenderOptions,
+    pixel: [u32; 2],
+    sample: Option<u32>,
+}
+
+/// At most this many samples' rays are drawn at once.
+const MAX_DRAWN_SAMPLES: u32 = 64;
 
 impl RaylabApp {
     /// An app showing `scene` (loaded from `path`).
@@ -148,6 +166,8 @@ impl RaylabApp {
             show_debug: false,
             debug: debug_view::DebugView::default(),
             inspected: None,
+            inspection: None,
+            sample_rays: None,
         }
     }
 
@@ -348,6 +368,113 @@ impl RaylabApp {
             .map(|hit| ray.at(hit.alpha));
     }
 
+    /// Re-traces the inspected pixel when it, its sample, the scene or the
+    /// options changed (one path: microseconds), and all its samples when the
+    /// debug view draws them.
+    fn refresh_inspection(&mut self) {
+        let (Some(inspected), Some(prepared)) = (self.inspected, &self.prepared) else {
+            self.inspection = None;
+            self.sample_rays = None;
+            return;
+        };
+        let world = &prepared.world;
+        let options = self.doc.state.render.options();
+        let key = InspectionKey {
+            world: Arc::as_ptr(world) as usize,
+            options,
+            pixel: inspected.pixel,
+            sample: inspected.sample,
+        };
+        let [i, j] = inspected.pixel;
+        if self.inspection.as_ref().is_none_or(|(k, _)| *k != key) {
+            self.inspection = renderer::inspect_pixel(world, &options, i, j, inspected.sample)
+                .ok()
+                .map(|inspection| (key, inspection));
+        }
+        if !(self.show_debug && self.debug.options.all_samples) {
+            self.sample_rays = None;
+            return;
+        }
+        let samples = self.shown_spp().clamp(1, MAX_DRAWN_SAMPLES);
+        let all = InspectionKey {
+            sample: Some(samples),
+            ..key
+        };
+        if self.sample_rays.as_ref().is_none_or(|(k, _)| *k != all) {
+            let rays = (0..samples)
+                .filter_map(|k| renderer::inspect_pixel(world, &options, i, j, Some(k)).ok())
+                .flat_map(|inspection| {
+                    debug_view::rays::drawn_rays(&inspection).collect::<Vec<_>>()
+                })
+                .collect();
+            self.sample_rays = Some((all, rays));
+        }
+    }
+
+    /// Samples per pixel of the frame on screen, when it shows the current scene.
+    fn shown_spp(&self) -> u32 {
+        match self.frame.as_ref().map(|f| (f.generation, f.step)) {
+            Some((generation, renderer::progressive::Step::Passes { spp }))
+                if generation == self.generation =>
+            {
+                spp
+            }
+            _ => 0,
+        }
+    }
+
+    /// The pixel inspector window.
+    fn inspector_window(&mut self, ctx: &egui::Context) {
+        let (Some(inspected), Some((_, inspection)), Some(prepared)) =
+            (&mut self.inspected, &self.inspection, &self.prepared)
+        else {
+            return;
+        };
+        let camera = &prepared.world.camera;
+        let spp = self.frame.as_ref().map_or(0, |f| match f.step {
+            renderer::progressive::Step::Passes { spp } if f.generation == self.generation => spp,
+            _ => 0,
+        });
+        let [i, j] = inspected.pixel;
+        let accumulated = self
+            .frame
+            .as_ref()
+            .filter(|f| spp > 0 && f.width == camera.w && f.height == camera.h)
+            .and_then(|f| f.pixels.get(j as usize * f.width as usize + i as usize))
+            .map(|&c| (c, spp));
+        let lights: Vec<String> = prepared
+            .world
+            .lights
+            .iter()
+            .enumerate()
+            .map(|(k, light)| match light {
+                renderer::light::Light::Point { position, .. } => {
+                    format!("point light {k} at {}", inspector_panel::v3(*position))
+                }
+                renderer::light::Light::Directional { .. } => format!("directional light {k}"),
+                renderer::light::Light::Ambient { .. } => format!("ambient light {k}"),
+            })
+            .collect();
+        let cx = inspector_panel::Context {
+            camera,
+            accumulated,
+            lights: &lights,
+        };
+        let mut open = true;
+        egui::Window::new("Pixel inspector")
+            .default_pos(ctx.content_rect().right_top() + egui::vec2(-440.0, 60.0))
+            .default_width(420.0)
+            .default_height(520.0)
+            .show(ctx, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| {
+                    open = inspector_panel::show(ui, inspected, inspection, &cx);
+                });
+            });
+        if !open {
+            self.inspected = None;
+        }
+    }
+
     /// The toolbar above the image.
     fn toolbar(&mut self, ui: &mut egui::Ui) {
         ui.horizontal(|ui| {
@@ -378,12 +505,23 @@ impl RaylabApp {
             Selection::Object(k) => Some(k),
             _ => None,
         };
+        let rays: Vec<debug_view::DrawnRay> = if self.debug.options.all_samples {
+            self.sample_rays
+                .as_ref()
+                .map(|(_, rays)| rays.clone())
+                .unwrap_or_default()
+        } else {
+            self.inspection
+                .as_ref()
+                .map(|(_, inspection)| debug_view::rays::drawn_rays(inspection).collect())
+                .unwrap_or_default()
+        };
         let inputs = debug_view::Inputs {
             world: &prepared.world,
             geometry: &geometry,
             selected_object,
             pixel: self.inspected.map(|p| p.pixel),
-            rays: &[],
+            rays: &rays,
             options: self.debug.options,
         };
         self.debug.show(ui, &inputs, self.gpu.is_some());
@@ -828,6 +966,7 @@ impl RaylabApp {
             let dragging = ctx.input(|i| i.pointer.any_down());
             self.navigate(&gestures, dragging);
         });
+        self.inspector_window(&ctx);
         self.guard_modal(&ctx);
         self.message_modal(&ctx);
         self.path_prompt_modal(&ctx);
@@ -841,6 +980,7 @@ impl RaylabApp {
         self.doc.history.settle(&self.doc.state, gesture);
         self.update_title(&ctx);
         self.submit_if_changed(&ctx);
+        self.refresh_inspection();
         self.frame_times.record(started.elapsed());
     }
 }

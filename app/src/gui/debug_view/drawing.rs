@@ -66,9 +66,12 @@ pub struct DrawnRay {
     pub kind: RayKind,
     /// Where it starts.
     pub from: Vec3,
-    /// Where it ends: its hit, its light, its blocker, or far away on a miss.
-    pub to: Vec3,
-    /// The unit normal at `to` when the ray hit a surface there.
+    /// Its unit direction.
+    pub dir: Vec3,
+    /// How far it goes: to its hit, its light or its blocker; `None` when it
+    /// goes on without end (a miss, or toward a directional light).
+    pub length: Option<f32>,
+    /// The unit normal at its end when the ray hit a surface there.
     pub normal: Option<Vec3>,
     /// For primary rays: the point on the view window it passes through.
     pub window_point: Option<Vec3>,
@@ -101,6 +104,8 @@ pub struct DrawOptions {
     pub fan: Fan,
     /// Pixels between fan rays.
     pub fan_every: u32,
+    /// Draw the rays of every sample of the inspected pixel, not just one.
+    pub all_samples: bool,
 }
 
 impl Default for DrawOptions {
@@ -111,6 +116,7 @@ impl Default for DrawOptions {
             pixel_grid: true,
             fan: Fan::Off,
             fan_every: 64,
+            all_samples: false,
         }
     }
 }
@@ -241,6 +247,12 @@ pub fn build(inputs: &Inputs<'_>) -> Drawing {
         ground(&mut drawing, centre, radius);
     }
     camera_and_window(&mut drawing, camera, options, radius);
+    for (k, light) in inputs.world.lights.iter().enumerate() {
+        if let renderer::light::Light::Point { position, .. } = light {
+            drawing.marker(*position, palette::SHADOW_FREE);
+            drawing.label(*position, format!("light {k}"), palette::SHADOW_FREE);
+        }
+    }
     fan(&mut drawing, inputs, radius);
     if let Some([i, j]) = inputs.pixel {
         let p_ij = camera.pixel_center(i, j);
@@ -464,16 +476,17 @@ fn rays(drawing: &mut Drawing, rays: &[DrawnRay], radius: f32) {
             RayKind::Reflection => (palette::REFLECTION, 2.5),
             RayKind::Refraction => (palette::REFRACTION, 2.5),
         };
-        drawing.line(ray.from, ray.to, color, width);
+        let to = ray.from + ray.dir * ray.length.unwrap_or(3.0 * radius);
+        drawing.line(ray.from, to, color, width);
         if let Some(window) = ray.window_point
-            && window.distance(ray.from) > ray.to.distance(ray.from)
+            && window.distance(ray.from) > to.distance(ray.from)
         {
             // The ray's way on from its hit to the view window it passed through.
-            drawing.line(ray.to, window, color.gamma_multiply(0.35), 1.0);
+            drawing.line(to, window, color.gamma_multiply(0.35), 1.0);
         }
         if let Some(normal) = ray.normal {
-            drawing.line(ray.to, ray.to + normal * 0.2 * radius, palette::NORMAL, 2.0);
-            drawing.marker(ray.to, color);
+            drawing.line(to, to + normal * 0.2 * radius, palette::NORMAL, 2.0);
+            drawing.marker(to, color);
         }
     }
 }
@@ -537,6 +550,76 @@ mod tests {
         assert!(drawing.markers.iter().any(|m| m.at == p_ij));
         assert!(drawing.markers.iter().any(|m| m.at == world.camera.c00));
         assert!(!drawing.triangles.is_empty());
+    }
+
+    /// The drawn primary ray of an inspected pixel lies on the line through
+    /// P0 and the drawn P_ij, for the centre ray and for jittered samples
+    /// (whose window point is inside the pixel, so the line passes P_ij's pixel).
+    #[test]
+    fn the_drawn_primary_ray_passes_through_the_drawn_p_ij() {
+        let (world, geometry) = seed();
+        let options = renderer::RenderOptions::default();
+        for (pixel, sample) in [
+            ([400, 300], None),
+            ([200, 450], None),
+            ([700, 100], Some(3)),
+        ] {
+            let inspection = renderer::inspect_pixel(&world, &options, pixel[0], pixel[1], sample)
+                .expect("in the image");
+            let rays: Vec<DrawnRay> = super::super::rays::drawn_rays(&inspection).collect();
+            let drawing = build(&Inputs {
+                world: &world,
+                geometry: &geometry,
+                selected_object: None,
+                pixel: Some(pixel),
+                rays: &rays,
+                options: DrawOptions::default(),
+            });
+            let marker = drawing
+                .markers
+                .iter()
+                .find(|m| {
+                    m.color == palette::PRIMARY
+                        && m.at == world.camera.pixel_center(pixel[0], pixel[1])
+                })
+                .expect("P_ij is marked");
+            let primary = rays
+                .iter()
+                .find(|r| r.kind == RayKind::Primary)
+                .expect("a primary ray");
+            assert_eq!(primary.from, world.camera.p0);
+            // The window point the ray is drawn through, and P_ij itself.
+            let window = primary
+                .window_point
+                .expect("primary rays know their window point");
+            let off_line = |p: Vec3| {
+                (p - primary.from).cross(primary.dir).length() / (p - primary.from).length()
+            };
+            assert!(
+                off_line(window) < 1e-5,
+                "window point off the ray by {}",
+                off_line(window)
+            );
+            let pixel_size = world.camera.h_d / world.camera.h as f32;
+            let distance = marker.at.distance(world.camera.p0);
+            let allowed = if sample.is_some() {
+                pixel_size / distance
+            } else {
+                1e-5
+            };
+            assert!(
+                off_line(marker.at) <= allowed,
+                "P_ij off the ray by {}",
+                off_line(marker.at)
+            );
+            // And the drawn segment is that ray.
+            let drawn = drawing.segments.iter().any(|s| {
+                let a = Vec3::new(s[0], s[1], s[2]);
+                let b = Vec3::new(s[3], s[4], s[5]);
+                a == primary.from && (b - a).normalize().dot(primary.dir) > 1.0 - 1e-6
+            });
+            assert!(drawn, "the primary ray is drawn from P0 along v_ij");
+        }
     }
 
     #[test]

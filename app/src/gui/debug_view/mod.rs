@@ -7,9 +7,10 @@
 pub mod drawing;
 mod gpu;
 pub mod observer;
+pub mod rays;
 mod tessellate;
 
-pub use drawing::{DrawOptions, DrawnRay, Fan, Inputs, RayKind};
+pub use drawing::{DrawOptions, DrawnRay, Fan, Inputs};
 pub use gpu::DebugRenderer;
 
 use drawing::{Drawing, Label, Marker, palette};
@@ -135,6 +136,8 @@ impl DebugView {
                         .suffix(" px"),
                 );
             }
+            ui.checkbox(&mut o.all_samples, "all samples")
+                .on_hover_text("Draw the rays of every sample of the inspected pixel so far");
             ui.separator();
             if ui
                 .button("Frame")

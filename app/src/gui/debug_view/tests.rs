@@ -41,29 +41,24 @@ struct State {
     rays: Vec<DrawnRay>,
 }
 
-/// The primary ray through P_ij of `pixel` to its hit, with the normal there.
-fn primary_ray(world: &World, [i, j]: [u32; 2]) -> DrawnRay {
-    let ray = world.camera.center_ray(i, j);
-    let hit = world
-        .intersect(&ray, renderer::Method::Robust)
-        .expect("the pixel shows an object");
-    DrawnRay {
-        kind: RayKind::Primary,
-        from: ray.origin,
-        to: ray.at(hit.alpha),
-        normal: Some(world.surface(&ray, hit).normal),
-        window_point: Some(world.camera.pixel_center(i, j)),
-    }
-}
-
 #[test]
 fn debug_view_snapshot_shows_camera_window_c00_and_a_ray() {
     let render_state = vulkan_render_state();
     DebugRenderer::install(&render_state);
     let (world, geometry) = small_seed();
-    // A pixel left of the image centre, on the red sphere.
-    let pixel = [12, 10];
-    let rays = vec![primary_ray(&world, pixel)];
+    // A pixel on the red sphere: its primary ray, the shadow ray to the
+    // light and the reflection (the sphere is reflective plastic).
+    let pixel = [17, 8];
+    let options = renderer::RenderOptions::default();
+    let inspection =
+        renderer::inspect_pixel(&world, &options, pixel[0], pixel[1], None).expect("in the image");
+    let sphere = inspection.primary().hit.as_ref().expect("a hit");
+    assert_eq!(sphere.shape, "sphere");
+    let rays: Vec<DrawnRay> = rays::drawn_rays(&inspection).collect();
+    assert!(
+        rays.iter()
+            .any(|r| matches!(r.kind, drawing::RayKind::Shadow { .. }))
+    );
     let state = State {
         view: DebugView::default(),
         world,
