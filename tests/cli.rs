@@ -210,6 +210,33 @@ fn bench_interactive_reports_latency_and_ui_frame_time() {
 }
 
 #[test]
+fn bench_debug_view_draws_whole_frames_on_the_software_adapter() {
+    let output = raylab(&[
+        "bench",
+        "debug-view",
+        "--width",
+        "64",
+        "--height",
+        "48",
+        "--frames",
+        "3",
+    ]);
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        output.status.success(),
+        "{stdout}{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    for figure in [
+        "UI thread per frame",
+        "whole frame, GPU finished",
+        "3 frames",
+    ] {
+        assert!(stdout.contains(figure), "missing {figure:?} in {stdout}");
+    }
+}
+
+#[test]
 fn rendered_png_records_the_camera_and_the_scene_file() {
     let dir = tempfile::tempdir().expect("tempdir");
     let out = dir.path().join("seed.png");

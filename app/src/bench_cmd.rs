@@ -14,7 +14,49 @@ fn ms(d: Duration) -> f64 {
 pub fn run(args: &BenchArgs, default_scene: PathBuf) -> Result<()> {
     match args.which {
         BenchKind::Interactive => interactive(args, default_scene),
+        BenchKind::DebugView => debug_view(args, default_scene),
     }
+}
+
+fn line(name: &str, values: &mut [Duration]) {
+    println!(
+        "{name:<34} median {:>7.1} ms   p95 {:>7.1} ms   max {:>7.1} ms",
+        ms(quantile(values, 0.5)),
+        ms(quantile(values, 0.95)),
+        ms(quantile(values, 1.0)),
+    );
+}
+
+fn debug_view(args: &BenchArgs, default_scene: PathBuf) -> Result<()> {
+    let path = args.scene.clone().unwrap_or(default_scene);
+    let mut scene = scene::read_file(&path)?;
+    scene.camera.width = args.width;
+    scene.camera.height = args.height;
+    renderer::World::from_scene(&scene)?;
+    let size = [1600u32, 900];
+    let gpu = crate::gui::headless_gpu::HeadlessGpu::new(size)?;
+    println!(
+        "{} at {}×{}, debug view shown in a {}×{} window drawn by {}, {} frames, {} tracer threads",
+        path.display(),
+        args.width,
+        args.height,
+        size[0],
+        size[1],
+        gpu.adapter(),
+        args.frames,
+        rayon::current_num_threads()
+    );
+    let mut report = bench::debug_view(
+        scene,
+        Some(path),
+        args.frames,
+        &gpu,
+        egui::vec2(size[0] as f32, size[1] as f32),
+    )?;
+    line("UI thread per frame", &mut report.ui);
+    line("whole frame, GPU finished", &mut report.whole);
+    println!("(target: whole frame < 16 ms while the tracer runs)");
+    Ok(())
 }
 
 fn interactive(args: &BenchArgs, default_scene: PathBuf) -> Result<()> {
@@ -39,14 +81,6 @@ fn interactive(args: &BenchArgs, default_scene: PathBuf) -> Result<()> {
             args.edits
         );
     }
-    let line = |name: &str, values: &mut [Duration]| {
-        println!(
-            "{name:<34} median {:>7.1} ms   p95 {:>7.1} ms   max {:>7.1} ms",
-            ms(quantile(values, 0.5)),
-            ms(quantile(values, 0.95)),
-            ms(quantile(values, 1.0)),
-        );
-    };
     line("edit → first preview on screen", &mut report.to_preview);
     line(
         "  of which the render thread",

@@ -77,6 +77,9 @@ pub struct BenchArgs {
     /// How many edits to time.
     #[arg(long, default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..=10000))]
     pub edits: u32,
+    /// How many display frames to time (debug-view).
+    #[arg(long, default_value_t = 300, value_parser = clap::value_parser!(u32).range(1..=100000))]
+    pub frames: u32,
 }
 
 /// The benchmarks `raylab bench` runs.
@@ -85,6 +88,9 @@ pub enum BenchKind {
     /// Edit → first preview on screen → first full pass, and the UI's frame
     /// time while the tracer keeps every core busy.
     Interactive,
+    /// Whole frames (UI and GPU, on this machine's adapter) with the 3D debug
+    /// view shown and redrawn every frame while the tracer runs.
+    DebugView,
 }
 
 /// Arguments of `raylab render`.

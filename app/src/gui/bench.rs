@@ -104,3 +104,67 @@ pub fn interactive(scene: Scene, path: Option<PathBuf>, edits: u32) -> Report {
     }
     report
 }
+
+/// What `raylab bench debug-view` measured.
+#[derive(Clone, Debug, Default)]
+pub struct DebugViewReport {
+    /// The UI thread's part of each frame: layout and the drawing.
+    pub ui: Vec<Duration>,
+    /// Whole frames: the UI, tessellation, buffer and texture uploads, the
+    /// debug view's 3D pass and egui's pass, until the GPU has finished.
+    pub whole: Vec<Duration>,
+}
+
+/// Runs `frames` display frames of the window with the debug view shown, the
+/// centre pixel inspected (its rays drawn) and the observer turning a little
+/// every frame so the 3D view is redrawn each time, while the tracer refines
+/// the image on every core.
+pub fn debug_view(
+    scene: Scene,
+    path: Option<PathBuf>,
+    frames: u32,
+    gpu: &super::headless_gpu::HeadlessGpu,
+    size: egui::Vec2,
+) -> anyhow::Result<DebugViewReport> {
+    let ctx = egui::Context::default();
+    let mut app = RaylabApp::new(scene, path).with_gpu(Some(gpu.render_state.clone()));
+    app.doc.state.render.target_spp = None;
+    app.show_debug = true;
+    let input = || egui::RawInput {
+        screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, size)),
+        ..Default::default()
+    };
+    let frame = |app: &mut RaylabApp, report: Option<&mut DebugViewReport>| {
+        let start = Instant::now();
+        let output = ctx.run_ui(input(), |ui| app.show(ui));
+        let ui = start.elapsed();
+        let drawn = gpu.draw(&ctx, output);
+        if let Some(report) = report {
+            report.ui.push(ui);
+            report.whole.push(start.elapsed());
+        }
+        drawn
+    };
+    let warm_up = Instant::now() + Duration::from_secs(10);
+    while Instant::now() < warm_up
+        && !matches!(
+            app.frame.as_ref().map(|f| f.step),
+            Some(Step::Passes { .. })
+        )
+    {
+        frame(&mut app, None)?;
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    if let Some(prepared) = &app.prepared {
+        let camera = &prepared.world.camera;
+        app.inspect([camera.w / 2, camera.h / 2], false);
+    }
+    let mut report = DebugViewReport::default();
+    for _ in 0..frames {
+        app.debug.orbit(0.01, 0.0);
+        frame(&mut app, Some(&mut report))?;
+        let took = report.whole.last().copied().unwrap_or_default();
+        std::thread::sleep(FRAME.saturating_sub(took));
+    }
+    Ok(report)
+}

@@ -95,14 +95,14 @@ fn sample_picker(ui: &mut egui::Ui, inspected: &mut InspectedPixel, spp: u32) {
         if let Some(k) = &mut inspected.sample {
             let last = spp.max(1) - 1;
             if ui
-                .small_button("◀")
+                .small_button("<")
                 .on_hover_text("previous sample")
                 .clicked()
             {
                 *k = k.saturating_sub(1);
             }
             ui.add(egui::DragValue::new(k).range(0..=last).prefix("k = "));
-            if ui.small_button("▶").on_hover_text("next sample").clicked() {
+            if ui.small_button(">").on_hover_text("next sample").clicked() {
                 *k = (*k + 1).min(last);
             }
             ui.weak(format!("of {}", last + 1));
@@ -148,7 +148,7 @@ fn equations(ui: &mut egui::Ui, inspection: &Inspection, c: &Camera) {
         mono(
             ui,
             format!(
-                "jittered: ½ → ({:.3}, {:.3}), window point {}",
+                "jittered: ½ -> ({:.3}, {:.3}), window point {}",
                 inspection.offset.x,
                 inspection.offset.y,
                 v3(inspection.window_point)
@@ -157,7 +157,7 @@ fn equations(ui: &mut egui::Ui, inspection: &Inspection, c: &Camera) {
     }
     mono(
         ui,
-        format!("v_ij = (P − P0) / ‖P − P0‖ = {}", v3(inspection.v_ij)),
+        format!("v_ij = (P − P0) / |P − P0| = {}", v3(inspection.v_ij)),
     );
     if let Some(hit) = &inspection.primary().hit {
         mono(ui, hit_equation(hit));
@@ -183,7 +183,7 @@ fn hit_equation(hit: &SurfaceHit) -> String {
             format!("{} and {}", n(r.near), n(r.far))
         });
         format!(
-            "sphere: ‖v‖² α² − 2 (u·v) α + ‖u‖² − r² = 0, u = C − P0\n  a = {}, b = {}, c = {}, b² − 4ac = {}\n  roots α = {roots}\n  {solved}",
+            "sphere: |v|² α² − 2 (u·v) α + |u|² − r² = 0, u = C − P0\n  a = {}, b = {}, c = {}, b² − 4ac = {}\n  roots α = {roots}\n  {solved}",
             n(q.a),
             n(q.b),
             n(q.c),
@@ -240,7 +240,7 @@ fn title(index: usize, ray: &RayNode, cx: &Context<'_>) -> String {
     let kind = kind_name(ray.kind);
     match (&ray.hit, &ray.shadow) {
         (Some(hit), _) => format!(
-            "#{index} {kind} → {} ({}), α = {}",
+            "#{index} {kind} -> {} ({}), α = {}",
             hit.object.name,
             hit.shape,
             n(hit.alpha)
@@ -253,15 +253,15 @@ fn title(index: usize, ray: &RayNode, cx: &Context<'_>) -> String {
                 .unwrap_or_else(|| format!("light {}", shadow.light));
             match &shadow.blocker {
                 Some(b) => format!(
-                    "#{index} {kind} → {light}: blocked by {} at α = {}",
+                    "#{index} {kind} -> {light}: blocked by {} at α = {}",
                     b.object.name,
                     n(b.alpha)
                 ),
-                None if shadow.blocked => format!("#{index} {kind} → {light}: blocked"),
-                None => format!("#{index} {kind} → {light}: reaches it"),
+                None if shadow.blocked => format!("#{index} {kind} -> {light}: blocked"),
+                None => format!("#{index} {kind} -> {light}: reaches it"),
             }
         }
-        (None, None) => format!("#{index} {kind} → misses (background)"),
+        (None, None) => format!("#{index} {kind} -> misses (background)"),
     }
 }
 

@@ -10,6 +10,7 @@ mod debug_view;
 mod document;
 mod edits;
 mod files;
+pub mod headless_gpu;
 mod history;
 mod image_view;
 mod inspected;

@@ -373,3 +373,195 @@ fn saving_the_scene_and_reopening_it_gives_the_same_picture() {
     settle(&mut h);
     assert_eq!(pixels(&h), image);
 }
+
+/// A pixel of the image whose centre ray hits the object named `name`, with
+/// its four neighbours on the same object (so a click cannot miss it).
+fn pixel_on(h: &Harness<'static, RaylabApp>, name: &str) -> ([u32; 2], u32) {
+    let world = &h.state().prepared.as_ref().expect("prepared").world;
+    let object = world
+        .names
+        .iter()
+        .position(|n| n == name)
+        .unwrap_or_else(|| panic!("no object {name} in {:?}", world.names)) as u32;
+    let (w, h) = (world.camera.w, world.camera.h);
+    let hits = |i: u32, j: u32| {
+        world
+            .intersect(&world.camera.center_ray(i, j), renderer::Method::Robust)
+            .is_some_and(|hit| hit.object == object)
+    };
+    let pixel = (1..h - 1)
+        .flat_map(|j| (1..w - 1).map(move |i| [i, j]))
+        .find(|&[i, j]| {
+            hits(i, j) && hits(i - 1, j) && hits(i + 1, j) && hits(i, j - 1) && hits(i, j + 1)
+        })
+        .unwrap_or_else(|| panic!("{name} covers no pixel"));
+    (pixel, object)
+}
+
+#[test]
+fn clicking_a_pixel_on_the_red_sphere_inspects_its_rays() {
+    let mut h = harness(seed_app(64, 48));
+    settle(&mut h);
+    let sphere = h.state().prepared.as_ref().expect("prepared").world.names[1].clone();
+    let (pixel, object) = pixel_on(&h, &sphere);
+    let pos = h.state().image.pixel_on_screen(pixel).expect("drawn");
+    click_at(&mut h, pos);
+    step_shown(&mut h);
+    let (_, inspection) = h
+        .state()
+        .inspection
+        .as_ref()
+        .expect("the click inspects the pixel");
+    assert_eq!([inspection.i, inspection.j], pixel);
+    let hit = inspection
+        .primary()
+        .hit
+        .as_ref()
+        .expect("the primary ray hits");
+    assert_eq!(hit.object.index, object);
+    assert_eq!(hit.shape, "sphere");
+    // The ray through P_ij is the depth AOV's ray: the same α.
+    let world = &h.state().prepared.as_ref().expect("prepared").world;
+    let alpha = renderer::aov::aov_at(
+        world,
+        renderer::aov::Aov::Depth,
+        renderer::Method::Robust,
+        pixel[0],
+        pixel[1],
+    )[0];
+    assert_eq!(hit.alpha, alpha);
+    // The window shows the pixel, its shadow ray and α.
+    h.get_by_label(&format!("Pixel ({}, {})", pixel[0], pixel[1]));
+    assert!(
+        inspection
+            .rays
+            .iter()
+            .any(|r| r.kind == renderer::integrator::RayKind::Shadow),
+        "a shadow ray toward the light"
+    );
+    assert!(h.query_all_by_label_contains("shadow").next().is_some());
+    let alpha = format!("α = {:.3}", hit.alpha);
+    assert!(
+        h.query_all_by_label_contains(&alpha).next().is_some(),
+        "{alpha} shown"
+    );
+}
+
+#[test]
+fn stepping_to_a_sample_re_traces_the_sample_that_went_into_the_image() {
+    let mut app = seed_app(32, 24);
+    app.doc.state.render.target_spp = Some(1);
+    let mut h = harness(app);
+    settle(&mut h);
+    let (pixel, _) = pixel_on(
+        &h,
+        &h.state().prepared.as_ref().expect("prepared").world.names[1].clone(),
+    );
+    let pos = h.state().image.pixel_on_screen(pixel).expect("drawn");
+    click_at(&mut h, pos);
+    step_shown(&mut h);
+    h.get_by_label("sample").click();
+    step_shown(&mut h);
+    let (_, inspection) = h.state().inspection.as_ref().expect("inspected");
+    assert_eq!(inspection.sample, Some(0));
+    // With one pass on screen, the image's pixel is exactly sample 0.
+    let frame = h.state().frame.as_ref().expect("a frame");
+    let shown = frame.pixels[(pixel[1] * frame.width + pixel[0]) as usize];
+    assert_eq!(
+        shown.to_array().map(f32::to_bits),
+        inspection.color.to_array().map(f32::to_bits)
+    );
+}
+
+#[test]
+fn an_unpinned_inspection_follows_its_point_and_a_pinned_one_keeps_its_pixel() {
+    let mut h = harness(seed_app(64, 48));
+    settle(&mut h);
+    let sphere = h.state().prepared.as_ref().expect("prepared").world.names[1].clone();
+    let (pixel, _) = pixel_on(&h, &sphere);
+    let pos = h.state().image.pixel_on_screen(pixel).expect("drawn");
+    click_at(&mut h, pos);
+    step_shown(&mut h);
+    // Doubling d moves the view window, not the image: the pixel stays.
+    let d = h
+        .state()
+        .prepared
+        .as_ref()
+        .expect("prepared")
+        .world
+        .camera
+        .d;
+    h.state_mut().doc.state.scene.camera.d = Some(2.0 * d);
+    h.run_steps(2);
+    assert_eq!(h.state().inspected.expect("inspected").pixel, pixel);
+    // Moving the camera sideways moves the point across the image; the
+    // unpinned pixel follows it.
+    let camera = h.state().prepared.as_ref().expect("prepared").world.camera;
+    h.state_mut().doc.state.scene.camera.eye = Some(camera.p0 + 0.4 * camera.r);
+    h.state_mut().doc.state.scene.camera.toward = Some(camera.t);
+    h.run_steps(2);
+    let followed = h.state().inspected.expect("inspected").pixel;
+    assert!(
+        followed[0] < pixel[0],
+        "{followed:?}: the point moves left as the camera moves right"
+    );
+    let (_, inspection) = h.state().inspection.as_ref().expect("inspected");
+    assert_eq!(
+        inspection.primary().hit.as_ref().map(|hit| hit.shape),
+        Some("sphere"),
+        "still on the sphere"
+    );
+    // Pinned, it keeps (i, j) whatever the camera does.
+    h.get_by_label("Pin").click();
+    h.step();
+    h.state_mut().doc.state.scene.camera.eye = Some(camera.p0);
+    h.run_steps(2);
+    assert_eq!(h.state().inspected.expect("inspected").pixel, followed);
+}
+
+#[test]
+fn the_g_key_shows_the_debug_view_beside_the_image() {
+    let mut h = harness(seed_app(64, 48));
+    settle(&mut h);
+    assert!(h.query_by_label("ray fan").is_none());
+    h.key_press(Key::G);
+    step_shown(&mut h);
+    assert!(h.state().show_debug);
+    h.get_by_label("ray fan");
+    h.get_by_label("Wireframe").click();
+    h.step();
+    assert!(!h.state().debug.options.solid);
+}
+
+/// The whole window drawn with wgpu (lavapipe): the image with the inspected
+/// pixel, the debug view with its rays and the inspector, saved for a look.
+#[test]
+fn the_window_with_debug_view_and_inspector_renders_with_wgpu() {
+    use eframe::egui_wgpu::{RendererOptions, WgpuSetup};
+    use egui_kittest::wgpu::{WgpuTestRenderer, create_render_state, default_wgpu_setup};
+    let mut setup = default_wgpu_setup();
+    if let WgpuSetup::CreateNew(new) = &mut setup {
+        new.instance_descriptor.backends = eframe::wgpu::Backends::VULKAN;
+    }
+    let render_state = create_render_state(setup, RendererOptions::PREDICTABLE);
+    let mut app = seed_app(160, 120).with_gpu(Some(render_state.clone()));
+    app.show_debug = true;
+    let mut h = Harness::builder()
+        .with_size(egui::Vec2::new(1400.0, 860.0))
+        .renderer(WgpuTestRenderer::from_render_state(render_state))
+        .build_ui_state(|ui, app: &mut RaylabApp| app.show(ui), app);
+    settle(&mut h);
+    let sphere = h.state().prepared.as_ref().expect("prepared").world.names[1].clone();
+    let (pixel, _) = pixel_on(&h, &sphere);
+    let pos = h.state().image.pixel_on_screen(pixel).expect("drawn");
+    click_at(&mut h, pos);
+    step_shown(&mut h);
+    let image = h.render().expect("the window renders");
+    let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/tmp");
+    std::fs::create_dir_all(&out).expect("target/tmp");
+    image
+        .save(out.join("window_debug_view.png"))
+        .expect("saved");
+    let distinct: std::collections::HashSet<[u8; 4]> = image.pixels().map(|p| p.0).collect();
+    assert!(distinct.len() > 500, "only {} colours", distinct.len());
+}

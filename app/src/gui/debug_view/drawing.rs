@@ -286,11 +286,7 @@ fn objects(drawing: &mut Drawing, inputs: &Inputs<'_>, centre: Vec3, radius: f32
         } else {
             base
         };
-        let color = if selected {
-            base.lerp(Vec3::new(1.0, 0.45, 0.05), 0.6)
-        } else {
-            base
-        };
+        let color = base;
         if inputs.options.solid {
             drawing.triangles.extend(mesh.iter().map(|v| {
                 [

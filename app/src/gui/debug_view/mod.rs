@@ -56,6 +56,13 @@ pub struct DebugView {
 }
 
 impl DebugView {
+    /// Turns the observer about its target (as a drag would), once it exists.
+    pub fn orbit(&mut self, yaw: f32, pitch: f32) {
+        if let Some(observer) = &mut self.observer {
+            observer.view = observer.view.orbit(yaw, pitch);
+        }
+    }
+
     /// Rebuilds the drawing when its inputs changed.
     fn update(&mut self, inputs: &Inputs<'_>) {
         let key = Key {
