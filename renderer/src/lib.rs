@@ -6,6 +6,9 @@
 
 pub mod aov;
 pub mod camera;
+pub mod colormap;
+pub mod display;
+pub mod display_image;
 pub mod film;
 pub mod frame;
 pub mod integrator;

@@ -1,0 +1,347 @@
+//! Turning what the render thread holds (the colour, the film's per-pixel
+//! statistics, a preview's samples, an AOV) into the 8-bit picture of a
+//! [`Display`] mode and its [`Legend`]. Runs on the render thread, so that
+//! showing any mode costs the UI only a texture copy.
+
+use crate::aov::{Aov, visualize};
+use crate::colormap::Ramp;
+use crate::display::{Display, Legend, ScalarRange, Scale};
+use crate::film::{Film, linear_to_srgb8};
+use crate::preview::PreviewSamples;
+use glam::Vec3;
+use rayon::prelude::*;
+
+/// Shown where a mode has nothing to show yet (variance of one sample).
+const UNAVAILABLE: [u8; 4] = [48, 48, 48, 255];
+/// Shown for a miss in a heatmap (viridis never reaches black).
+const MISS: [u8; 4] = [0, 0, 0, 255];
+/// The span of a log-scale heatmap: max / min at most this.
+const LOG_DECADES: f32 = 4.0;
+
+/// A mode's picture: opaque 8-bit sRGB RGBA row by row from the top, and its legend.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DisplayImage {
+    /// The pixels.
+    pub srgba8: Vec<[u8; 4]>,
+    /// What the colours mean.
+    pub legend: Legend,
+}
+
+/// What the render thread holds of the current job.
+#[derive(Clone, Copy, Debug)]
+pub enum Source<'a> {
+    /// A coarse preview (one sample per block).
+    Preview(&'a PreviewSamples),
+    /// The film after one or more full passes.
+    Film(&'a Film),
+}
+
+/// The picture of `display` from `source`: `color` is its linear colour
+/// image, `aov` the mode's AOV (computed by the caller for the AOV modes).
+pub fn display_image(
+    display: Display,
+    source: Source,
+    color: &[Vec3],
+    aov: Option<&[f32]>,
+) -> DisplayImage {
+    let len = color.len();
+    match (display, display.aov(), aov) {
+        (Display::Color, ..) => DisplayImage {
+            srgba8: srgba8_of_linear(color),
+            legend: Legend {
+                display,
+                range: None,
+                note: "the final colour, sRGB".into(),
+            },
+        },
+        (_, Some(kind), Some(values)) => aov_image(kind, values),
+        (_, Some(_), None) => uniform(display, len, UNAVAILABLE, None, "not computed".into()),
+        (Display::SamplesPerPixel, ..) => samples_per_pixel(source, len),
+        (Display::Variance, ..) => match source {
+            Source::Film(film) => match film.relative_variance() {
+                Some(values) => heatmap(
+                    display,
+                    &values,
+                    Scale::Log,
+                    "relative: Var[mean] / mean²",
+                    "log scale; zero variance at the ramp's start".into(),
+                ),
+                None => uniform(display, len, UNAVAILABLE, None, "needs two passes".into()),
+            },
+            Source::Preview(p) => uniform(
+                display,
+                len,
+                UNAVAILABLE,
+                None,
+                format!(
+                    "preview ({}×{} blocks): no variance yet",
+                    p.stride(),
+                    p.stride()
+                ),
+            ),
+        },
+        (Display::Cost, ..) => {
+            let (values, note) = match source {
+                Source::Film(film) => (
+                    film.cost_per_sample(),
+                    "mean over the pixel's samples; shadow rays stop at the first occluder".into(),
+                ),
+                Source::Preview(p) => (
+                    p.tests_image(),
+                    format!("preview: the one sample of each {0}×{0} block", p.stride()),
+                ),
+            };
+            heatmap(
+                display,
+                &values,
+                Scale::Linear,
+                "shape tests / sample",
+                note,
+            )
+        }
+        // Every AOV mode is matched above.
+        (_, None, _) => uniform(display, len, UNAVAILABLE, None, String::new()),
+    }
+}
+
+/// An AOV's picture: depth as a heatmap, the others as [`visualize`] does.
+pub fn aov_image(aov: Aov, values: &[f32]) -> DisplayImage {
+    let (display, note) = match aov {
+        Aov::Depth => {
+            return heatmap(
+                Display::Depth,
+                values,
+                Scale::Linear,
+                "α (scene units)",
+                "α to the first hit along v_ij; black: miss".into(),
+            );
+        }
+        Aov::Normal => (
+            Display::Normal,
+            "½n + ½: +x red, +y green, +z blue; black: miss",
+        ),
+        Aov::Albedo => (Display::Albedo, "the material's colour; black: miss"),
+        Aov::Object => (
+            Display::ObjectId,
+            "one colour per object (hover shows the name); black: miss",
+        ),
+    };
+    DisplayImage {
+        srgba8: srgba8_of_linear(&visualize(aov, values)),
+        legend: Legend {
+            display,
+            range: None,
+            note: note.into(),
+        },
+    }
+}
+
+/// Samples per pixel: the same for every pixel, by construction.
+fn samples_per_pixel(source: Source, len: usize) -> DisplayImage {
+    let (spp, note) = match source {
+        Source::Film(film) => (
+            film.passes() as f32,
+            "every pixel: one sample per pass".to_owned(),
+        ),
+        Source::Preview(p) => {
+            let stride = p.stride();
+            (
+                1.0 / (stride * stride) as f32,
+                format!("preview: one sample per {stride}×{stride} block"),
+            )
+        }
+    };
+    let [r, g, b] = Ramp::Viridis.srgb8(1.0);
+    let range = ScalarRange {
+        ramp: Ramp::Viridis,
+        min: spp,
+        max: spp,
+        scale: Scale::Linear,
+        unit: "samples / pixel",
+    };
+    uniform(
+        Display::SamplesPerPixel,
+        len,
+        [r, g, b, 255],
+        Some(range),
+        note,
+    )
+}
+
+/// Every pixel the same colour.
+fn uniform(
+    display: Display,
+    len: usize,
+    color: [u8; 4],
+    range: Option<ScalarRange>,
+    note: String,
+) -> DisplayImage {
+    DisplayImage {
+        srgba8: vec![color; len],
+        legend: Legend {
+            display,
+            range,
+            note,
+        },
+    }
+}
+
+/// The finite values' minimum and maximum (`None` when there are none),
+/// and the smallest positive one.
+fn finite_range(values: &[f32]) -> Option<(f32, f32, f32)> {
+    values
+        .par_iter()
+        .filter(|v| v.is_finite())
+        .fold(
+            || None,
+            |acc: Option<(f32, f32, f32)>, &v| {
+                let positive = if v > 0.0 { v } else { f32::INFINITY };
+                Some(match acc {
+                    None => (v, v, positive),
+                    Some((lo, hi, p)) => (lo.min(v), hi.max(v), p.min(positive)),
+                })
+            },
+        )
+        .reduce(
+            || None,
+            |a, b| match (a, b) {
+                (Some(a), Some(b)) => Some((a.0.min(b.0), a.1.max(b.1), a.2.min(b.2))),
+                (a, None) => a,
+                (None, b) => b,
+            },
+        )
+}
+
+/// A scalar image through the viridis ramp from its finite minimum to its
+/// maximum (log scale: at most [`LOG_DECADES`] decades below the maximum);
+/// non-finite values (misses) black.
+fn heatmap(
+    display: Display,
+    values: &[f32],
+    scale: Scale,
+    unit: &'static str,
+    note: String,
+) -> DisplayImage {
+    let ramp = Ramp::Viridis;
+    let Some((lo, hi, smallest_positive)) = finite_range(values) else {
+        return uniform(display, values.len(), MISS, None, note);
+    };
+    let (scale, lo) = match scale {
+        Scale::Log if hi > 0.0 => (
+            Scale::Log,
+            smallest_positive.max(hi * 10f32.powf(-LOG_DECADES)),
+        ),
+        // All zero: nothing to take a logarithm of.
+        _ => (Scale::Linear, lo),
+    };
+    let t_of = |v: f32| -> f32 {
+        match scale {
+            // One value throughout: the ramp's end, unless it is zero.
+            _ if hi <= lo => {
+                if v > 0.0 {
+                    1.0
+                } else {
+                    0.0
+                }
+            }
+            Scale::Linear => (v - lo) / (hi - lo),
+            Scale::Log if v <= lo => 0.0,
+            Scale::Log => (v / lo).ln() / (hi / lo).ln(),
+        }
+    };
+    let srgba8 = values
+        .par_iter()
+        .map(|&v| {
+            if v.is_finite() {
+                let [r, g, b] = ramp.srgb8(t_of(v));
+                [r, g, b, 255]
+            } else {
+                MISS
+            }
+        })
+        .collect();
+    DisplayImage {
+        srgba8,
+        legend: Legend {
+            display,
+            range: Some(ScalarRange {
+                ramp,
+                min: lo,
+                max: hi,
+                scale,
+                unit,
+            }),
+            note,
+        },
+    }
+}
+
+/// Linear radiance to opaque 8-bit sRGB RGBA, in parallel; a run of equal
+/// pixels (a preview's blocks) is converted once.
+pub fn srgba8_of_linear(pixels: &[Vec3]) -> Vec<[u8; 4]> {
+    const CHUNK: usize = 4096;
+    let mut out = vec![[0u8, 0, 0, 255]; pixels.len()];
+    out.par_chunks_mut(CHUNK)
+        .zip(pixels.par_chunks(CHUNK))
+        .for_each(|(out, pixels)| {
+            let mut last: Option<(Vec3, [u8; 4])> = None;
+            for (o, &c) in out.iter_mut().zip(pixels) {
+                let rgba = match last {
+                    Some((previous, rgba)) if previous == c => rgba,
+                    _ => {
+                        let [r, g, b] = linear_to_srgb8(c);
+                        let rgba = [r, g, b, 255];
+                        last = Some((c, rgba));
+                        rgba
+                    }
+                };
+                *o = rgba;
+            }
+        });
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_linear_heatmap_spans_the_finite_values_and_paints_misses_black() {
+        let values = [2.0, f32::INFINITY, 4.0, 3.0];
+        let image = heatmap(Display::Depth, &values, Scale::Linear, "α", String::new());
+        let range = image.legend.range.expect("a range");
+        assert_eq!((range.min, range.max), (2.0, 4.0));
+        let at = |t: f32| {
+            let [r, g, b] = Ramp::Viridis.srgb8(t);
+            [r, g, b, 255]
+        };
+        assert_eq!(image.srgba8, vec![at(0.0), MISS, at(1.0), at(0.5)]);
+    }
+
+    #[test]
+    fn a_log_heatmap_keeps_zero_at_the_start_and_spans_at_most_four_decades() {
+        let values = [0.0, 1e-9, 1e-2, 1.0];
+        let image = heatmap(Display::Variance, &values, Scale::Log, "", String::new());
+        let range = image.legend.range.expect("a range");
+        assert_eq!(range.scale, Scale::Log);
+        assert_eq!(range.max, 1.0);
+        assert!((range.min - 1e-4).abs() < 1e-9, "{}", range.min);
+        let start = Ramp::Viridis.srgb8(0.0);
+        assert_eq!(image.srgba8[0][..3], start);
+        assert_eq!(image.srgba8[1][..3], start);
+        assert_eq!(image.srgba8[2][..3], Ramp::Viridis.srgb8(0.5));
+    }
+
+    #[test]
+    fn all_zero_values_show_the_ramp_start() {
+        let image = heatmap(Display::Variance, &[0.0; 3], Scale::Log, "", String::new());
+        assert!(
+            image
+                .srgba8
+                .iter()
+                .all(|p| p[..3] == Ramp::Viridis.srgb8(0.0))
+        );
+        let range = image.legend.range.expect("a range");
+        assert_eq!((range.min, range.max), (0.0, 0.0));
+    }
+}
