@@ -2,6 +2,7 @@
 //! pixel-exact at 100 %, zoomable (nearest-neighbour when magnified) and
 //! pannable; mouse gestures on it become camera moves and picks.
 
+use renderer::display::{Display, Legend};
 use renderer::progressive::RenderedFrame;
 
 /// Sampling of the image texture: single pixels stay crisp when magnified.
@@ -36,6 +37,8 @@ pub struct Gestures {
     pub drag_started: bool,
     /// Image pixels per screen point, to turn point deltas into pixels.
     pub pixels_per_point: f32,
+    /// The pixel (i, j) under the pointer.
+    pub hovered_pixel: Option<[u32; 2]>,
 }
 
 /// The texture and the zoom/pan state.
@@ -48,6 +51,14 @@ pub struct ImageView {
     offset: egui::Vec2,
     /// Where the image was drawn last, in points.
     last_rect: Option<egui::Rect>,
+    /// The display mode chosen in the view's toolbar (the frame on screen
+    /// may still show the previous one for a step).
+    pub display: Display,
+    /// The legend of the frame on screen.
+    legend: Option<Legend>,
+    /// Shown as a tooltip while the pointer is over the image (the name of
+    /// the object under it, in the object-id mode).
+    pub hover_text: Option<String>,
 }
 
 impl Default for ImageView {
@@ -58,6 +69,9 @@ impl Default for ImageView {
             zoom: Zoom::Fit,
             offset: egui::Vec2::ZERO,
             last_rect: None,
+            display: Display::Color,
+            legend: None,
+            hover_text: None,
         }
     }
 }
@@ -76,6 +90,12 @@ impl ImageView {
             None => self.texture = Some(ctx.load_texture("render", image, TEXTURE_OPTIONS)),
         }
         self.size = size;
+        self.legend = Some(frame.legend.clone());
+    }
+
+    /// The display mode of the frame on screen.
+    pub fn shown_display(&self) -> Option<Display> {
+        self.legend.as_ref().map(|l| l.display)
     }
 
     /// Where the centre of pixel (i, j) was drawn last, in screen points.
@@ -148,6 +168,19 @@ impl ImageView {
         };
         let (modifiers, scroll, zoom) =
             ui.input(|i| (i.modifiers, i.smooth_scroll_delta, i.zoom_delta()));
+        if let Some(pos) = response.hover_pos()
+            && rect.contains(pos)
+        {
+            let p = (pos - rect.min) * ppp / scale;
+            gestures.hovered_pixel = Some([p.x as u32, p.y as u32])
+                .filter(|[i, j]| (*i as usize) < self.size[0] && (*j as usize) < self.size[1]);
+        }
+        let response = match &self.hover_text {
+            Some(text) if gestures.hovered_pixel.is_some() => {
+                response.on_hover_text_at_pointer(text.as_str())
+            }
+            _ => response,
+        };
         if response.clicked()
             && let Some(pos) = response.interact_pointer_pos()
             && rect.contains(pos)
@@ -181,13 +214,16 @@ impl ImageView {
             }
         }
         self.overlay(ui, view, scale);
+        if let Some(legend) = &self.legend {
+            super::legend::show(ui, view, legend);
+        }
         gestures
     }
 
-    /// The zoom read-out and the Fit / 100 % buttons in the view's corner.
+    /// The zoom read-out, the Fit / 100 % buttons and the display mode in the view's corner.
     fn overlay(&mut self, ui: &mut egui::Ui, view: egui::Rect, scale: f32) {
         let corner =
-            egui::Rect::from_min_size(view.min + egui::vec2(6.0, 6.0), egui::vec2(260.0, 24.0));
+            egui::Rect::from_min_size(view.min + egui::vec2(6.0, 6.0), egui::vec2(460.0, 24.0));
         ui.scope_builder(egui::UiBuilder::new().max_rect(corner), |ui| {
             ui.horizontal(|ui| {
                 ui.label(
@@ -200,6 +236,17 @@ impl ImageView {
                 if ui.small_button("100 %").clicked() {
                     self.actual_size();
                 }
+                ui.separator();
+                egui::ComboBox::from_id_salt("display-mode")
+                    .selected_text(self.display.label())
+                    .width(170.0)
+                    .show_ui(ui, |ui| {
+                        for d in Display::ALL {
+                            ui.selectable_value(&mut self.display, d, d.label());
+                        }
+                    })
+                    .response
+                    .on_hover_text("What the image shows (M cycles)");
             });
         });
     }

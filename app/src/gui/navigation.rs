@@ -35,6 +35,10 @@ pub const HELP: &[(&str, &str)] = &[
     ("Ctrl + wheel, or pinch", "zoom the image (not the camera)"),
     ("Right drag", "pan the zoomed image"),
     ("F / 1", "fit the image / show it at 100 %"),
+    (
+        "M",
+        "next display mode: colour, depth, normal, albedo, object id, spp, variance, cost",
+    ),
     ("Ctrl+Z / Ctrl+Shift+Z", "undo / redo"),
     ("Ctrl+O / Ctrl+S / Ctrl+Shift+S", "open / save / save as"),
     ("Ctrl+E", "save the rendered image"),
