@@ -82,8 +82,8 @@ pub fn render_aov_unless(
 }
 
 /// A viewable picture of an AOV as linear RGB: depth as nearness (white is
-/// nearest, black a miss), normals as ½n + ½, albedo as is, object ids as
-/// distinct colours.
+/// nearest, black a miss), normals as ½n + ½ (black a miss), albedo as is,
+/// object ids as distinct colours.
 pub fn visualize(aov: Aov, values: &[f32]) -> Vec<Vec3> {
     match aov {
         Aov::Depth => {
@@ -105,7 +105,10 @@ pub fn visualize(aov: Aov, values: &[f32]) -> Vec<Vec3> {
         }
         Aov::Normal => values
             .chunks_exact(3)
-            .map(|n| 0.5 * Vec3::from_slice(n) + 0.5)
+            .map(|n| {
+                let n = Vec3::from_slice(n);
+                if n == Vec3::ZERO { n } else { 0.5 * n + 0.5 }
+            })
             .collect(),
         Aov::Albedo => values.chunks_exact(3).map(Vec3::from_slice).collect(),
         Aov::Object => values.iter().map(|&id| object_color(id)).collect(),

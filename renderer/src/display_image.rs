@@ -15,8 +15,9 @@ use rayon::prelude::*;
 const UNAVAILABLE: [u8; 4] = [48, 48, 48, 255];
 /// Shown for a miss in a heatmap (viridis never reaches black).
 const MISS: [u8; 4] = [0, 0, 0, 255];
-/// The span of a log-scale heatmap: max / min at most this.
-const LOG_DECADES: f32 = 4.0;
+/// The span of the variance heatmap: max / min at most 10^this (relative
+/// variances below that are as good as zero on screen).
+const VARIANCE_DECADES: f32 = 4.0;
 
 /// A mode's picture: opaque 8-bit sRGB RGBA row by row from the top, and its legend.
 #[derive(Clone, Debug, PartialEq)]
@@ -63,6 +64,7 @@ pub fn display_image(
                     display,
                     &values,
                     Scale::Log,
+                    Some(VARIANCE_DECADES),
                     "relative: Var[mean] / mean²",
                     "log scale; zero variance at the ramp's start".into(),
                 ),
@@ -95,6 +97,7 @@ pub fn display_image(
                 display,
                 &values,
                 Scale::Linear,
+                None,
                 "shape tests / sample",
                 note,
             )
@@ -104,14 +107,17 @@ pub fn display_image(
     }
 }
 
-/// An AOV's picture: depth as a heatmap, the others as [`visualize`] does.
+/// An AOV's picture: depth as a heatmap over log α (an infinite floor's far
+/// α would leave a linear ramp nothing for the near objects), the others as
+/// [`visualize`] does.
 pub fn aov_image(aov: Aov, values: &[f32]) -> DisplayImage {
     let (display, note) = match aov {
         Aov::Depth => {
             return heatmap(
                 Display::Depth,
                 values,
-                Scale::Linear,
+                Scale::Log,
+                None,
                 "α (scene units)",
                 "α to the first hit along v_ij; black: miss".into(),
             );
@@ -213,12 +219,13 @@ fn finite_range(values: &[f32]) -> Option<(f32, f32, f32)> {
 }
 
 /// A scalar image through the viridis ramp from its finite minimum to its
-/// maximum (log scale: at most [`LOG_DECADES`] decades below the maximum);
-/// non-finite values (misses) black.
+/// maximum (log scale: from the smallest positive value, but at most
+/// `decades` decades below the maximum); non-finite values (misses) black.
 fn heatmap(
     display: Display,
     values: &[f32],
     scale: Scale,
+    decades: Option<f32>,
     unit: &'static str,
     note: String,
 ) -> DisplayImage {
@@ -229,7 +236,9 @@ fn heatmap(
     let (scale, lo) = match scale {
         Scale::Log if hi > 0.0 => (
             Scale::Log,
-            smallest_positive.max(hi * 10f32.powf(-LOG_DECADES)),
+            decades.map_or(smallest_positive, |d| {
+                smallest_positive.max(hi * 10f32.powf(-d))
+            }),
         ),
         // All zero: nothing to take a logarithm of.
         _ => (Scale::Linear, lo),
@@ -308,7 +317,14 @@ mod tests {
     #[test]
     fn a_linear_heatmap_spans_the_finite_values_and_paints_misses_black() {
         let values = [2.0, f32::INFINITY, 4.0, 3.0];
-        let image = heatmap(Display::Depth, &values, Scale::Linear, "α", String::new());
+        let image = heatmap(
+            Display::Depth,
+            &values,
+            Scale::Linear,
+            None,
+            "α",
+            String::new(),
+        );
         let range = image.legend.range.expect("a range");
         assert_eq!((range.min, range.max), (2.0, 4.0));
         let at = |t: f32| {
@@ -321,7 +337,14 @@ mod tests {
     #[test]
     fn a_log_heatmap_keeps_zero_at_the_start_and_spans_at_most_four_decades() {
         let values = [0.0, 1e-9, 1e-2, 1.0];
-        let image = heatmap(Display::Variance, &values, Scale::Log, "", String::new());
+        let image = heatmap(
+            Display::Variance,
+            &values,
+            Scale::Log,
+            Some(4.0),
+            "",
+            String::new(),
+        );
         let range = image.legend.range.expect("a range");
         assert_eq!(range.scale, Scale::Log);
         assert_eq!(range.max, 1.0);
@@ -334,7 +357,14 @@ mod tests {
 
     #[test]
     fn all_zero_values_show_the_ramp_start() {
-        let image = heatmap(Display::Variance, &[0.0; 3], Scale::Log, "", String::new());
+        let image = heatmap(
+            Display::Variance,
+            &[0.0; 3],
+            Scale::Log,
+            Some(4.0),
+            "",
+            String::new(),
+        );
         assert!(
             image
                 .srgba8
