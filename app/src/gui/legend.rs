@@ -3,7 +3,7 @@
 //! one-line note (misses, special cases). Only draws; every number comes
 //! with the frame from the render thread.
 
-use renderer::display::{Display, Legend, Scale};
+use renderer::display::{Display, Legend, ScalarRange, Scale};
 
 /// Width of the ramp bar, in points.
 const BAR_WIDTH: f32 = 220.0;
@@ -44,37 +44,48 @@ pub fn show(ui: &mut egui::Ui, view: egui::Rect, legend: &Legend) {
                 ui.set_max_width(BAR_WIDTH + 40.0);
                 ui.strong(legend.display.label());
                 if let Some(range) = legend.range {
-                    let (bar, _) = ui.allocate_exact_size(
-                        egui::vec2(BAR_WIDTH, BAR_HEIGHT),
-                        egui::Sense::hover(),
-                    );
-                    let step = bar.width() / BAR_STEPS as f32;
-                    for k in 0..BAR_STEPS {
-                        let t = k as f32 / (BAR_STEPS - 1) as f32;
-                        let [r, g, b] = range.ramp.srgb8(t);
-                        let x = bar.left() + k as f32 * step;
-                        let cell = egui::Rect::from_min_max(
-                            egui::pos2(x, bar.top()),
-                            egui::pos2(x + step + 0.5, bar.bottom()),
-                        );
-                        ui.painter()
-                            .rect_filled(cell, 0.0, egui::Color32::from_rgb(r, g, b));
-                    }
-                    ui.horizontal(|ui| {
-                        ui.label(format_value(range.min));
-                        let scale = match range.scale {
-                            Scale::Linear => "",
-                            Scale::Log => " (log)",
-                        };
+                    let scale = match range.scale {
+                        Scale::Linear => "",
+                        Scale::Log => ", log scale",
+                    };
+                    if range.min == range.max {
+                        // One value throughout: a bar would suggest a range.
+                        ui.label(format!("{} {}", format_value(range.max), range.unit));
+                    } else {
+                        ramp_bar(ui, range);
                         ui.weak(format!("{}{scale}", range.unit));
-                        ui.label(format!("… {}", format_value(range.max)));
-                    });
+                    }
                 }
                 if !legend.note.is_empty() {
                     ui.weak(&legend.note);
                 }
             });
         });
+}
+
+/// The ramp as a bar, with its minimum under the left end and its maximum
+/// under the right end.
+fn ramp_bar(ui: &mut egui::Ui, range: ScalarRange) {
+    let (bar, _) = ui.allocate_exact_size(egui::vec2(BAR_WIDTH, BAR_HEIGHT), egui::Sense::hover());
+    let step = bar.width() / BAR_STEPS as f32;
+    for k in 0..BAR_STEPS {
+        let t = k as f32 / (BAR_STEPS - 1) as f32;
+        let [r, g, b] = range.ramp.srgb8(t);
+        let x = bar.left() + k as f32 * step;
+        let cell = egui::Rect::from_min_max(
+            egui::pos2(x, bar.top()),
+            egui::pos2(x + step + 0.5, bar.bottom()),
+        );
+        ui.painter()
+            .rect_filled(cell, 0.0, egui::Color32::from_rgb(r, g, b));
+    }
+    ui.horizontal(|ui| {
+        ui.set_width(BAR_WIDTH);
+        ui.label(format_value(range.min));
+        ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+            ui.label(format_value(range.max));
+        });
+    });
 }
 
 #[cfg(test)]
