@@ -117,6 +117,9 @@ impl Film {
         cancelled: &(dyn Fn() -> bool + Sync),
     ) -> bool {
         let (width, sample) = (self.width as usize, self.passes);
+        // Welford's weight of this pass's sample. A pixel that lost a NaN
+        // sample keeps this shared count (rare, and only the variance view
+        // reads it), so no count per pixel is stored.
         let inv_count = 1.0 / (sample + 1) as f32;
         let (discarded, skipped, rays): (u64, u64, u64) = self
             .sum

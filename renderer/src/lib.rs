@@ -11,6 +11,7 @@ pub mod display;
 pub mod display_image;
 pub mod film;
 pub mod frame;
+pub mod heatmap;
 pub mod integrator;
 pub mod light;
 pub mod offset;
