@@ -416,3 +416,30 @@ fn inspect_of_a_pixel_outside_the_image_names_the_valid_range() {
     );
     assert!(output.stdout.is_empty(), "no JSON for a refused pixel");
 }
+
+#[test]
+fn cost_exr_counts_the_shape_tests_of_a_miss_and_of_a_lit_hit() {
+    use exr::prelude::*;
+    let dir = tempfile::tempdir().expect("tempdir");
+    let scene = dir.path().join("two-spheres.xml");
+    // A lit sphere in view and a second one far off to the side: N = 2.
+    std::fs::write(
+        &scene,
+        r#"<scene><camera eye="0 0 5" toward="0 0 -1" theta="30" width="16" height="16"/>
+           <light type="point" position="0 0 10" intensity="50"/>
+           <sphere center="0 0 0" radius="1"/><sphere center="100 0 0" radius="1"/></scene>"#,
+    )
+    .expect("write");
+    let out = dir.path().join("cost.exr");
+    render(&scene, &out, &["--aov", "cost", "--spp", "2"]);
+    let image = read_all_flat_layers_from_file(&out).expect("reads");
+    let channel = &image.layer_data[0].channel_data.list[0];
+    assert_eq!(channel.name.to_string(), "cost");
+    let cost: Vec<f32> = channel.sample_data.values_as_f32().collect();
+    assert_eq!(cost[0], 2.0, "a miss tests both shapes once");
+    assert_eq!(
+        cost[8 * 16 + 8],
+        4.0,
+        "a lit hit: both shapes, then both again for the shadow ray"
+    );
+}

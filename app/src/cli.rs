@@ -119,7 +119,8 @@ pub struct RenderArgs {
     /// Maximum reflection/refraction depth.
     #[arg(long, default_value_t = 8)]
     pub max_depth: u32,
-    /// What to write: the final colour or one of the per-pixel AOVs.
+    /// What to write: the final colour, one of the per-pixel AOVs, or a
+    /// diagnostic of the passes (variance, cost).
     #[arg(long, value_enum, default_value_t = AovArg::Color)]
     pub aov: AovArg,
 }
@@ -155,4 +156,9 @@ pub enum AovArg {
     Albedo,
     /// Index of the object hit (−1 on a miss).
     Object,
+    /// Relative variance of each pixel's mean after `--spp` passes, Var[mean] / mean²
+    /// (EXR channel `variance`; PNG: a log-scale heatmap).
+    Variance,
+    /// Shape tests per sample after `--spp` passes (EXR channel `cost`; PNG: a heatmap).
+    Cost,
 }

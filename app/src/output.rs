@@ -70,6 +70,15 @@ impl Provenance {
         Provenance { entries }
     }
 
+    /// Records which diagnostic display a picture shows (nothing for the colour).
+    pub fn with_display(mut self, display: renderer::display::Display) -> Self {
+        if display != renderer::display::Display::Color {
+            let label = display.label().to_owned();
+            self.entries.push(("raylab:display".to_owned(), label));
+        }
+        self
+    }
+
     /// The value recorded under `keyword`.
     #[cfg(test)]
     pub fn get(&self, keyword: &str) -> Option<&str> {
@@ -93,6 +102,18 @@ pub fn write_png(
         .iter()
         .flat_map(|&c| renderer::film::linear_to_srgb8(c))
         .collect();
+    write_png_srgb8(path, width, height, &bytes, provenance)
+}
+
+/// Writes 8-bit sRGB RGB bytes (row 0 at the top, three per pixel) as a PNG,
+/// with `provenance` as UTF-8 text chunks: a diagnostic picture as shown.
+pub fn write_png_srgb8(
+    path: &Path,
+    width: u32,
+    height: u32,
+    bytes: &[u8],
+    provenance: &Provenance,
+) -> Result<()> {
     let write = || -> std::result::Result<(), png::EncodingError> {
         let file = std::io::BufWriter::new(std::fs::File::create(path)?);
         let mut encoder = png::Encoder::new(file, width, height);
@@ -103,7 +124,7 @@ pub fn write_png(
             encoder.add_itxt_chunk(keyword.clone(), text.clone())?;
         }
         let mut writer = encoder.write_header()?;
-        writer.write_image_data(&bytes)?;
+        writer.write_image_data(bytes)?;
         writer.finish()
     };
     write().with_context(|| format!("cannot write {}", path.display()))

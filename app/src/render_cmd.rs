@@ -1,9 +1,11 @@
 //! `raylab render`: a scene to an image file, no window.
 
 use crate::cli::{AovArg, RenderArgs};
-use crate::output::{Format, Provenance, write_exr, write_png};
+use crate::output::{Format, Provenance, write_exr, write_png, write_png_srgb8};
 use anyhow::Result;
 use renderer::aov::{self, Aov};
+use renderer::display::Display;
+use renderer::display_image::{DisplayImage, Source, aov_image, display_image};
 use renderer::{Film, RenderOptions, World};
 use std::time::{Duration, Instant};
 
@@ -32,6 +34,11 @@ pub fn run(args: &RenderArgs) -> Result<Duration> {
     let (w, h) = (world.camera.w, world.camera.h);
     let provenance = Provenance::of_render(&world.camera, Some(&args.scene), args.spp);
     let start = Instant::now();
+    let provenance = match args.aov {
+        AovArg::Variance => provenance.with_display(Display::Variance),
+        AovArg::Cost => provenance.with_display(Display::Cost),
+        _ => provenance,
+    };
     match aov_of(args.aov) {
         None => {
             let film = Film::render(&world, &options, args.spp);
@@ -43,11 +50,30 @@ pub fn run(args: &RenderArgs) -> Result<Duration> {
                 );
             }
             let pixels = film.linear();
-            match format {
-                Format::Png => write_png(&args.output, w, h, &pixels, &provenance)?,
-                Format::Exr => {
+            let diagnostic = match args.aov {
+                AovArg::Variance => Some((Display::Variance, "variance")),
+                AovArg::Cost => Some((Display::Cost, "cost")),
+                _ => None,
+            };
+            match (format, diagnostic) {
+                (Format::Png, None) => write_png(&args.output, w, h, &pixels, &provenance)?,
+                (Format::Exr, None) => {
                     let values: Vec<f32> = pixels.iter().flat_map(|p| p.to_array()).collect();
                     write_exr(&args.output, w, h, &["R", "G", "B"], &values, &provenance)?
+                }
+                (Format::Png, Some((display, _))) => {
+                    let shown = display_image(display, Source::Film(&film), &pixels, None);
+                    write_png_srgb8(&args.output, w, h, &rgb_bytes(&shown), &provenance)?
+                }
+                (Format::Exr, Some((display, channel))) => {
+                    let values = match display {
+                        // One pass has no variance estimate: zero throughout.
+                        Display::Variance => film
+                            .relative_variance()
+                            .unwrap_or_else(|| vec![0.0; pixels.len()]),
+                        _ => film.cost_per_sample(),
+                    };
+                    write_exr(&args.output, w, h, &[channel], &values, &provenance)?
                 }
             }
             Ok(elapsed)
@@ -56,13 +82,10 @@ pub fn run(args: &RenderArgs) -> Result<Duration> {
             let values = aov::render_aov(&world, kind, options.method);
             let elapsed = start.elapsed();
             match format {
-                Format::Png => write_png(
-                    &args.output,
-                    w,
-                    h,
-                    &aov::visualize(kind, &values),
-                    &provenance,
-                )?,
+                Format::Png => {
+                    let shown = aov_image(kind, &values);
+                    write_png_srgb8(&args.output, w, h, &rgb_bytes(&shown), &provenance)?
+                }
                 Format::Exr => {
                     let names: &[&str] = match kind {
                         Aov::Depth => &["Z"],
@@ -77,9 +100,18 @@ pub fn run(args: &RenderArgs) -> Result<Duration> {
     }
 }
 
+/// A display picture's RGB bytes, three per pixel.
+fn rgb_bytes(image: &DisplayImage) -> Vec<u8> {
+    image
+        .srgba8
+        .iter()
+        .flat_map(|p| [p[0], p[1], p[2]])
+        .collect()
+}
+
 fn aov_of(arg: AovArg) -> Option<Aov> {
     match arg {
-        AovArg::Color => None,
+        AovArg::Color | AovArg::Variance | AovArg::Cost => None,
         AovArg::Depth => Some(Aov::Depth),
         AovArg::Normal => Some(Aov::Normal),
         AovArg::Albedo => Some(Aov::Albedo),

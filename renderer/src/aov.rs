@@ -50,20 +50,40 @@ pub fn aov_at(world: &World, aov: Aov, method: Method, i: u32, j: u32) -> [f32; 
 
 /// The whole AOV image, row by row from the top, `aov.channels()` values per pixel.
 pub fn render_aov(world: &World, aov: Aov, method: Method) -> Vec<f32> {
+    render_aov_unless(world, aov, method, &|| false).unwrap_or_default()
+}
+
+/// Like [`render_aov`], but rows not yet started are skipped once
+/// `cancelled()` returns true, and then the result is `None`.
+pub fn render_aov_unless(
+    world: &World,
+    aov: Aov,
+    method: Method,
+    cancelled: &(dyn Fn() -> bool + Sync),
+) -> Option<Vec<f32>> {
     let (w, h) = (world.camera.w, world.camera.h);
     let channels = aov.channels();
-    (0..w * h)
-        .into_par_iter()
-        .flat_map_iter(|k| {
-            let value = aov_at(world, aov, method, k % w, k / w);
-            value.into_iter().take(channels)
+    let mut values = vec![0.0; w as usize * h as usize * channels];
+    let skipped = values
+        .par_chunks_mut(w as usize * channels)
+        .enumerate()
+        .map(|(j, row)| {
+            if cancelled() {
+                return 1;
+            }
+            for (i, out) in row.chunks_exact_mut(channels).enumerate() {
+                let value = aov_at(world, aov, method, i as u32, j as u32);
+                out.copy_from_slice(&value[..channels]);
+            }
+            0
         })
-        .collect()
+        .sum::<u32>();
+    (skipped == 0).then_some(values)
 }
 
 /// A viewable picture of an AOV as linear RGB: depth as nearness (white is
-/// nearest, black a miss), normals as ½n + ½, albedo as is, object ids as
-/// distinct colours.
+/// nearest, black a miss), normals as ½n + ½ (black a miss), albedo as is,
+/// object ids as distinct colours.
 pub fn visualize(aov: Aov, values: &[f32]) -> Vec<Vec3> {
     match aov {
         Aov::Depth => {
@@ -85,7 +105,10 @@ pub fn visualize(aov: Aov, values: &[f32]) -> Vec<Vec3> {
         }
         Aov::Normal => values
             .chunks_exact(3)
-            .map(|n| 0.5 * Vec3::from_slice(n) + 0.5)
+            .map(|n| {
+                let n = Vec3::from_slice(n);
+                if n == Vec3::ZERO { n } else { 0.5 * n + 0.5 }
+            })
             .collect(),
         Aov::Albedo => values.chunks_exact(3).map(Vec3::from_slice).collect(),
         Aov::Object => values.iter().map(|&id| object_color(id)).collect(),

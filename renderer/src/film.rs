@@ -1,8 +1,10 @@
 //! Progressive accumulation: each pass adds one jittered sample per pixel.
 
 use crate::integrator::{RenderOptions, whitted};
+use crate::pixel_stats::{PixelStats, luminance};
 use crate::preview::PreviewSamples;
 use crate::sampler::Sampler;
+use crate::shape_tests::shape_tests_on_this_thread;
 use crate::world::World;
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
@@ -24,12 +26,14 @@ pub fn sample_offset(options: &RenderOptions, i: u32, j: u32, sample: u32) -> Ve
     Sampler::for_sample(options.seed, i, j, sample).next_2d()
 }
 
-/// A sum of samples per pixel, all pixels having the same sample count.
+/// A sum of samples per pixel, all pixels having the same sample count,
+/// and per pixel the statistics of the diagnostic heatmaps.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Film {
     width: u32,
     height: u32,
     sum: Vec<Vec3>,
+    stats: Vec<PixelStats>,
     passes: u32,
     discarded: u64,
     rays: u64,
@@ -42,6 +46,7 @@ impl Film {
             width,
             height,
             sum: vec![Vec3::ZERO; width as usize * height as usize],
+            stats: vec![PixelStats::default(); width as usize * height as usize],
             passes: 0,
             discarded: 0,
             rays: 0,
@@ -117,31 +122,52 @@ impl Film {
         cancelled: &(dyn Fn() -> bool + Sync),
     ) -> bool {
         let (width, sample) = (self.width as usize, self.passes);
+        // Welford's weight of this pass's sample. A pixel that lost a NaN
+        // sample keeps this shared count (rare, and only the variance view
+        // reads it), so no count per pixel is stored.
+        let inv_count = 1.0 / (sample + 1) as f32;
         let (discarded, skipped, rays): (u64, u64, u64) = self
             .sum
             .par_chunks_mut(width * BAND_ROWS)
+            .zip(self.stats.par_chunks_mut(width * BAND_ROWS))
             .enumerate()
-            .map(|(band, rows)| {
+            .map(|(band, (rows, stats))| {
                 if cancelled() {
                     return (0, 1, 0);
                 }
                 let rays_before = crate::ray_count::rays_on_this_thread();
                 let mut bad = 0;
-                for (row, accs) in rows.chunks_mut(width).enumerate() {
+                for (row, (accs, stats)) in rows
+                    .chunks_mut(width)
+                    .zip(stats.chunks_mut(width))
+                    .enumerate()
+                {
                     let j = (band * BAND_ROWS + row) as u32;
                     // Blocks of pixels whose first sample may be known (no
                     // division per pixel): the whole row when none is.
                     let known_row = known.and_then(|k| k.row(j));
-                    let stride = known_row.map_or(width, |(_, stride)| stride as usize);
-                    for (block, accs) in accs.chunks_mut(stride).enumerate() {
-                        for (k, acc) in accs.iter_mut().enumerate() {
+                    let stride = known_row.map_or(width, |row| row.stride as usize);
+                    for (block, (accs, stats)) in accs
+                        .chunks_mut(stride)
+                        .zip(stats.chunks_mut(stride))
+                        .enumerate()
+                    {
+                        for (k, (acc, stat)) in accs.iter_mut().zip(stats).enumerate() {
                             let i = (block * stride + k) as u32;
-                            let value = match known_row {
-                                Some((values, _)) if k == 0 => values[block],
-                                _ => sample_pixel(world, options, i, j, sample),
+                            let (value, tests) = match known_row {
+                                Some(row) if k == 0 => {
+                                    (row.values[block], u64::from(row.tests[block]))
+                                }
+                                _ => {
+                                    let before = shape_tests_on_this_thread();
+                                    let value = sample_pixel(world, options, i, j, sample);
+                                    (value, shape_tests_on_this_thread() - before)
+                                }
                             };
+                            stat.add_cost(tests);
                             if value.is_finite() {
                                 *acc += value;
+                                stat.add(luminance(value), inv_count);
                             } else {
                                 bad += 1;
                             }
@@ -176,6 +202,27 @@ impl Film {
     pub fn linear(&self) -> Vec<Vec3> {
         let scale = 1.0 / self.passes.max(1) as f32;
         self.sum.iter().map(|s| *s * scale).collect()
+    }
+
+    /// The relative variance of every pixel's mean (see
+    /// [`PixelStats::relative_variance`]), row by row from the top; `None`
+    /// below two passes.
+    pub fn relative_variance(&self) -> Option<Vec<f32>> {
+        let n = self.passes;
+        (n >= 2).then(|| {
+            self.stats
+                .iter()
+                .map(|s| s.relative_variance(n).unwrap_or(0.0))
+                .collect()
+        })
+    }
+
+    /// Shape tests per sample of every pixel, row by row from the top.
+    pub fn cost_per_sample(&self) -> Vec<f32> {
+        self.stats
+            .iter()
+            .map(|s| s.cost_per_sample(self.passes))
+            .collect()
     }
 
     /// The image as 8-bit sRGB (clamped), row by row from the top.

@@ -6,18 +6,24 @@
 
 pub mod aov;
 pub mod camera;
+pub mod colormap;
+pub mod display;
+pub mod display_image;
 pub mod film;
 pub mod frame;
+pub mod heatmap;
 pub mod inspect;
 pub mod integrator;
 pub mod light;
 pub mod offset;
 pub mod optics;
+pub mod pixel_stats;
 pub mod preview;
 pub mod progressive;
 pub mod ray;
 pub mod ray_count;
 pub mod sampler;
+pub mod shape_tests;
 pub mod shapes;
 pub mod texture;
 pub mod world;

@@ -7,6 +7,7 @@
 
 use crate::film::sample_pixel;
 use crate::integrator::RenderOptions;
+use crate::shape_tests::shape_tests_on_this_thread;
 use crate::world::World;
 use glam::Vec3;
 use rayon::prelude::*;
@@ -22,6 +23,19 @@ pub struct PreviewSamples {
     columns: usize,
     /// Row by row from the top.
     values: Vec<Vec3>,
+    /// The shape tests each sample cost, in the same order.
+    tests: Vec<u32>,
+}
+
+/// One row of preview samples: pixels 0, stride, 2 stride … of a pixel row.
+#[derive(Clone, Copy, Debug)]
+pub struct PreviewRow<'a> {
+    /// The samples.
+    pub values: &'a [Vec3],
+    /// The shape tests each sample cost.
+    pub tests: &'a [u32],
+    /// The pixels between two samples.
+    pub stride: u32,
 }
 
 impl PreviewSamples {
@@ -41,21 +55,29 @@ impl PreviewSamples {
         let coarser =
             coarser.filter(|c| c.is_for(width, height) && c.stride.is_multiple_of(stride));
         let mut values = vec![Vec3::ZERO; columns * rows];
+        let mut tests = vec![0u32; columns * rows];
         values
             .par_chunks_mut(columns)
+            .zip(tests.par_chunks_mut(columns))
             .enumerate()
-            .for_each(|(row, out)| {
+            .for_each(|(row, (out, out_tests))| {
                 let j = row as u32 * stride;
                 // Runs of `ratio` samples whose first one may be known (no
                 // division per sample): the whole row when none is.
                 let known = coarser.and_then(|c| c.row(j));
-                let ratio = known.map_or(out.len(), |(_, coarse)| (coarse / stride) as usize);
-                for (run, out) in out.chunks_mut(ratio).enumerate() {
-                    for (k, value) in out.iter_mut().enumerate() {
+                let ratio = known.map_or(out.len(), |r| (r.stride / stride) as usize);
+                let runs = out.chunks_mut(ratio).zip(out_tests.chunks_mut(ratio));
+                for (run, (out, out_tests)) in runs.enumerate() {
+                    for (k, (value, cost)) in out.iter_mut().zip(out_tests).enumerate() {
                         let i = ((run * ratio + k) as u32) * stride;
-                        *value = match known {
-                            Some((values, _)) if k == 0 => values[run],
-                            _ => sample_pixel(world, options, i, j, 0),
+                        (*value, *cost) = match known {
+                            Some(r) if k == 0 => (r.values[run], r.tests[run]),
+                            _ => {
+                                let before = shape_tests_on_this_thread();
+                                let value = sample_pixel(world, options, i, j, 0);
+                                let spent = shape_tests_on_this_thread() - before;
+                                (value, u32::try_from(spent).unwrap_or(u32::MAX))
+                            }
                         };
                     }
                 }
@@ -66,6 +88,7 @@ impl PreviewSamples {
             height,
             columns,
             values,
+            tests,
         }
     }
 
@@ -100,26 +123,51 @@ impl PreviewSamples {
         })
     }
 
-    /// The samples of pixel row `j` (pixels 0, stride, 2 stride …) and the
-    /// stride, when that row is one of these.
-    pub fn row(&self, j: u32) -> Option<(&[Vec3], u32)> {
+    /// The samples of pixel row `j` (pixels 0, stride, 2 stride …), when
+    /// that row is one of these.
+    pub fn row(&self, j: u32) -> Option<PreviewRow<'_>> {
         (j < self.height && j.is_multiple_of(self.stride)).then(|| {
-            let start = (j / self.stride) as usize * self.columns;
-            (&self.values[start..start + self.columns], self.stride)
+            let range = (j / self.stride) as usize * self.columns..;
+            let range = range.start..range.start + self.columns;
+            PreviewRow {
+                values: &self.values[range.clone()],
+                tests: &self.tests[range],
+                stride: self.stride,
+            }
         })
+    }
+
+    /// Shape tests of each block's one sample, as an image row by row from
+    /// the top (the cost heatmap of a preview).
+    pub fn tests_image(&self) -> Vec<f32> {
+        let costs: Vec<f32> = self.tests.iter().map(|&t| t as f32).collect();
+        self.blocks(&costs, |&c| c)
     }
 
     /// The preview image, row by row from the top: each block shows the
     /// sample of its top-left pixel (black where that sample is not finite).
     pub fn image(&self) -> Vec<Vec3> {
+        self.blocks(
+            &self.values,
+            |&v| if v.is_finite() { v } else { Vec3::ZERO },
+        )
+    }
+
+    /// An image where each block holds `f` of its sample in `per_sample`
+    /// (one entry per sample, in the order of `values`).
+    fn blocks<T: Copy + Send + Sync, U: Copy + Default + Send + Sync>(
+        &self,
+        per_sample: &[T],
+        f: impl Fn(&T) -> U + Sync,
+    ) -> Vec<U> {
         let (w, stride) = (self.width as usize, self.stride as usize);
-        let mut pixels = vec![Vec3::ZERO; w * self.height as usize];
+        let mut pixels = vec![U::default(); w * self.height as usize];
         pixels
             .par_chunks_mut(w * stride)
-            .zip(self.values.par_chunks(self.columns))
+            .zip(per_sample.par_chunks(self.columns))
             .for_each(|(rows, samples)| {
-                for (block, &value) in rows[..w].chunks_mut(stride).zip(samples) {
-                    block.fill(if value.is_finite() { value } else { Vec3::ZERO });
+                for (block, sample) in rows[..w].chunks_mut(stride).zip(samples) {
+                    block.fill(f(sample));
                 }
                 let (first, rest) = rows.split_at_mut(w);
                 for row in rest.chunks_mut(w) {
@@ -181,6 +229,7 @@ mod tests {
         let reusing = PreviewSamples::trace(&world, &options, 4, Some(&coarse));
         let fresh = PreviewSamples::trace(&world, &options, 4, None);
         assert_eq!(reusing.values, fresh.values);
+        assert_eq!(reusing.tests, fresh.tests, "costs are carried over too");
         assert_eq!(reusing.image(), preview(&world, &options, 4));
     }
 
@@ -208,6 +257,8 @@ mod tests {
             traced.add_pass(&world, &options);
             assert!(reusing.add_pass_reusing(&world, &options, &known, &|| false));
             assert_eq!(reusing.linear(), traced.linear(), "bit for bit");
+            assert_eq!(reusing.cost_per_sample(), traced.cost_per_sample());
+            assert_eq!(reusing.relative_variance(), traced.relative_variance());
         }
         assert_eq!(reusing.discarded(), traced.discarded());
         assert!(reusing.rays() < traced.rays());

@@ -5,13 +5,20 @@
 //! stale one at once: no frame of an older job is handed out after
 //! [`ProgressiveRenderer::submit`] returns. Nothing here ever blocks the caller
 //! on rendering.
+//!
+//! Each frame is shown in the session's [`Display`] mode, converted here on
+//! the render thread; switching the mode re-publishes the current state at
+//! the end of the step in progress and never restarts the refinement.
 
-use crate::film::{Film, linear_to_srgb8};
+use crate::aov::{Aov, render_aov_unless};
+use crate::display::{Display, Legend};
+use crate::display_image::{DisplayImage, Source, display_image};
+use crate::film::Film;
 use crate::integrator::RenderOptions;
 use crate::preview::PreviewSamples;
 use crate::world::World;
 use glam::Vec3;
-use rayon::prelude::*;
+use std::collections::HashMap;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard, PoisonError};
 use std::thread::JoinHandle;
@@ -55,11 +62,15 @@ pub struct RenderedFrame {
     pub width: u32,
     /// Height in pixels.
     pub height: u32,
-    /// Linear radiance, row by row from the top.
+    /// Linear radiance, row by row from the top (the colour, whatever the
+    /// display mode).
     pub pixels: Vec<Vec3>,
-    /// The same pixels as 8-bit sRGB RGBA (opaque), converted on the render
-    /// thread so that showing a frame costs the UI only a copy.
+    /// The picture of the display mode as 8-bit sRGB RGBA (opaque),
+    /// converted on the render thread so that showing a frame costs the UI
+    /// only a copy.
     pub srgba8: Vec<[u8; 4]>,
+    /// What `srgba8`'s colours mean, for a legend.
+    pub legend: Legend,
     /// Which step this is.
     pub step: Step,
     /// Time from the submit to this frame.
@@ -79,6 +90,8 @@ struct Inbox {
     pending: Option<(u64, Job, Instant)>,
     /// A new target spp for the current job, when one was set.
     target: Option<Option<u32>>,
+    /// A new display mode, when one was set.
+    display: Option<Display>,
     paused: bool,
     shutdown: bool,
 }
@@ -150,6 +163,16 @@ impl ProgressiveRenderer {
         self.shared.wake.notify_all();
     }
 
+    /// Shows later frames in `display`, without restarting: the current
+    /// state (preview or film) is published again in the new mode as soon
+    /// as the step in progress ends, even when the job is done or paused.
+    /// The AOV modes trace one primary ray per pixel centre P_ij, once per
+    /// job, the first time one is shown.
+    pub fn set_display(&self, display: Display) {
+        lock(&self.shared.inbox).display = Some(display);
+        self.shared.wake.notify_all();
+    }
+
     /// The newest frame not yet taken, if any; never blocks on rendering.
     pub fn take_frame(&self) -> Option<RenderedFrame> {
         lock(&self.shared.slot).take()
@@ -179,6 +202,10 @@ struct Current {
     /// Samples the passes took from a preview instead of tracing them.
     reused: u64,
     pass_time: Duration,
+    /// The AOVs shown so far for this job.
+    aovs: HashMap<Aov, Vec<f32>>,
+    /// The step last published and its speeds, to publish it again.
+    shown: Option<(Step, f64, f64)>,
 }
 
 impl Current {
@@ -193,7 +220,9 @@ impl Current {
 
 fn work(shared: &Shared) {
     let mut current: Option<Current> = None;
+    let mut display = Display::default();
     loop {
+        let mut republish = false;
         {
             let mut inbox = lock(&shared.inbox);
             loop {
@@ -204,6 +233,12 @@ fn work(shared: &Shared) {
                     && let Some(c) = current.as_mut()
                 {
                     c.job.target_spp = target;
+                }
+                if let Some(new) = inbox.display.take()
+                    && new != display
+                {
+                    display = new;
+                    republish = current.as_ref().is_some_and(|c| c.shown.is_some());
                 }
                 if let Some((generation, job, submitted)) = inbox.pending.take() {
                     let film = Film::new(job.world.camera.w, job.world.camera.h);
@@ -216,10 +251,13 @@ fn work(shared: &Shared) {
                         preview_samples: None,
                         reused: 0,
                         pass_time: Duration::ZERO,
+                        aovs: HashMap::new(),
+                        shown: None,
                     });
+                    republish = false;
                     break;
                 }
-                if current.as_ref().is_some_and(|c| !c.done()) && !inbox.paused {
+                if republish || current.as_ref().is_some_and(|c| !c.done()) && !inbox.paused {
                     break;
                 }
                 inbox = shared
@@ -229,83 +267,85 @@ fn work(shared: &Shared) {
             }
         }
         if let Some(c) = current.as_mut() {
-            step(shared, c);
+            if republish {
+                publish(shared, c, display);
+            } else {
+                step(shared, c, display);
+            }
         }
     }
-}
-
-/// Linear radiance to opaque 8-bit sRGB RGBA, in parallel; a run of equal
-/// pixels (a preview's blocks) is converted once.
-fn to_srgba8(pixels: &[Vec3]) -> Vec<[u8; 4]> {
-    const CHUNK: usize = 4096;
-    let mut out = vec![[0u8, 0, 0, 255]; pixels.len()];
-    out.par_chunks_mut(CHUNK)
-        .zip(pixels.par_chunks(CHUNK))
-        .for_each(|(out, pixels)| {
-            let mut last: Option<(Vec3, [u8; 4])> = None;
-            for (o, &c) in out.iter_mut().zip(pixels) {
-                let rgba = match last {
-                    Some((previous, rgba)) if previous == c => rgba,
-                    _ => {
-                        let [r, g, b] = linear_to_srgb8(c);
-                        let rgba = [r, g, b, 255];
-                        last = Some((c, rgba));
-                        rgba
-                    }
-                };
-                *o = rgba;
-            }
-        });
-    out
 }
 
 /// Renders one preview or one full pass of `c` and publishes it unless stale.
 /// Each preview traces only the samples the previous one did not, and the
 /// first pass only those no preview did: after an edit, every sample 0 is
 /// traced once.
-fn step(shared: &Shared, c: &mut Current) {
+fn step(shared: &Shared, c: &mut Current, display: Display) {
     let stale = || shared.generation.load(Ordering::SeqCst) != c.generation;
     let world = Arc::clone(&c.job.world);
-    let (pixels, step, samples_per_second, rays_per_second) =
-        if let Some(&stride) = PREVIEW_STRIDES.get(c.next_preview) {
-            c.next_preview += 1;
-            let samples =
-                PreviewSamples::trace(&world, &c.job.options, stride, c.preview_samples.as_ref());
-            let pixels = samples.image();
-            c.preview_samples = Some(samples);
-            (pixels, Step::Preview { stride }, 0.0, 0.0)
-        } else {
-            let started = Instant::now();
-            let completed = match c.preview_samples.take() {
-                Some(known) => {
-                    c.reused += known.len() as u64;
-                    c.film
-                        .add_pass_reusing(&world, &c.job.options, &known, &stale)
-                }
-                None => c.film.add_pass_unless(&world, &c.job.options, &stale),
-            };
-            if !completed {
-                return;
+    if let Some(&stride) = PREVIEW_STRIDES.get(c.next_preview) {
+        c.next_preview += 1;
+        let samples =
+            PreviewSamples::trace(&world, &c.job.options, stride, c.preview_samples.as_ref());
+        c.preview_samples = Some(samples);
+        c.shown = Some((Step::Preview { stride }, 0.0, 0.0));
+    } else {
+        let started = Instant::now();
+        let completed = match c.preview_samples.take() {
+            Some(known) => {
+                c.reused += known.len() as u64;
+                c.film
+                    .add_pass_reusing(&world, &c.job.options, &known, &stale)
             }
-            c.pass_time += started.elapsed();
-            let samples =
-                f64::from(c.film.passes()) * f64::from(c.film.width()) * f64::from(c.film.height())
-                    - c.reused as f64;
-            (
-                c.film.linear(),
-                Step::Passes {
-                    spp: c.film.passes(),
-                },
-                samples / c.pass_time.as_secs_f64().max(1e-9),
-                c.film.rays() as f64 / c.pass_time.as_secs_f64().max(1e-9),
-            )
+            None => c.film.add_pass_unless(&world, &c.job.options, &stale),
         };
-    let srgba8 = to_srgba8(&pixels);
+        if !completed {
+            return;
+        }
+        c.pass_time += started.elapsed();
+        let samples =
+            f64::from(c.film.passes()) * f64::from(c.film.width()) * f64::from(c.film.height())
+                - c.reused as f64;
+        let seconds = c.pass_time.as_secs_f64().max(1e-9);
+        let step = Step::Passes {
+            spp: c.film.passes(),
+        };
+        c.shown = Some((step, samples / seconds, c.film.rays() as f64 / seconds));
+    }
+    publish(shared, c, display);
+}
+
+/// Publishes the step last rendered in `display` unless the job is stale
+/// (an AOV the mode needs is traced first, and abandoned if it goes stale).
+fn publish(shared: &Shared, c: &mut Current, display: Display) {
+    let stale = || shared.generation.load(Ordering::SeqCst) != c.generation;
+    let Some((step, samples_per_second, rays_per_second)) = c.shown else {
+        return;
+    };
+    if let Some(aov) = display.aov()
+        && !c.aovs.contains_key(&aov)
+    {
+        let Some(values) = render_aov_unless(&c.job.world, aov, c.job.options.method, &stale)
+        else {
+            return;
+        };
+        c.aovs.insert(aov, values);
+    }
+    let (pixels, source) = match (step, &c.preview_samples) {
+        (Step::Preview { .. }, Some(samples)) => (samples.image(), Source::Preview(samples)),
+        _ => (c.film.linear(), Source::Film(&c.film)),
+    };
+    let aov = display
+        .aov()
+        .and_then(|a| c.aovs.get(&a))
+        .map(Vec::as_slice);
+    let DisplayImage { srgba8, legend } = display_image(display, source, &pixels, aov);
     let frame = RenderedFrame {
         generation: c.generation,
         width: c.film.width(),
         height: c.film.height(),
         srgba8,
+        legend,
         pixels,
         step,
         since_submit: c.submitted.elapsed(),

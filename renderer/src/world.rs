@@ -79,6 +79,7 @@ impl World {
     /// The nearest hit along the ray (every shape is tested; a BVH comes later).
     pub fn intersect(&self, ray: &Ray, method: Method) -> Option<Hit> {
         crate::ray_count::count_ray();
+        crate::shape_tests::count_shape_tests(self.shapes.len());
         let mut nearest: Option<Hit> = None;
         let mut search = *ray;
         for (index, shape) in self.shapes.iter().enumerate() {
@@ -94,11 +95,15 @@ impl World {
     }
 
     /// True when anything lies on the ray inside its interval (shadow rays).
+    /// Shapes are tested in object order up to the first occluder.
     pub fn occluded(&self, ray: &Ray, method: Method) -> bool {
         crate::ray_count::count_ray();
-        self.shapes
+        let first = self
+            .shapes
             .iter()
-            .any(|shape| shape.intersect(ray, method).is_some())
+            .position(|shape| shape.intersect(ray, method).is_some());
+        crate::shape_tests::count_shape_tests(first.map_or(self.shapes.len(), |k| k + 1));
+        first.is_some()
     }
 
     /// Hit point and normal of a hit.

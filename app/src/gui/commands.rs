@@ -4,6 +4,7 @@
 use super::edits::Action;
 use super::scene_panel;
 use egui::{Key, KeyboardShortcut, Modifiers};
+use renderer::display::Display;
 use std::path::PathBuf;
 
 /// A command from the menu bar, a shortcut or a dropped file.
@@ -31,6 +32,10 @@ pub enum Command {
     Redo,
     /// A structural scene edit.
     Edit(Action),
+    /// Show the image in this display mode.
+    Display(Display),
+    /// Show the next display mode.
+    NextDisplay,
     /// Fit the image into the view.
     Fit,
     /// Show the image at 100 %.
@@ -64,8 +69,9 @@ const SHORTCUTS: [(KeyboardShortcut, fn() -> Command); 9] = [
 ];
 
 /// Single keys, active only while no text field has the keyboard.
-const KEYS: [(Key, fn() -> Command); 6] = [
+const KEYS: [(Key, fn() -> Command); 7] = [
     (Key::F, || Command::Fit),
+    (Key::M, || Command::NextDisplay),
     (Key::Num1, || Command::ActualSize),
     (Key::H, || Command::ToggleHelp),
     (Key::G, || Command::ToggleDebugView),
@@ -115,6 +121,8 @@ pub struct MenuState<'a> {
     pub has_image: bool,
     /// Something is selected.
     pub has_selection: bool,
+    /// The display mode chosen.
+    pub display: Display,
 }
 
 /// The menu bar; returns the command chosen, if any.
@@ -147,7 +155,11 @@ pub fn menu_bar(ui: &mut egui::Ui, state: &MenuState) -> Option<Command> {
                 pick(Command::SaveAs);
             }
             ui.separator();
-            if item(ui, "Save Image…", Some(ctrl(Key::E)), state.has_image) {
+            let save_image = match state.display {
+                Display::Color => "Save Image…",
+                _ => "Save Image (as shown)…",
+            };
+            if item(ui, save_image, Some(ctrl(Key::E)), state.has_image) {
                 pick(Command::SaveImage);
             }
             if item(ui, "Copy Image", None, state.has_image) {
@@ -188,6 +200,15 @@ pub fn menu_bar(ui: &mut egui::Ui, state: &MenuState) -> Option<Command> {
             if item(ui, "3D debug view (G)", None, true) {
                 chosen = Some(Command::ToggleDebugView);
             }
+            ui.menu_button("Display (M)", |ui| {
+                for display in Display::ALL {
+                    if ui.radio(state.display == display, display.label()).clicked() {
+                        chosen = Some(Command::Display(display));
+                    }
+                }
+                ui.separator();
+                ui.weak("Save Image writes the picture shown as PNG;\nEXR always holds the linear colour.");
+            });
             if item(ui, "Mouse and keys help (H)", None, true) {
                 chosen = Some(Command::ToggleHelp);
             }

@@ -2,6 +2,7 @@
 //! pixel-exact at 100 %, zoomable (nearest-neighbour when magnified) and
 //! pannable; mouse gestures on it become camera moves and picks.
 
+use renderer::display::{Display, Legend};
 use renderer::progressive::RenderedFrame;
 
 /// Sampling of the image texture: single pixels stay crisp when magnified.
@@ -26,8 +27,8 @@ pub enum Zoom {
 pub struct Gestures {
     /// The pixel (i, j) clicked with the primary button.
     pub clicked_pixel: Option<[u32; 2]>,
-    /// The pixel (i, j) under the pointer while Alt is held.
-    pub hovered_pixel: Option<[u32; 2]>,
+    /// Alt is held: the hovered pixel is to be inspected.
+    pub inspect_hover: bool,
     /// Orbit drag (left or middle button, no modifier).
     pub orbit: egui::Vec2,
     /// Pan drag (Shift).
@@ -38,6 +39,8 @@ pub struct Gestures {
     pub drag_started: bool,
     /// Image pixels per screen point, to turn point deltas into pixels.
     pub pixels_per_point: f32,
+    /// The pixel (i, j) under the pointer.
+    pub hovered_pixel: Option<[u32; 2]>,
 }
 
 /// The texture and the zoom/pan state.
@@ -50,6 +53,14 @@ pub struct ImageView {
     offset: egui::Vec2,
     /// Where the image was drawn last, in points.
     last_rect: Option<egui::Rect>,
+    /// The display mode chosen in the view's toolbar (the frame on screen
+    /// may still show the previous one for a step).
+    pub display: Display,
+    /// The legend of the frame on screen.
+    legend: Option<Legend>,
+    /// Shown as a tooltip while the pointer is over the image (the name of
+    /// the object under it, in the object-id mode).
+    pub hover_text: Option<String>,
 }
 
 impl Default for ImageView {
@@ -60,6 +71,9 @@ impl Default for ImageView {
             zoom: Zoom::Fit,
             offset: egui::Vec2::ZERO,
             last_rect: None,
+            display: Display::Color,
+            legend: None,
+            hover_text: None,
         }
     }
 }
@@ -78,6 +92,12 @@ impl ImageView {
             None => self.texture = Some(ctx.load_texture("render", image, TEXTURE_OPTIONS)),
         }
         self.size = size;
+        self.legend = Some(frame.legend.clone());
+    }
+
+    /// The display mode of the frame on screen.
+    pub fn shown_display(&self) -> Option<Display> {
+        self.legend.as_ref().map(|l| l.display)
     }
 
     /// The square pixel (i, j) covered when the image was drawn last, in screen points.
@@ -176,16 +196,21 @@ impl ImageView {
         };
         let (modifiers, scroll, zoom) =
             ui.input(|i| (i.modifiers, i.smooth_scroll_delta, i.zoom_delta()));
+        if let Some(pos) = response.hover_pos() {
+            gestures.hovered_pixel = self.pixel_at(rect, pos, ppp, scale);
+        }
+        let response = match &self.hover_text {
+            Some(text) if gestures.hovered_pixel.is_some() => {
+                response.on_hover_text_at_pointer(text.as_str())
+            }
+            _ => response,
+        };
         if response.clicked()
             && let Some(pos) = response.interact_pointer_pos()
         {
             gestures.clicked_pixel = self.pixel_at(rect, pos, ppp, scale);
         }
-        if modifiers.alt
-            && let Some(pos) = response.hover_pos()
-        {
-            gestures.hovered_pixel = self.pixel_at(rect, pos, ppp, scale);
-        }
+        gestures.inspect_hover = modifiers.alt;
         let camera_drag = response.dragged_by(egui::PointerButton::Primary)
             || response.dragged_by(egui::PointerButton::Middle);
         if camera_drag {
@@ -211,15 +236,21 @@ impl ImageView {
             }
         }
         self.overlay(ui, view, scale);
+        if let Some(legend) = &self.legend {
+            super::legend::show(ui, view, legend);
+        }
         gestures
     }
 
-    /// The zoom read-out and the Fit / 100 % buttons in the view's corner.
+    /// The zoom read-out, the Fit / 100 % buttons and the display mode in the view's corner.
     fn overlay(&mut self, ui: &mut egui::Ui, view: egui::Rect, scale: f32) {
         let corner =
-            egui::Rect::from_min_size(view.min + egui::vec2(6.0, 6.0), egui::vec2(260.0, 24.0));
+            egui::Rect::from_min_size(view.min + egui::vec2(6.0, 6.0), egui::vec2(460.0, 24.0))
+                .intersect(view.shrink(6.0));
+        // Within the view only: beside it may lie the debug view's own toolbar.
         ui.scope_builder(egui::UiBuilder::new().max_rect(corner), |ui| {
-            ui.horizontal(|ui| {
+            ui.set_clip_rect(view);
+            ui.horizontal_wrapped(|ui| {
                 ui.label(
                     egui::RichText::new(format!("{:.0} %", scale * 100.0))
                         .background_color(ui.visuals().extreme_bg_color),
@@ -230,6 +261,17 @@ impl ImageView {
                 if ui.small_button("100 %").clicked() {
                     self.actual_size();
                 }
+                ui.separator();
+                egui::ComboBox::from_id_salt("display-mode")
+                    .selected_text(self.display.label())
+                    .width(170.0)
+                    .show_ui(ui, |ui| {
+                        for d in Display::ALL {
+                            ui.selectable_value(&mut self.display, d, d.label());
+                        }
+                    })
+                    .response
+                    .on_hover_text("What the image shows (M cycles)");
             });
         });
     }

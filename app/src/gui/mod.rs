@@ -15,6 +15,7 @@ mod history;
 mod image_view;
 mod inspected;
 mod inspector_panel;
+mod legend;
 mod light_editor;
 mod navigation;
 mod object_editor;
@@ -30,6 +31,7 @@ use document::{Document, RenderSettings};
 use edits::Selection;
 use files::{DialogKind, DialogResult, Dialogs, Settings};
 use navigation::OrbitView;
+use renderer::display::Display;
 use renderer::progressive::{Job, ProgressiveRenderer, RenderedFrame};
 use renderer::ray::Ray;
 use renderer::{RenderOptions, World};
@@ -78,6 +80,8 @@ pub struct RaylabApp {
     submitted: Option<(Scene, RenderOptions)>,
     /// The target spp the session was last given.
     submitted_target: Option<Option<u32>>,
+    /// The display mode the session was last given.
+    submitted_display: Display,
     /// The generation of the newest submitted job.
     generation: u64,
     /// The image view (one texture, updated in place).
@@ -147,6 +151,7 @@ impl RaylabApp {
             prepared: None,
             submitted: None,
             submitted_target: None,
+            submitted_display: Display::Color,
             generation: 0,
             image: image_view::ImageView::default(),
             frame: None,
@@ -209,6 +214,10 @@ impl RaylabApp {
             let ctx = ctx.clone();
             ProgressiveRenderer::new(move || ctx.request_repaint())
         });
+        if self.submitted_display != self.image.display {
+            session.set_display(self.image.display);
+            self.submitted_display = self.image.display;
+        }
         if unchanged {
             if self.submitted_target != Some(target) {
                 session.set_target_spp(target);
@@ -265,6 +274,16 @@ impl RaylabApp {
             .map(|hit| hit.object as usize)
     }
 
+    /// The name of the object under the pointer, while the image shows object ids.
+    fn hover_text(&self, pixel: Option<[u32; 2]>) -> Option<String> {
+        if self.image.shown_display() != Some(Display::ObjectId) {
+            return None;
+        }
+        let object = self.pick(pixel?)?;
+        let names = &self.prepared.as_ref()?.world.names;
+        names.get(object).cloned()
+    }
+
     /// The camera as an eye orbiting the point the image centre shows (or,
     /// looking at nothing, the scene's centre depth).
     fn orbit_view(&self) -> Option<OrbitView> {
@@ -304,7 +323,9 @@ impl RaylabApp {
             };
             self.inspect(pixel, false);
         }
-        if let Some(pixel) = gestures.hovered_pixel {
+        if gestures.inspect_hover
+            && let Some(pixel) = gestures.hovered_pixel
+        {
             self.inspect(pixel, true);
         }
         let moved = gestures.orbit != egui::Vec2::ZERO
@@ -581,6 +602,8 @@ impl RaylabApp {
                 self.selection =
                     edits::apply(action, &mut self.doc.state.scene, resolved, self.selection);
             }
+            Command::Display(display) => self.image.display = display,
+            Command::NextDisplay => self.image.display = self.image.display.next(),
             Command::Fit => self.image.fit(),
             Command::ActualSize => self.image.actual_size(),
             Command::ToggleHelp => self.show_help = !self.show_help,
@@ -669,10 +692,10 @@ impl RaylabApp {
                     format!("{n}.xml")
                 }
             }),
-            DialogKind::SaveImage => self
-                .frame
-                .as_ref()
-                .map(|f| screenshot::default_file_name(&self.doc.display_name(), f.step)),
+            DialogKind::SaveImage => self.frame.as_ref().map(|f| {
+                let name = self.doc.display_name();
+                screenshot::default_file_name(&name, f.step, f.legend.display)
+            }),
         };
         let folder = self
             .doc
@@ -905,6 +928,7 @@ impl RaylabApp {
                 can_redo: self.doc.history.can_redo(&self.doc.state),
                 has_image: self.frame.is_some(),
                 has_selection: self.selection != Selection::None,
+                display: self.image.display,
             };
             commands.extend(commands::menu_bar(ui, &state));
         });
@@ -964,6 +988,7 @@ impl RaylabApp {
             }
             let gestures = self.image.ui(ui);
             self.mark_inspected_pixel(ui);
+            self.image.hover_text = self.hover_text(gestures.hovered_pixel);
             let dragging = ctx.input(|i| i.pointer.any_down());
             self.navigate(&gestures, dragging);
         });

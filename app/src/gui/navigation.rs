@@ -31,13 +31,25 @@ pub const HELP: &[(&str, &str)] = &[
         "Ctrl + drag, or wheel",
         "dolly toward / away from the target",
     ),
-    ("Click", "select the object under the pointer"),
+    (
+        "Click",
+        "select the object under the pointer and inspect its pixel",
+    ),
+    ("Alt + hover", "inspect the pixel under the pointer"),
     ("Ctrl + wheel, or pinch", "zoom the image (not the camera)"),
     ("Right drag", "pan the zoomed image"),
     ("F / 1", "fit the image / show it at 100 %"),
+    (
+        "M",
+        "next display mode: colour, depth, normal, albedo, object id, spp, variance, cost",
+    ),
     ("Ctrl+Z / Ctrl+Shift+Z", "undo / redo"),
     ("Ctrl+O / Ctrl+S / Ctrl+Shift+S", "open / save / save as"),
     ("Ctrl+E", "save the rendered image"),
+    (
+        "G",
+        "show or hide the 3D debug view (drag: orbit, Shift/right drag: pan, wheel: zoom)",
+    ),
     ("H", "show or hide this help"),
 ];
 

@@ -1,21 +1,31 @@
 //! Saving the rendered image: full resolution, PNG (8-bit sRGB, the camera
 //! and scene file in text chunks) or EXR (linear float), and copying it to
-//! the clipboard.
+//! the clipboard. PNG and the clipboard take the picture as shown, in its
+//! display mode; EXR always takes the linear colour.
 
 use crate::output::{self, Format, Provenance};
+use renderer::display::Display;
 use renderer::progressive::{RenderedFrame, Step};
 use std::path::Path;
 
 /// The file name suggested for an image of `scene_name` (its extension
-/// dropped) at the frame's step: `seed-64spp.png`.
-pub fn default_file_name(scene_name: &str, step: Step) -> String {
+/// dropped) at the frame's step, with the display mode unless it is the
+/// colour: `seed-64spp.png`, `seed-64spp-cost.png`.
+pub fn default_file_name(scene_name: &str, step: Step, display: Display) -> String {
     let stem = Path::new(scene_name)
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "untitled".to_owned());
+    let mode = match display {
+        Display::Color => String::new(),
+        other => {
+            let word = other.label().split([' ', '(']).next().unwrap_or_default();
+            format!("-{}", word.to_lowercase())
+        }
+    };
     match step {
-        Step::Passes { spp } => format!("{stem}-{spp}spp.png"),
-        Step::Preview { stride } => format!("{stem}-preview{stride}.png"),
+        Step::Passes { spp } => format!("{stem}-{spp}spp{mode}.png"),
+        Step::Preview { stride } => format!("{stem}-preview{stride}{mode}.png"),
     }
 }
 
@@ -27,11 +37,20 @@ pub fn spp_of(step: Step) -> u32 {
     }
 }
 
-/// Writes `frame` to `path` as PNG or EXR, chosen by the extension.
+/// Writes `frame` to `path` as PNG (the picture shown) or EXR (the linear
+/// colour), chosen by the extension.
 pub fn save(path: &Path, frame: &RenderedFrame, provenance: &Provenance) -> anyhow::Result<()> {
     let (w, h) = (frame.width, frame.height);
     match Format::from_path(path)? {
-        Format::Png => output::write_png(path, w, h, &frame.pixels, provenance),
+        Format::Png => {
+            let bytes: Vec<u8> = frame
+                .srgba8
+                .iter()
+                .flat_map(|p| [p[0], p[1], p[2]])
+                .collect();
+            let provenance = provenance.clone().with_display(frame.legend.display);
+            output::write_png_srgb8(path, w, h, &bytes, &provenance)
+        }
         Format::Exr => {
             let values: Vec<f32> = frame.pixels.iter().flat_map(|p| p.to_array()).collect();
             output::write_exr(path, w, h, &["R", "G", "B"], &values, provenance)
@@ -56,12 +75,16 @@ mod tests {
     #[test]
     fn the_default_name_is_the_scene_name_and_the_samples() {
         assert_eq!(
-            default_file_name("seed.xml", Step::Passes { spp: 64 }),
+            default_file_name("seed.xml", Step::Passes { spp: 64 }, Display::Color),
             "seed-64spp.png"
         );
         assert_eq!(
-            default_file_name("untitled", Step::Preview { stride: 8 }),
+            default_file_name("untitled", Step::Preview { stride: 8 }, Display::Color),
             "untitled-preview8.png"
+        );
+        assert_eq!(
+            default_file_name("seed.xml", Step::Passes { spp: 4 }, Display::Cost),
+            "seed-4spp-cost.png"
         );
     }
 }

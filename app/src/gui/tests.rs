@@ -530,6 +530,7 @@ fn the_g_key_shows_the_debug_view_beside_the_image() {
     h.get_by_label("ray fan");
     h.get_by_label("Wireframe").click();
     h.step();
+
     assert!(!h.state().debug.options.solid);
 }
 
@@ -564,4 +565,59 @@ fn the_window_with_debug_view_and_inspector_renders_with_wgpu() {
         .expect("saved");
     let distinct: std::collections::HashSet<[u8; 4]> = image.pixels().map(|p| p.0).collect();
     assert!(distinct.len() > 500, "only {} colours", distinct.len());
+}
+
+/// Steps the UI until the frame on screen is shown in `display`.
+fn settle_display(h: &mut Harness<'static, RaylabApp>, display: renderer::display::Display) {
+    let deadline = Instant::now() + Duration::from_secs(60);
+    while Instant::now() < deadline {
+        h.step();
+        if h.state().image.shown_display() == Some(display) {
+            return;
+        }
+        std::thread::sleep(Duration::from_millis(2));
+    }
+    panic!("the image never showed {display:?}");
+}
+
+#[test]
+fn choosing_a_display_mode_shows_it_with_its_legend_and_keeps_the_render() {
+    use renderer::display::Display;
+    let mut h = harness(seed_app(64, 48));
+    settle(&mut h);
+    let generation = h.state().generation;
+    let colour = pixels(&h);
+
+    // The combo in the image view's toolbar.
+    h.get_by_value("Colour").click();
+    step_shown(&mut h);
+    h.get_by_label("Cost (shape tests)").click();
+    h.step();
+    assert_eq!(h.state().image.display, Display::Cost);
+    settle_display(&mut h, Display::Cost);
+    step_shown(&mut h);
+    h.get_by_label("shape tests / sample");
+    let frame = h.state().frame.as_ref().expect("a frame");
+    assert_eq!(
+        frame.step,
+        Step::Passes { spp: 2 },
+        "the finished film, shown again"
+    );
+    assert_eq!(
+        frame.pixels, colour,
+        "the colour is kept beside the picture"
+    );
+    assert_eq!(h.state().generation, generation, "no new render");
+
+    // M steps to the next mode, wrapping around to the colour.
+    h.key_press(Key::M);
+    h.step();
+    assert_eq!(h.state().image.display, Display::Color);
+    settle_display(&mut h, Display::Color);
+    h.key_press(Key::M);
+    h.step();
+    assert_eq!(h.state().image.display, Display::Depth);
+    settle_display(&mut h, Display::Depth);
+    step_shown(&mut h);
+    h.get_by_label_contains("α (scene units)");
 }
