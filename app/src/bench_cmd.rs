@@ -36,10 +36,15 @@ fn debug_view(args: &BenchArgs, default_scene: PathBuf) -> Result<()> {
     let size = [1600u32, 900];
     let gpu = crate::gui::headless_gpu::HeadlessGpu::new(size)?;
     println!(
-        "{} at {}×{}, debug view shown in a {}×{} window drawn by {}, {} frames, {} tracer threads",
+        "{} at {}×{}, debug view {} in a {}×{} window drawn by {}, {} frames, {} tracer threads",
         path.display(),
         args.width,
         args.height,
+        if args.hide_debug_view {
+            "hidden"
+        } else {
+            "shown"
+        },
         size[0],
         size[1],
         gpu.adapter(),
@@ -50,6 +55,7 @@ fn debug_view(args: &BenchArgs, default_scene: PathBuf) -> Result<()> {
         scene,
         Some(path),
         args.frames,
+        !args.hide_debug_view,
         &gpu,
         egui::vec2(size[0] as f32, size[1] as f32),
     )?;

@@ -80,6 +80,9 @@ pub struct BenchArgs {
     /// How many display frames to time (debug-view).
     #[arg(long, default_value_t = 300, value_parser = clap::value_parser!(u32).range(1..=100000))]
     pub frames: u32,
+    /// debug-view: keep the debug view hidden, to compare the same frames without it.
+    #[arg(long)]
+    pub hide_debug_view: bool,
 }
 
 /// The benchmarks `raylab bench` runs.

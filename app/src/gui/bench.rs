@@ -115,7 +115,8 @@ pub struct DebugViewReport {
     pub whole: Vec<Duration>,
 }
 
-/// Runs `frames` display frames of the window with the debug view shown, the
+/// Runs `frames` display frames of the window with the debug view shown (or,
+/// to compare, hidden), the
 /// centre pixel inspected (its rays drawn) and the observer turning a little
 /// every frame so the 3D view is redrawn each time, while the tracer refines
 /// the image on every core.
@@ -123,13 +124,14 @@ pub fn debug_view(
     scene: Scene,
     path: Option<PathBuf>,
     frames: u32,
+    show_debug: bool,
     gpu: &super::headless_gpu::HeadlessGpu,
     size: egui::Vec2,
 ) -> anyhow::Result<DebugViewReport> {
     let ctx = egui::Context::default();
     let mut app = RaylabApp::new(scene, path).with_gpu(Some(gpu.render_state.clone()));
     app.doc.state.render.target_spp = None;
-    app.show_debug = true;
+    app.show_debug = show_debug;
     let input = || egui::RawInput {
         screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, size)),
         ..Default::default()
