@@ -484,8 +484,8 @@ impl RaylabApp {
         };
         let mut open = true;
         egui::Window::new("Pixel inspector")
-            .default_pos(ctx.content_rect().right_top() + egui::vec2(-440.0, 60.0))
-            .default_width(420.0)
+            .default_pos(ctx.content_rect().right_top() + egui::vec2(-380.0, 60.0))
+            .default_width(360.0)
             .default_height(520.0)
             .show(ctx, |ui| {
                 egui::ScrollArea::vertical().show(ui, |ui| {

@@ -281,12 +281,11 @@ fn objects(drawing: &mut Drawing, inputs: &Inputs<'_>, centre: Vec3, radius: f32
         let material = inputs.world.materials.get(index);
         let base = material.map_or(Vec3::splat(0.7), |m| m.color);
         // An infinite plane is only a backdrop here: dimmed so it does not outshine the rest.
-        let base = if matches!(geometry, Geometry::Plane { .. }) {
+        let color = if matches!(geometry, Geometry::Plane { .. }) {
             0.3 * base
         } else {
             base
         };
-        let color = base;
         if inputs.options.solid {
             drawing.triangles.extend(mesh.iter().map(|v| {
                 [
@@ -302,19 +301,34 @@ fn objects(drawing: &mut Drawing, inputs: &Inputs<'_>, centre: Vec3, radius: f32
                 ]
             }));
         }
-        let wire = if selected {
-            Some((palette::SELECTED, 1.5))
-        } else if !inputs.options.solid {
+        if selected && let Some(b) = scene::layout::bounds(geometry) {
+            box_edges(drawing, b.min, b.max, palette::SELECTED);
+        }
+        if !inputs.options.solid {
             let [r, g, b] = scene_srgb(base);
-            Some((Color32::from_rgb(r, g, b), 1.0))
-        } else {
-            None
-        };
-        if let Some((color, width)) = wire {
+            let wire = Color32::from_rgb(r, g, b);
             for tri in mesh.chunks_exact(3) {
                 for k in 0..3 {
-                    drawing.line(tri[k].position, tri[(k + 1) % 3].position, color, width);
+                    drawing.line(tri[k].position, tri[(k + 1) % 3].position, wire, 1.0);
                 }
+            }
+        }
+    }
+}
+
+/// The twelve edges of the axis-aligned box from `min` to `max`.
+fn box_edges(drawing: &mut Drawing, min: Vec3, max: Vec3, color: Color32) {
+    let corner = |k: usize| {
+        Vec3::new(
+            if k & 1 == 0 { min.x } else { max.x },
+            if k & 2 == 0 { min.y } else { max.y },
+            if k & 4 == 0 { min.z } else { max.z },
+        )
+    };
+    for a in 0..8 {
+        for bit in [1, 2, 4] {
+            if a & bit == 0 {
+                drawing.line(corner(a), corner(a | bit), color, 2.0);
             }
         }
     }
