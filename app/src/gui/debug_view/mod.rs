@@ -113,7 +113,7 @@ impl DebugView {
     }
 
     /// The toolbar of drawing options above the view.
-    fn toolbar(&mut self, ui: &mut egui::Ui, inputs: &Inputs<'_>) {
+    fn toolbar(&mut self, ui: &mut egui::Ui) {
         ui.horizontal_wrapped(|ui| {
             let o = &mut self.options;
             ui.selectable_value(&mut o.solid, true, "Solid");
@@ -154,13 +154,12 @@ impl DebugView {
                 self.observer = None;
             }
         });
-        let _ = inputs;
     }
 
     /// Shows the view filling `ui`. `gpu` says whether wgpu can paint it
     /// (the pipelines are installed).
     pub fn show(&mut self, ui: &mut egui::Ui, inputs: &Inputs<'_>, gpu: bool) {
-        self.toolbar(ui, inputs);
+        self.toolbar(ui);
         let inputs = Inputs {
             options: self.options,
             ..*inputs
