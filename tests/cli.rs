@@ -182,58 +182,58 @@ fn lecture_method_renders_a_well_conditioned_scene_like_the_robust_one() {
     assert!(differing < 96 * 60 / 100, "{differing} pixels differ");
 }
 
-#[test]
-fn bench_interactive_reports_latency_and_ui_frame_time() {
-    let output = raylab(&[
-        "bench",
-        "interactive",
-        "--width",
-        "64",
-        "--height",
-        "48",
-        "--edits",
-        "2",
-    ]);
+/// Runs `raylab bench ARGS` and checks that it succeeds and prints every figure.
+fn assert_bench_prints(args: &[&str], figures: &[&str]) {
+    let output = raylab(&[&["bench"], args].concat());
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert!(
         output.status.success(),
         "{stdout}{}",
         String::from_utf8_lossy(&output.stderr)
     );
-    for figure in [
-        "edit → first preview on screen",
-        "edit → first full pass on screen",
-        "UI frame time while rendering",
-    ] {
+    for figure in figures {
         assert!(stdout.contains(figure), "missing {figure:?} in {stdout}");
     }
 }
 
 #[test]
-fn bench_debug_view_draws_whole_frames_on_the_software_adapter() {
-    let output = raylab(&[
-        "bench",
-        "debug-view",
-        "--width",
-        "64",
-        "--height",
-        "48",
-        "--frames",
-        "3",
-    ]);
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    assert!(
-        output.status.success(),
-        "{stdout}{}",
-        String::from_utf8_lossy(&output.stderr)
+fn bench_interactive_reports_latency_and_ui_frame_time() {
+    assert_bench_prints(
+        &[
+            "interactive",
+            "--width",
+            "64",
+            "--height",
+            "48",
+            "--edits",
+            "2",
+        ],
+        &[
+            "edit → first preview on screen",
+            "edit → first full pass on screen",
+            "UI frame time while rendering",
+        ],
     );
-    for figure in [
-        "UI thread per frame",
-        "whole frame, GPU finished",
-        "3 frames",
-    ] {
-        assert!(stdout.contains(figure), "missing {figure:?} in {stdout}");
-    }
+}
+
+#[test]
+fn bench_debug_view_draws_whole_frames_on_the_software_adapter() {
+    assert_bench_prints(
+        &[
+            "debug-view",
+            "--width",
+            "64",
+            "--height",
+            "48",
+            "--frames",
+            "3",
+        ],
+        &[
+            "UI thread per frame",
+            "whole frame, GPU finished",
+            "3 frames",
+        ],
+    );
 }
 
 #[test]

@@ -33,8 +33,9 @@ pub enum Command {
 /// Arguments of `raylab inspect`.
 #[derive(Debug, clap::Args)]
 pub struct InspectArgs {
-    /// The scene file (raylab XML).
-    pub scene: PathBuf,
+    /// The scene and how to trace it.
+    #[command(flatten)]
+    pub scene: SceneArgs,
     /// The pixel (i, j): column i from the left, row j from the top.
     #[arg(long, num_args = 2, value_names = ["I", "J"], required = true)]
     pub pixel: Vec<u32>,
@@ -42,13 +43,20 @@ pub struct InspectArgs {
     /// film); without it, the ray through the pixel centre P_ij.
     #[arg(long, value_name = "K")]
     pub sample: Option<u32>,
+}
+
+/// The scene file and the settings `render` and `inspect` trace it with.
+#[derive(Debug, clap::Args)]
+pub struct SceneArgs {
+    /// The scene file (raylab XML).
+    pub scene: PathBuf,
     /// Image width w in pixels (overrides the scene's camera).
     #[arg(long)]
     pub width: Option<u32>,
     /// Image height h in pixels (overrides the scene's camera).
     #[arg(long)]
     pub height: Option<u32>,
-    /// Seed of the random sample positions (as given to `raylab render`).
+    /// Seed of the random sample positions (the same for `render` and `inspect`).
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
     /// Intersection formulas for spheres and triangles.
@@ -99,29 +107,15 @@ pub enum BenchKind {
 /// Arguments of `raylab render`.
 #[derive(Debug, clap::Args)]
 pub struct RenderArgs {
-    /// The scene file (raylab XML).
-    pub scene: PathBuf,
+    /// The scene and how to trace it.
+    #[command(flatten)]
+    pub scene: SceneArgs,
     /// Output image: .png (8-bit sRGB) or .exr (linear float32).
     #[arg(short, long)]
     pub output: PathBuf,
     /// Samples per pixel (progressive passes).
     #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(1..=65536))]
     pub spp: u32,
-    /// Image width w in pixels (overrides the scene's camera).
-    #[arg(long)]
-    pub width: Option<u32>,
-    /// Image height h in pixels (overrides the scene's camera).
-    #[arg(long)]
-    pub height: Option<u32>,
-    /// Seed of the random sample positions.
-    #[arg(long, default_value_t = 0)]
-    pub seed: u64,
-    /// Intersection formulas for spheres and triangles.
-    #[arg(long, value_enum, default_value_t = MethodArg::Robust)]
-    pub method: MethodArg,
-    /// Maximum reflection/refraction depth.
-    #[arg(long, default_value_t = 8)]
-    pub max_depth: u32,
     /// What to write: the final colour, one of the per-pixel AOVs, or a
     /// diagnostic of the passes (variance, cost).
     #[arg(long, value_enum, default_value_t = AovArg::Color)]

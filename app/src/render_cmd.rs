@@ -1,6 +1,6 @@
 //! `raylab render`: a scene to an image file, no window.
 
-use crate::cli::{AovArg, RenderArgs};
+use crate::cli::{AovArg, RenderArgs, SceneArgs};
 use crate::output::{Format, Provenance, write_exr, write_png, write_png_srgb8};
 use anyhow::Result;
 use renderer::aov::{self, Aov};
@@ -14,9 +14,9 @@ use std::time::{Duration, Instant};
 #[error("{0}")]
 pub struct UserError(pub String);
 
-/// Renders `args.scene` to `args.output`; returns the time the render took.
-pub fn run(args: &RenderArgs) -> Result<Duration> {
-    let format = Format::from_path(&args.output).map_err(|e| UserError(e.to_string()))?;
+/// Reads the scene with the size overrides applied and prepares it, with
+/// the options to trace it by; a scene that cannot be read or rendered is a [`UserError`].
+pub fn prepare(args: &SceneArgs) -> Result<(World, RenderOptions)> {
     let mut scene = scene::read_file(&args.scene).map_err(|e| UserError(e.to_string()))?;
     if let Some(w) = args.width {
         scene.camera.width = w;
@@ -31,8 +31,15 @@ pub fn run(args: &RenderArgs) -> Result<Duration> {
         max_depth: args.max_depth,
         seed: args.seed,
     };
+    Ok((world, options))
+}
+
+/// Renders `args.scene` to `args.output`; returns the time the render took.
+pub fn run(args: &RenderArgs) -> Result<Duration> {
+    let format = Format::from_path(&args.output).map_err(|e| UserError(e.to_string()))?;
+    let (world, options) = prepare(&args.scene)?;
     let (w, h) = (world.camera.w, world.camera.h);
-    let provenance = Provenance::of_render(&world.camera, Some(&args.scene), args.spp);
+    let provenance = Provenance::of_render(&world.camera, Some(&args.scene.scene), args.spp);
     let start = Instant::now();
     let provenance = match args.aov {
         AovArg::Variance => provenance.with_display(Display::Variance),

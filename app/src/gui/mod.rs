@@ -124,8 +124,9 @@ pub struct RaylabApp {
     inspected: Option<inspected::InspectedPixel>,
     /// Its ray tree, with what it was traced from.
     inspection: Option<(InspectionKey, renderer::Inspection)>,
-    /// The trees of all its samples so far, when the debug view draws them all.
-    sample_rays: Option<(InspectionKey, Vec<debug_view::DrawnRay>)>,
+    /// The rays the debug view draws: the inspection's, or those of all the
+    /// pixel's samples so far (then the key's sample is their count).
+    drawn_rays: Option<(InspectionKey, bool, Vec<debug_view::DrawnRay>)>,
 }
 
 /// What an inspection was traced from: the world, the options, the pixel and
@@ -173,7 +174,7 @@ impl RaylabApp {
             debug: debug_view::DebugView::default(),
             inspected: None,
             inspection: None,
-            sample_rays: None,
+            drawn_rays: None,
         }
     }
 
@@ -396,7 +397,7 @@ impl RaylabApp {
     fn refresh_inspection(&mut self) {
         let (Some(inspected), Some(prepared)) = (self.inspected, &self.prepared) else {
             self.inspection = None;
-            self.sample_rays = None;
+            self.drawn_rays = None;
             return;
         };
         let world = &prepared.world;
@@ -413,24 +414,33 @@ impl RaylabApp {
                 .ok()
                 .map(|inspection| (key, inspection));
         }
-        if !(self.show_debug && self.debug.options.all_samples) {
-            self.sample_rays = None;
-            return;
-        }
-        let samples = self.shown_spp().clamp(1, MAX_DRAWN_SAMPLES);
-        let all = InspectionKey {
-            sample: Some(samples),
+        let all = self.show_debug && self.debug.options.all_samples;
+        let drawn = InspectionKey {
+            sample: if all {
+                Some(self.shown_spp().clamp(1, MAX_DRAWN_SAMPLES))
+            } else {
+                key.sample
+            },
             ..key
         };
-        if self.sample_rays.as_ref().is_none_or(|(k, _)| *k != all) {
-            let rays = (0..samples)
+        if self
+            .drawn_rays
+            .as_ref()
+            .is_some_and(|(k, a, _)| (*k, *a) == (drawn, all))
+        {
+            return;
+        }
+        let rays = match (all, &self.inspection) {
+            (true, _) => (0..drawn.sample.unwrap_or(1))
                 .filter_map(|k| renderer::inspect_pixel(world, &options, i, j, Some(k)).ok())
                 .flat_map(|inspection| {
                     debug_view::rays::drawn_rays(&inspection).collect::<Vec<_>>()
                 })
-                .collect();
-            self.sample_rays = Some((all, rays));
-        }
+                .collect(),
+            (false, Some((_, inspection))) => debug_view::rays::drawn_rays(inspection).collect(),
+            (false, None) => Vec::new(),
+        };
+        self.drawn_rays = Some((drawn, all, rays));
     }
 
     /// Samples per pixel of the frame on screen, when it shows the current scene.
@@ -447,16 +457,13 @@ impl RaylabApp {
 
     /// The pixel inspector window.
     fn inspector_window(&mut self, ctx: &egui::Context) {
+        let spp = self.shown_spp();
         let (Some(inspected), Some((_, inspection)), Some(prepared)) =
             (&mut self.inspected, &self.inspection, &self.prepared)
         else {
             return;
         };
         let camera = &prepared.world.camera;
-        let spp = self.frame.as_ref().map_or(0, |f| match f.step {
-            renderer::progressive::Step::Passes { spp } if f.generation == self.generation => spp,
-            _ => 0,
-        });
         let [i, j] = inspected.pixel;
         let accumulated = self
             .frame
@@ -517,33 +524,19 @@ impl RaylabApp {
         if let Some(gpu) = &self.gpu {
             debug_view::DebugRenderer::install(gpu);
         }
-        let geometry: Vec<scene::Geometry> = prepared
-            .resolved
-            .objects
-            .iter()
-            .map(|o| o.geometry)
-            .collect();
         let selected_object = match self.selection {
             Selection::Object(k) => Some(k),
             _ => None,
         };
-        let rays: Vec<debug_view::DrawnRay> = if self.debug.options.all_samples {
-            self.sample_rays
-                .as_ref()
-                .map(|(_, rays)| rays.clone())
-                .unwrap_or_default()
-        } else {
-            self.inspection
-                .as_ref()
-                .map(|(_, inspection)| debug_view::rays::drawn_rays(inspection).collect())
-                .unwrap_or_default()
-        };
         let inputs = debug_view::Inputs {
             world: &prepared.world,
-            geometry: &geometry,
+            objects: &prepared.resolved.objects,
             selected_object,
             pixel: self.inspected.map(|p| p.pixel),
-            rays: &rays,
+            rays: self
+                .drawn_rays
+                .as_ref()
+                .map_or(&[][..], |(_, _, rays)| rays.as_slice()),
             options: self.debug.options,
         };
         self.debug.show(ui, &inputs, self.gpu.is_some());

@@ -9,7 +9,7 @@ use super::tessellate::{MeshVertex, tessellate};
 use egui::Color32;
 use glam::Vec3;
 use renderer::{Camera, World};
-use scene::Geometry;
+use scene::{Geometry, ResolvedObject};
 
 /// Grid lines per side of the view window at most; coarser grids show every n-th line.
 const MAX_GRID_LINES: u32 = 64;
@@ -145,8 +145,8 @@ pub struct Marker {
 pub struct Inputs<'a> {
     /// The prepared scene (camera, shapes, materials).
     pub world: &'a World,
-    /// Each object's resolved geometry, in object-id order.
-    pub geometry: &'a [Geometry],
+    /// The resolved objects, in object-id order.
+    pub objects: &'a [ResolvedObject],
     /// The selected object, drawn highlighted.
     pub selected_object: Option<usize>,
     /// The selected pixel (i, j).
@@ -197,10 +197,10 @@ impl Drawing {
 
 /// The centre and radius of a sphere around the scene's bounded objects and
 /// the eye P0 (infinite planes do not count).
-fn scene_sphere(geometry: &[Geometry], eye: Vec3) -> (Vec3, f32) {
+fn scene_sphere(objects: &[ResolvedObject], eye: Vec3) -> (Vec3, f32) {
     let (mut lo, mut hi) = (eye, eye);
-    for g in geometry {
-        if let Some(b) = scene::layout::bounds(g) {
+    for object in objects {
+        if let Some(b) = scene::layout::bounds(&object.geometry) {
             lo = lo.min(b.min);
             hi = hi.max(b.max);
         }
@@ -240,7 +240,7 @@ pub fn window_corners(camera: &Camera) -> [Vec3; 4] {
 pub fn build(inputs: &Inputs<'_>) -> Drawing {
     let camera = &inputs.world.camera;
     let options = inputs.options;
-    let (centre, radius) = scene_sphere(inputs.geometry, camera.p0);
+    let (centre, radius) = scene_sphere(inputs.objects, camera.p0);
     let mut drawing = Drawing::default();
     objects(&mut drawing, inputs, centre, radius);
     if options.grid {
@@ -274,7 +274,7 @@ pub fn build(inputs: &Inputs<'_>) -> Drawing {
 
 fn objects(drawing: &mut Drawing, inputs: &Inputs<'_>, centre: Vec3, radius: f32) {
     let mut mesh: Vec<MeshVertex> = Vec::new();
-    for (index, geometry) in inputs.geometry.iter().enumerate() {
+    for (index, geometry) in inputs.objects.iter().map(|o| &o.geometry).enumerate() {
         mesh.clear();
         tessellate(geometry, centre, 2.0 * radius, &mut mesh);
         let selected = inputs.selected_object == Some(index);
@@ -505,14 +505,13 @@ fn rays(drawing: &mut Drawing, rays: &[DrawnRay], radius: f32) {
 mod tests {
     use super::*;
 
-    fn seed() -> (World, Vec<Geometry>) {
+    fn seed() -> (World, Vec<ResolvedObject>) {
         let path =
             std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/seed.xml");
         let scene = scene::read_file(&path).expect("the seed scene loads");
         let resolved = scene::resolve(&scene).expect("the seed scene resolves");
         let world = World::new(&resolved).expect("the seed scene renders");
-        let geometry = resolved.objects.iter().map(|o| o.geometry).collect();
-        (world, geometry)
+        (world, resolved.objects)
     }
 
     #[test]
@@ -541,10 +540,10 @@ mod tests {
 
     #[test]
     fn the_drawing_labels_p0_t_u_r_and_c00_and_marks_the_selected_p_ij() {
-        let (world, geometry) = seed();
+        let (world, objects) = seed();
         let drawing = build(&Inputs {
             world: &world,
-            geometry: &geometry,
+            objects: &objects,
             selected_object: None,
             pixel: Some([10, 20]),
             rays: &[],
@@ -567,7 +566,7 @@ mod tests {
     /// (whose window point is inside the pixel, so the line passes P_ij's pixel).
     #[test]
     fn the_drawn_primary_ray_passes_through_the_drawn_p_ij() {
-        let (world, geometry) = seed();
+        let (world, objects) = seed();
         let options = renderer::RenderOptions::default();
         for (pixel, sample) in [
             ([400, 300], None),
@@ -579,7 +578,7 @@ mod tests {
             let rays: Vec<DrawnRay> = super::super::rays::drawn_rays(&inspection).collect();
             let drawing = build(&Inputs {
                 world: &world,
-                geometry: &geometry,
+                objects: &objects,
                 selected_object: None,
                 pixel: Some(pixel),
                 rays: &rays,
@@ -634,10 +633,10 @@ mod tests {
 
     #[test]
     fn a_sparse_fan_draws_one_ray_per_fan_pixel() {
-        let (world, geometry) = seed();
+        let (world, objects) = seed();
         let plain = build(&Inputs {
             world: &world,
-            geometry: &geometry,
+            objects: &objects,
             selected_object: None,
             pixel: None,
             rays: &[],
@@ -650,7 +649,7 @@ mod tests {
         };
         let with_fan = build(&Inputs {
             world: &world,
-            geometry: &geometry,
+            objects: &objects,
             selected_object: None,
             pixel: None,
             rays: &[],

@@ -99,6 +99,14 @@ pub struct DebugRenderer {
 impl DebugRenderer {
     /// Creates the pipelines once for this device, unless they exist already.
     pub fn install(render_state: &RenderState) {
+        if render_state
+            .renderer
+            .read()
+            .callback_resources
+            .contains::<DebugRenderer>()
+        {
+            return;
+        }
         let mut renderer = render_state.renderer.write();
         if renderer.callback_resources.contains::<DebugRenderer>() {
             return;

@@ -13,7 +13,7 @@ mod tessellate;
 pub use drawing::{DrawOptions, DrawnRay, Fan, Inputs};
 pub use gpu::DebugRenderer;
 
-use drawing::{Drawing, Label, Marker, palette};
+use drawing::{Drawing, palette};
 use glam::Vec3;
 use gpu::{DebugCallback, GpuScene};
 use observer::Observer;
@@ -34,14 +34,23 @@ struct Key {
     rays: Vec<DrawnRay>,
 }
 
-/// The built drawing as the GPU and the painter use it.
+impl Key {
+    /// True when `inputs` would build this very drawing.
+    fn matches(&self, inputs: &Inputs<'_>) -> bool {
+        self.world == std::ptr::from_ref(inputs.world) as usize
+            && self.options == inputs.options
+            && self.selected_object == inputs.selected_object
+            && self.pixel == inputs.pixel
+            && self.rays == inputs.rays
+    }
+}
+
+/// The built drawing: its triangles and segments handed to the GPU, its
+/// labels and markers painted by egui.
 struct Built {
     key: Key,
     scene: Arc<GpuScene>,
-    labels: Vec<Label>,
-    markers: Vec<Marker>,
-    frame_points: Vec<Vec3>,
-    grid_every: u32,
+    drawing: Drawing,
 }
 
 /// The debug view's state: what to draw and from where.
@@ -65,6 +74,9 @@ impl DebugView {
 
     /// Rebuilds the drawing when its inputs changed.
     fn update(&mut self, inputs: &Inputs<'_>) {
+        if self.built.as_ref().is_some_and(|b| b.key.matches(inputs)) {
+            return;
+        }
         let key = Key {
             world: std::ptr::from_ref(inputs.world) as usize,
             options: inputs.options,
@@ -72,30 +84,17 @@ impl DebugView {
             pixel: inputs.pixel,
             rays: inputs.rays.to_vec(),
         };
-        if self.built.as_ref().is_some_and(|b| b.key == key) {
-            return;
-        }
-        let Drawing {
-            triangles,
-            segments,
-            labels,
-            markers,
-            frame_points,
-            grid_every,
-            ..
-        } = drawing::build(inputs);
+        let mut drawing = drawing::build(inputs);
         self.versions += 1;
+        let scene = Arc::new(GpuScene {
+            version: self.versions,
+            triangles: std::mem::take(&mut drawing.triangles),
+            segments: std::mem::take(&mut drawing.segments),
+        });
         self.built = Some(Built {
             key,
-            scene: Arc::new(GpuScene {
-                version: self.versions,
-                triangles,
-                segments,
-            }),
-            labels,
-            markers,
-            frame_points,
-            grid_every,
+            scene,
+            drawing,
         });
     }
 
@@ -104,7 +103,7 @@ impl DebugView {
         if let Some(built) = &self.built {
             let camera = &inputs.world.camera;
             self.observer = Some(Observer::framing(
-                &built.frame_points,
+                &built.drawing.frame_points,
                 camera.p0,
                 camera.t,
                 camera.u,
@@ -175,6 +174,7 @@ impl DebugView {
             return;
         };
         let painter = ui.painter_at(rect);
+        let screen = observer.screen(rect);
         let background = egui::Color32::from_rgb(28, 30, 36);
         if gpu {
             let view = observer.view;
@@ -185,7 +185,7 @@ impl DebugView {
                 rect,
                 DebugCallback {
                     scene: Arc::clone(&built.scene),
-                    view_proj: observer.view_proj(rect.aspect_ratio()),
+                    view_proj: screen.view_proj,
                     light,
                     background,
                 },
@@ -200,8 +200,8 @@ impl DebugView {
                 egui::Color32::LIGHT_GRAY,
             );
         }
-        for marker in &built.markers {
-            if let Some(at) = observer.project(rect, marker.at) {
+        for marker in &built.drawing.markers {
+            if let Some(at) = screen.project(marker.at) {
                 painter.circle(
                     at,
                     3.5,
@@ -211,8 +211,8 @@ impl DebugView {
             }
         }
         let font = egui::FontId::proportional(13.0);
-        for label in &built.labels {
-            if let Some(at) = observer.project(rect, label.at) {
+        for label in &built.drawing.labels {
+            if let Some(at) = screen.project(label.at) {
                 boxed_text(
                     &painter,
                     at + egui::vec2(5.0, -5.0),
@@ -222,7 +222,7 @@ impl DebugView {
                 );
             }
         }
-        legend(&painter, rect, built.grid_every);
+        legend(&painter, rect, built.drawing.grid_every);
     }
 
     /// Drag orbits the observer, Shift-drag or right-drag pans, the wheel zooms.

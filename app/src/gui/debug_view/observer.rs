@@ -56,23 +56,41 @@ impl Observer {
             * look_at_mat4(self.view.eye, self.view.target, up)
     }
 
-    /// Where a world point lands in the view rectangle `rect` (points), or
-    /// `None` when it is behind the observer.
-    pub fn project(&self, rect: egui::Rect, point: Vec3) -> Option<egui::Pos2> {
-        let clip = self.view_proj(rect.aspect_ratio()) * point.extend(1.0);
-        if clip.w <= 1e-6 {
-            return None;
+    /// Where world points land in the view rectangle `rect` (points).
+    pub fn screen(&self, rect: egui::Rect) -> Screen {
+        Screen {
+            view_proj: self.view_proj(rect.aspect_ratio()),
+            rect,
         }
-        let ndc = clip.xy() / clip.w;
-        Some(egui::pos2(
-            rect.left() + (0.5 + 0.5 * ndc.x) * rect.width(),
-            rect.top() + (0.5 - 0.5 * ndc.y) * rect.height(),
-        ))
     }
 
     /// World units per screen point at the target's depth, for panning.
     pub fn units_per_point(&self, rect: egui::Rect) -> f32 {
         2.0 * self.view.distance() * (0.5 * FOV_Y).tan() / rect.height().max(1.0)
+    }
+}
+
+/// The observer's projection onto a view rectangle, computed once per frame.
+#[derive(Clone, Copy, Debug)]
+pub struct Screen {
+    /// World to clip space.
+    pub view_proj: Mat4,
+    /// The view rectangle, in points.
+    pub rect: egui::Rect,
+}
+
+impl Screen {
+    /// Where a world point lands (points), or `None` when it is behind the observer.
+    pub fn project(&self, point: Vec3) -> Option<egui::Pos2> {
+        let clip = self.view_proj * point.extend(1.0);
+        if clip.w <= 1e-6 {
+            return None;
+        }
+        let ndc = clip.xy() / clip.w;
+        Some(egui::pos2(
+            self.rect.left() + (0.5 + 0.5 * ndc.x) * self.rect.width(),
+            self.rect.top() + (0.5 - 0.5 * ndc.y) * self.rect.height(),
+        ))
     }
 }
 
@@ -94,7 +112,8 @@ mod tests {
             },
         };
         let p = observer
-            .project(rect(), observer.view.target)
+            .screen(rect())
+            .project(observer.view.target)
             .expect("in front");
         assert!((p - rect().center()).length() < 1e-3, "{p:?}");
     }
@@ -108,7 +127,7 @@ mod tests {
                 up: Vec3::Y,
             },
         };
-        assert!(observer.project(rect(), Vec3::Z).is_none());
+        assert!(observer.screen(rect()).project(Vec3::Z).is_none());
     }
 
     #[test]
@@ -120,9 +139,12 @@ mod tests {
                 up: Vec3::Y,
             },
         };
-        let centre = observer.project(rect(), Vec3::ZERO).expect("in front");
-        let above = observer.project(rect(), Vec3::Y).expect("in front");
-        let right = observer.project(rect(), Vec3::X).expect("in front");
+        let centre = observer
+            .screen(rect())
+            .project(Vec3::ZERO)
+            .expect("in front");
+        let above = observer.screen(rect()).project(Vec3::Y).expect("in front");
+        let right = observer.screen(rect()).project(Vec3::X).expect("in front");
         assert!(above.y < centre.y);
         assert!(right.x > centre.x);
     }
@@ -137,7 +159,7 @@ mod tests {
         ];
         let observer = Observer::framing(&points, points[2], Vec3::NEG_Z, Vec3::Y);
         for p in points {
-            let s = observer.project(rect(), p).expect("in front");
+            let s = observer.screen(rect()).project(p).expect("in front");
             assert!(rect().expand(1.0).contains(s), "{p} lands at {s:?}");
         }
     }

@@ -65,6 +65,19 @@ fn quad(out: &mut Vec<MeshVertex>, [a, b, c, d]: [MeshVertex; 4]) {
     out.extend([a, b, c, a, c, d]);
 }
 
+/// The square with corners `corner(±1, ±1)`, counter-clockwise from (−1, −1).
+fn square(out: &mut Vec<MeshVertex>, corner: impl Fn(f32, f32) -> MeshVertex) {
+    quad(
+        out,
+        [
+            corner(-1.0, -1.0),
+            corner(1.0, -1.0),
+            corner(1.0, 1.0),
+            corner(-1.0, 1.0),
+        ],
+    );
+}
+
 /// An object-space vertex in the world.
 fn placed(frame: &Frame, position: Vec3, normal: Vec3) -> MeshVertex {
     MeshVertex {
@@ -114,16 +127,7 @@ fn cuboid(frame: Frame, half: Vec3, out: &mut Vec<MeshVertex>) {
                 if k == (axis + 1) % 3 { 1.0 } else { 0.0 }
             }));
             let b = n.cross(a);
-            let corner = |s: f32, t: f32| placed(&frame, (n + s * a + t * b) * half, n);
-            quad(
-                out,
-                [
-                    corner(-1.0, -1.0),
-                    corner(1.0, -1.0),
-                    corner(1.0, 1.0),
-                    corner(-1.0, 1.0),
-                ],
-            );
+            square(out, |s, t| placed(&frame, (n + s * a + t * b) * half, n));
         }
     }
 }
@@ -203,19 +207,10 @@ fn plane(point: Vec3, normal: Vec3, focus: Vec3, extent: f32, out: &mut Vec<Mesh
     let centre = focus - (focus - point).dot(n) * n;
     let a = n.any_orthonormal_vector();
     let b = n.cross(a);
-    let corner = |s: f32, t: f32| MeshVertex {
+    square(out, |s, t| MeshVertex {
         position: centre + extent * (s * a + t * b),
         normal: n,
-    };
-    quad(
-        out,
-        [
-            corner(-1.0, -1.0),
-            corner(1.0, -1.0),
-            corner(1.0, 1.0),
-            corner(-1.0, 1.0),
-        ],
-    );
+    });
 }
 
 #[cfg(test)]

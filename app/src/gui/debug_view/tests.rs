@@ -7,7 +7,7 @@ use eframe::wgpu;
 use egui_kittest::Harness;
 use egui_kittest::wgpu::{WgpuTestRenderer, create_render_state, default_wgpu_setup};
 use renderer::World;
-use scene::Geometry;
+use scene::ResolvedObject;
 
 /// A render state on Vulkan only: GL rasterises lines slightly differently,
 /// and the snapshot must not depend on which adapter wgpu picks first.
@@ -21,7 +21,7 @@ fn vulkan_render_state() -> eframe::egui_wgpu::RenderState {
 
 /// The lecture's scene with a small image (so the pixel grid shows every
 /// pixel) and the view window one unit in front of P0.
-fn small_seed() -> (World, Vec<Geometry>) {
+fn small_seed() -> (World, Vec<ResolvedObject>) {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/seed.xml");
     let mut scene = scene::read_file(&path).expect("the seed scene loads");
     scene.camera.width = 32;
@@ -29,14 +29,13 @@ fn small_seed() -> (World, Vec<Geometry>) {
     scene.camera.d = Some(1.0);
     let resolved = scene::resolve(&scene).expect("the seed scene resolves");
     let world = World::new(&resolved).expect("the seed scene renders");
-    let geometry = resolved.objects.iter().map(|o| o.geometry).collect();
-    (world, geometry)
+    (world, resolved.objects)
 }
 
 struct State {
     view: DebugView,
     world: World,
-    geometry: Vec<Geometry>,
+    objects: Vec<ResolvedObject>,
     pixel: [u32; 2],
     rays: Vec<DrawnRay>,
 }
@@ -45,7 +44,7 @@ struct State {
 fn debug_view_snapshot_shows_camera_window_c00_and_a_ray() {
     let render_state = vulkan_render_state();
     DebugRenderer::install(&render_state);
-    let (world, geometry) = small_seed();
+    let (world, objects) = small_seed();
     // A pixel on the red sphere: its primary ray, the shadow ray to the
     // light and the reflection (the sphere is reflective plastic).
     let pixel = [17, 8];
@@ -62,7 +61,7 @@ fn debug_view_snapshot_shows_camera_window_c00_and_a_ray() {
     let state = State {
         view: DebugView::default(),
         world,
-        geometry,
+        objects,
         pixel,
         rays,
     };
@@ -73,7 +72,7 @@ fn debug_view_snapshot_shows_camera_window_c00_and_a_ray() {
             |ui, s: &mut State| {
                 let inputs = Inputs {
                     world: &s.world,
-                    geometry: &s.geometry,
+                    objects: &s.objects,
                     selected_object: None,
                     pixel: Some(s.pixel),
                     rays: &s.rays,
