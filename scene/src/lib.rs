@@ -10,14 +10,20 @@ pub mod color;
 mod error;
 pub mod layout;
 pub mod materials;
+pub mod mesh;
 pub mod model;
+pub mod model_file;
 mod read;
 mod resolve;
 mod resolved;
 mod write;
 
 pub use error::{InvalidScene, SceneError};
+pub use mesh::TriangleMesh;
 pub use model::*;
+pub use model_file::{
+    MeshInstance, ModelCamera, ModelError, ModelFile, ModelMaterial, Texture, Wrap, load_model,
+};
 pub use read::{read_file, read_str};
 pub use resolve::resolve;
 pub use resolved::*;
