@@ -443,3 +443,45 @@ fn cost_exr_counts_the_shape_tests_of_a_miss_and_of_a_lit_hit() {
         "a lit hit: both shapes, then both again for the shadow ray"
     );
 }
+
+#[test]
+fn bench_on_a_generated_mesh_reports_build_throughput_memory_and_frame_time_as_json() {
+    let output = raylab(&[
+        "bench",
+        "knot:2000",
+        "--width",
+        "64",
+        "--height",
+        "36",
+        "--json",
+    ]);
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        output.status.success(),
+        "{stdout}{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let f: serde_json::Value = serde_json::from_str(&stdout).expect("JSON");
+    assert_eq!(f["triangles"], 2000);
+    assert_eq!(f["width"], 64);
+    for cast in ["primary", "incoherent"] {
+        for threads in ["one", "all"] {
+            let c = &f[cast][threads];
+            assert_eq!(c["rays"], 64 * 36, "{cast} {threads}");
+            let hit = c["hit_fraction"].as_f64().expect("hit fraction");
+            assert!(hit > 0.05 && hit < 1.0, "{cast} {threads}: {hit}");
+            assert!(c["mrays_per_second"].as_f64().expect("rate") > 0.0);
+        }
+    }
+    assert!(f["bytes_per_triangle"].as_f64().expect("bytes") >= 36.0);
+    assert!(f["mesh_bvh_build_seconds"].as_f64().expect("build") > 0.0);
+    assert!(f["whitted_frame_seconds"]["one"].as_f64().expect("frame") > 0.0);
+}
+
+#[test]
+fn bench_names_the_scene_it_cannot_read() {
+    let output = raylab(&["bench", "no-such-scene.xml"]);
+    assert!(!output.status.success());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("no-such-scene.xml"), "{stderr}");
+}

@@ -1,9 +1,12 @@
-//! `raylab bench`: responsiveness figures of the window, measured headless.
+//! `raylab bench`: ray-tracing throughput (any scene, or the suite of
+//! generated scenes), and the window's responsiveness measured headless.
 
-use crate::cli::{BenchArgs, BenchKind};
+use crate::cli::BenchArgs;
 use crate::gui::bench::{self, quantile};
+use crate::scene_spec;
+use crate::trace_bench;
 use anyhow::Result;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 fn ms(d: Duration) -> f64 {
@@ -12,10 +15,63 @@ fn ms(d: Duration) -> f64 {
 
 /// Runs the benchmark `args` asks for and prints its figures.
 pub fn run(args: &BenchArgs, default_scene: PathBuf) -> Result<()> {
-    match args.which {
-        BenchKind::Interactive => interactive(args, default_scene),
-        BenchKind::DebugView => debug_view(args, default_scene),
+    match args.which.as_str() {
+        "interactive" => interactive(args, &default_scene),
+        "debug-view" => debug_view(args, &default_scene),
+        "suite" => suite(args.json, &default_scene),
+        spec => {
+            let (scene, label) = scene_spec::load(spec, &default_scene)?;
+            let figures = trace_bench::measure(scene, &label, args.width, args.height)?;
+            if args.json {
+                println!("{}", serde_json::to_string_pretty(&figures)?);
+            } else {
+                trace_bench::print_table(&figures);
+            }
+            Ok(())
+        }
     }
+}
+
+/// The report: the million-triangle knot at 1920×1080, ten thousand
+/// spheres, the seed scene at 1280×720, and the scaling table.
+fn suite(json: bool, seed: &Path) -> Result<()> {
+    let runs: [(&str, Option<(u32, u32)>); 3] = [
+        ("knot", Some((1920, 1080))),
+        ("spheres", None),
+        ("seed", Some((1280, 720))),
+    ];
+    let mut scenes = Vec::new();
+    for (spec, size) in runs {
+        let (scene, label) = scene_spec::load(spec, seed)?;
+        let figures = trace_bench::measure(scene, &label, size.map(|s| s.0), size.map(|s| s.1))?;
+        if !json {
+            trace_bench::print_table(&figures);
+            println!();
+        }
+        scenes.push(figures);
+    }
+    let scaling = trace_bench::scaling()?;
+    if json {
+        let report = serde_json::json!({ "scenes": scenes, "scaling": scaling });
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        trace_bench::print_scaling(&scaling);
+    }
+    Ok(())
+}
+
+/// The scene of a window benchmark at its size (1280×720 unless given).
+fn window_scene(args: &BenchArgs, seed: &Path) -> Result<(scene::Scene, String, Option<PathBuf>)> {
+    let spec = args
+        .scene
+        .clone()
+        .unwrap_or_else(|| seed.display().to_string());
+    let (mut scene, label) = scene_spec::load(&spec, seed)?;
+    scene.camera.width = args.width.unwrap_or(1280);
+    scene.camera.height = args.height.unwrap_or(720);
+    renderer::World::from_scene(&scene)?;
+    let path = Path::new(&spec);
+    Ok((scene, label, path.exists().then(|| path.to_path_buf())))
 }
 
 fn line(name: &str, values: &mut [Duration]) {
@@ -27,19 +83,14 @@ fn line(name: &str, values: &mut [Duration]) {
     );
 }
 
-fn debug_view(args: &BenchArgs, default_scene: PathBuf) -> Result<()> {
-    let path = args.scene.clone().unwrap_or(default_scene);
-    let mut scene = scene::read_file(&path)?;
-    scene.camera.width = args.width;
-    scene.camera.height = args.height;
-    renderer::World::from_scene(&scene)?;
+fn debug_view(args: &BenchArgs, seed: &Path) -> Result<()> {
+    let (scene, label, path) = window_scene(args, seed)?;
     let size = [1600u32, 900];
     let gpu = crate::gui::headless_gpu::HeadlessGpu::new(size)?;
     println!(
-        "{} at {}×{}, debug view {} in a {}×{} window drawn by {}, {} frames, {} tracer threads",
-        path.display(),
-        args.width,
-        args.height,
+        "{label} at {}×{}, debug view {} in a {}×{} window drawn by {}, {} frames, {} tracer threads",
+        scene.camera.width,
+        scene.camera.height,
         if args.hide_debug_view {
             "hidden"
         } else {
@@ -53,7 +104,7 @@ fn debug_view(args: &BenchArgs, default_scene: PathBuf) -> Result<()> {
     );
     let mut report = bench::debug_view(
         scene,
-        Some(path),
+        path,
         args.frames,
         !args.hide_debug_view,
         &gpu,
@@ -65,21 +116,14 @@ fn debug_view(args: &BenchArgs, default_scene: PathBuf) -> Result<()> {
     Ok(())
 }
 
-fn interactive(args: &BenchArgs, default_scene: PathBuf) -> Result<()> {
-    let path = args.scene.clone().unwrap_or(default_scene);
-    let mut scene = scene::read_file(&path)?;
-    scene.camera.width = args.width;
-    scene.camera.height = args.height;
-    renderer::World::from_scene(&scene)?;
+fn interactive(args: &BenchArgs, seed: &Path) -> Result<()> {
+    let (scene, label, path) = window_scene(args, seed)?;
     let threads = rayon::current_num_threads();
     println!(
-        "{} at {}×{}, {} edits of θ, {threads} tracer threads",
-        path.display(),
-        args.width,
-        args.height,
-        args.edits
+        "{label} at {}×{}, {} edits of θ, {threads} tracer threads",
+        scene.camera.width, scene.camera.height, args.edits
     );
-    let mut report = bench::interactive(scene, Some(path), args.edits);
+    let mut report = bench::interactive(scene, path, args.edits);
     if report.to_full_pass.len() < args.edits as usize {
         anyhow::bail!(
             "only {} of {} edits reached a full pass within 10 s",

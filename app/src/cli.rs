@@ -70,18 +70,25 @@ pub struct SceneArgs {
 /// Arguments of `raylab bench`.
 #[derive(Debug, clap::Args)]
 pub struct BenchArgs {
-    /// Which benchmark.
-    #[arg(value_enum)]
-    pub which: BenchKind,
-    /// The scene (default: assets/scenes/seed.xml).
+    /// What to measure: `suite` (the default: the torus knot, the sphere
+    /// field, the seed scene and the scaling table), `interactive`,
+    /// `debug-view`, or a scene to measure ray throughput on: a scene or
+    /// model file, `knot[:TRIANGLES]`, `spheres[:COUNT]` or `seed`.
+    #[arg(default_value = "suite")]
+    pub which: String,
+    /// The scene of `interactive` and `debug-view` (a file or a generated
+    /// scene as above; default: the seed scene).
     #[arg(long)]
-    pub scene: Option<PathBuf>,
-    /// Image width.
-    #[arg(long, default_value_t = 1280)]
-    pub width: u32,
-    /// Image height.
-    #[arg(long, default_value_t = 720)]
-    pub height: u32,
+    pub scene: Option<String>,
+    /// Image width (default: 1280 for the window benchmarks, the scene's own otherwise).
+    #[arg(long)]
+    pub width: Option<u32>,
+    /// Image height (default: 720 for the window benchmarks, the scene's own otherwise).
+    #[arg(long)]
+    pub height: Option<u32>,
+    /// Print the figures as JSON instead of a table.
+    #[arg(long)]
+    pub json: bool,
     /// How many edits to time.
     #[arg(long, default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..=10000))]
     pub edits: u32,
@@ -91,17 +98,6 @@ pub struct BenchArgs {
     /// debug-view: keep the debug view hidden, to compare the same frames without it.
     #[arg(long)]
     pub hide_debug_view: bool,
-}
-
-/// The benchmarks `raylab bench` runs.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum BenchKind {
-    /// Edit → first preview on screen → first full pass, and the UI's frame
-    /// time while the tracer keeps every core busy.
-    Interactive,
-    /// Whole frames (UI and GPU, on this machine's adapter) with the 3D debug
-    /// view shown and redrawn every frame while the tracer runs.
-    DebugView,
 }
 
 /// Arguments of `raylab render`.

@@ -6,6 +6,8 @@ mod gui;
 mod inspect_cmd;
 mod output;
 mod render_cmd;
+mod scene_spec;
+mod trace_bench;
 
 use clap::Parser;
 use cli::{Cli, Command};
@@ -23,8 +25,11 @@ fn default_scene() -> PathBuf {
 
 /// Opens the window on `path`; returns when it closes.
 fn run_window(path: PathBuf) -> ExitCode {
-    let scene = match scene::read_file(&path) {
-        Ok(scene) => scene,
+    let scene = match scene::read_any(&path) {
+        Ok(scene) => {
+            output::warn_about_models(&scene);
+            scene
+        }
         Err(error) => {
             eprintln!("error: {error}");
             return ExitCode::from(2);
@@ -43,7 +48,7 @@ fn run_window(path: PathBuf) -> ExitCode {
         options,
         Box::new(move |cc| {
             Ok(Box::new(
-                gui::RaylabApp::with_storage(scene, Some(path), cc.storage)
+                gui::RaylabApp::with_storage(scene, gui::Document::scene_path(&path), cc.storage)
                     .with_gpu(cc.wgpu_render_state.clone()),
             ))
         }),

@@ -185,3 +185,13 @@ pub fn write_exr(
         .to_file(path)
         .with_context(|| format!("cannot write {}", path.display()))
 }
+
+/// Prints, once per model file, what the scene's model files use that raylab
+/// does not support (the rest of each file is loaded).
+pub fn warn_about_models(scene: &scene::Scene) {
+    for (src, warnings) in scene.model_warnings() {
+        for warning in warnings {
+            eprintln!("warning: {src}: {warning}");
+        }
+    }
+}

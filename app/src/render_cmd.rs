@@ -17,7 +17,8 @@ pub struct UserError(pub String);
 /// Reads the scene with the size overrides applied and prepares it, with
 /// the options to trace it by; a scene that cannot be read or rendered is a [`UserError`].
 pub fn prepare(args: &SceneArgs) -> Result<(World, RenderOptions)> {
-    let mut scene = scene::read_file(&args.scene).map_err(|e| UserError(e.to_string()))?;
+    let mut scene = scene::read_any(&args.scene).map_err(|e| UserError(e.to_string()))?;
+    crate::output::warn_about_models(&scene);
     if let Some(w) = args.width {
         scene.camera.width = w;
     }

@@ -127,7 +127,7 @@ fn bench_intersect(c: &mut Criterion) {
     let mut group = c.benchmark_group("intersect");
     group.throughput(Throughput::Elements(RAYS as u64));
     for (k, (name, method, geometry, spread)) in shapes().into_iter().enumerate() {
-        let shape = Shape::from_geometry(&geometry);
+        let shape = Shape::from_geometry(&geometry).expect("an analytic shape");
         let rays = rays(0x5EED + k as u64, spread);
         let hits = rays
             .iter()

@@ -42,7 +42,7 @@ pub fn aov_at(world: &World, aov: Aov, method: Method, i: u32, j: u32) -> [f32; 
         (Aov::Normal, Some(h)) => world.surface(&ray, h).normal.to_array(),
         (Aov::Albedo, Some(h)) => {
             let point = world.surface(&ray, h).point;
-            albedo_at(&world.materials[h.object as usize], point).to_array()
+            albedo_at(&world.material(h), point).to_array()
         }
         (Aov::Normal | Aov::Albedo, None) => [0.0; 3],
     }

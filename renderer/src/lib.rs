@@ -4,7 +4,9 @@
 //! θ, d, H_d, W_d, C00, P_ij, v_ij); every primitive of the lecture has its
 //! own intersection file under [`shapes`].
 
+pub mod accel_stub;
 pub mod aov;
+pub mod blas_cache;
 pub mod camera;
 pub mod colormap;
 pub mod display;
@@ -12,12 +14,14 @@ pub mod display_image;
 pub mod film;
 pub mod frame;
 pub mod heatmap;
+pub mod image_texture;
 pub mod inspect;
 pub mod integrator;
 pub mod light;
 pub mod offset;
 pub mod optics;
 pub mod pixel_stats;
+pub mod placed_mesh;
 pub mod preview;
 pub mod progressive;
 pub mod ray;
@@ -26,6 +30,7 @@ pub mod sampler;
 pub mod shape_tests;
 pub mod shapes;
 pub mod texture;
+pub mod throughput;
 pub mod world;
 
 pub use camera::Camera;

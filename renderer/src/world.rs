@@ -1,11 +1,17 @@
-//! The prepared, immutable render copy of a scene: camera, shapes, materials, lights.
+//! The prepared, immutable render copy of a scene: camera, objects,
+//! materials, lights, and the two-level BVH over them.
 
+use crate::accel_stub::{Aabb, SceneBvh};
+use crate::blas_cache;
 use crate::camera::{Camera, CameraError};
 use crate::light::Light;
+use crate::placed_mesh::PlacedMesh;
 use crate::ray::Ray;
 use crate::shapes::{Method, Shape, Surface};
-use glam::Vec3;
-use scene::{InvalidScene, Material, ResolvedScene, Scene};
+use glam::{Affine3A, Vec3};
+use scene::{Geometry, InvalidScene, Material, ResolvedObject, ResolvedScene, Scene};
+use std::ops::Range;
+use std::sync::Arc;
 
 /// Why a scene cannot be rendered.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -18,13 +24,50 @@ pub enum RenderError {
     Camera(#[from] CameraError),
 }
 
-/// What the ray hit: which object, and how far along the ray.
+/// What the ray hit: which object, how far along the ray, and for meshes
+/// which triangle where.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hit {
     /// The object's index (its object id).
     pub object: u32,
     /// α, the distance along the ray.
     pub alpha: f32,
+    /// The triangle hit, when the object is a mesh.
+    pub triangle: Option<TriangleRef>,
+}
+
+/// A triangle of a placed mesh, and where on it a ray hit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TriangleRef {
+    /// Index into [`World::meshes`].
+    pub instance: u32,
+    /// The triangle's index in its mesh.
+    pub triangle: u32,
+    /// β, the weight of t1.
+    pub beta: f32,
+    /// γ, the weight of t2.
+    pub gamma: f32,
+}
+
+/// What one object is made of.
+#[derive(Clone, Debug)]
+pub enum Object {
+    /// One analytic shape (or a lone `<triangle>`).
+    Shape(Shape),
+    /// A model file's mesh instances: `World::meshes[instances]`.
+    Model {
+        /// Which entries of [`World::meshes`] belong to the object.
+        instances: Range<u32>,
+    },
+}
+
+/// What the top-level BVH holds: an analytic shape or a mesh instance.
+#[derive(Clone, Copy, Debug)]
+enum Item {
+    /// The object with this id, an analytic shape.
+    Shape(u32),
+    /// This entry of `meshes`.
+    Mesh(u32),
 }
 
 /// A scene prepared for rendering: built once per render, never edited.
@@ -32,18 +75,34 @@ pub struct Hit {
 pub struct World {
     /// The lecture's camera.
     pub camera: Camera,
-    /// One shape per object, in object-id order.
-    pub shapes: Vec<Shape>,
-    /// One material per object.
+    /// One entry per object, in object-id order.
+    pub objects: Vec<Object>,
+    /// One material per object (for a model shown with its file's
+    /// materials, what the object's own settings say; instances carry theirs).
     pub materials: Vec<Material>,
     /// One name per object.
     pub names: Vec<String>,
+    /// Every mesh instance, grouped by object.
+    pub meshes: Vec<PlacedMesh>,
     /// Point and directional lights (ambient ones are folded into `ambient`).
     pub lights: Vec<Light>,
     /// Total ambient radiance: lights every surface unshadowed, and is what
     /// rays escaping the scene see.
     pub ambient: Vec3,
+    /// The top level's items, in BVH item order.
+    items: Vec<Item>,
+    /// Each item's box, as the top level was built over them.
+    item_bounds: Vec<Aabb>,
+    /// The top level over every bounded item.
+    top: SceneBvh,
+    /// Objects no box holds (infinite planes), tested by every ray.
+    unbounded: Vec<u32>,
 }
+
+/// Relative padding of an analytic shape's box in the top level, so that a
+/// grazing hit that the shape's own test rounds to just outside its exact
+/// box is still found.
+const BOX_PADDING: f32 = 1.0e-3;
 
 impl World {
     /// Resolves `scene`'s defaults and prepares it.
@@ -51,7 +110,8 @@ impl World {
         World::new(&scene::resolve(scene)?)
     }
 
-    /// Prepares a resolved scene.
+    /// Prepares a resolved scene: bottom-level BVHs for meshes not seen
+    /// before (built in parallel), then the top level over everything.
     pub fn new(resolved: &ResolvedScene) -> Result<World, RenderError> {
         let camera = Camera::new(&resolved.camera)?;
         let mut lights = Vec::new();
@@ -62,52 +122,245 @@ impl World {
                 other => lights.push(other),
             }
         }
+        let meshes = place_meshes(&resolved.objects);
+        let mut objects = Vec::with_capacity(resolved.objects.len());
+        let (mut items, mut bounds, mut unbounded) = (Vec::new(), Vec::new(), Vec::new());
+        let mut next_instance = 0u32;
+        for (id, object) in resolved.objects.iter().enumerate() {
+            let id = id as u32;
+            let Some(shape) = Shape::from_geometry(&object.geometry) else {
+                let start = next_instance;
+                while meshes
+                    .get(next_instance as usize)
+                    .is_some_and(|m| m.object == id)
+                {
+                    items.push(Item::Mesh(next_instance));
+                    bounds.push(meshes[next_instance as usize].bounds);
+                    next_instance += 1;
+                }
+                objects.push(Object::Model {
+                    instances: start..next_instance,
+                });
+                continue;
+            };
+            objects.push(Object::Shape(shape));
+            match scene::layout::bounds(&object.geometry) {
+                Some(b) => {
+                    let pad = BOX_PADDING * (b.max - b.min).max_element()
+                        + f32::EPSILON * b.min.abs().max(b.max.abs()).max_element();
+                    items.push(Item::Shape(id));
+                    bounds.push(Aabb {
+                        min: b.min - Vec3::splat(pad),
+                        max: b.max + Vec3::splat(pad),
+                    });
+                }
+                None => unbounded.push(id),
+            }
+        }
         Ok(World {
             camera,
-            shapes: resolved
-                .objects
-                .iter()
-                .map(|o| Shape::from_geometry(&o.geometry))
-                .collect(),
+            objects,
             materials: resolved.objects.iter().map(|o| o.material).collect(),
             names: resolved.objects.iter().map(|o| o.name.clone()).collect(),
+            meshes,
             lights,
             ambient,
+            top: SceneBvh::build(&bounds),
+            item_bounds: bounds,
+            items,
+            unbounded,
         })
     }
 
-    /// The nearest hit along the ray (every shape is tested; a BVH comes later).
+    /// The analytic shape of an object, `None` for a model.
+    pub fn shape(&self, object: u32) -> Option<&Shape> {
+        match &self.objects[object as usize] {
+            Object::Shape(shape) => Some(shape),
+            Object::Model { .. } => None,
+        }
+    }
+
+    /// The nearest hit along the ray. `method` chooses the formulas of
+    /// spheres and lone triangles; mesh triangles always use the watertight test.
     pub fn intersect(&self, ray: &Ray, method: Method) -> Option<Hit> {
         crate::ray_count::count_ray();
-        crate::shape_tests::count_shape_tests(self.shapes.len());
-        let mut nearest: Option<Hit> = None;
-        let mut search = *ray;
-        for (index, shape) in self.shapes.iter().enumerate() {
-            if let Some(alpha) = shape.intersect(&search, method) {
+        let mut tests = 0usize;
+        // The triangle of the last hit the top level accepted: each accepted
+        // hit lies inside the interval shrunk by the one before, so the last
+        // is the nearest.
+        let mut last_triangle = None;
+        let found = self
+            .top
+            .closest(ray, |item, ray| match self.items[item as usize] {
+                Item::Shape(id) => {
+                    tests += 1;
+                    let alpha = self.analytic(id).intersect(ray, method)?;
+                    last_triangle = None;
+                    Some(alpha)
+                }
+                Item::Mesh(instance) => {
+                    tests += 1;
+                    let hit = self.meshes[instance as usize].closest_hit(ray)?;
+                    last_triangle = Some(TriangleRef {
+                        instance,
+                        triangle: hit.triangle,
+                        beta: hit.beta,
+                        gamma: hit.gamma,
+                    });
+                    Some(hit.alpha)
+                }
+            });
+        let mut nearest = found.map(|(item, alpha)| Hit {
+            object: match self.items[item as usize] {
+                Item::Shape(id) => id,
+                Item::Mesh(instance) => self.meshes[instance as usize].object,
+            },
+            alpha,
+            triangle: last_triangle,
+        });
+        // Infinite planes last: a bounded surface lying exactly in a plane
+        // (a cone's base on the floor) wins the tie.
+        let mut search = nearest.map_or(*ray, |h| ray.with_t_max(h.alpha));
+        for &id in &self.unbounded {
+            tests += 1;
+            if let Some(alpha) = self.analytic(id).intersect(&search, method) {
                 search.t_max = alpha;
                 nearest = Some(Hit {
-                    object: index as u32,
+                    object: id,
                     alpha,
+                    triangle: None,
                 });
             }
         }
+        crate::shape_tests::count_shape_tests(tests);
         nearest
     }
 
     /// True when anything lies on the ray inside its interval (shadow rays).
-    /// Shapes are tested in object order up to the first occluder.
     pub fn occluded(&self, ray: &Ray, method: Method) -> bool {
         crate::ray_count::count_ray();
-        let first = self
-            .shapes
-            .iter()
-            .position(|shape| shape.intersect(ray, method).is_some());
-        crate::shape_tests::count_shape_tests(first.map_or(self.shapes.len(), |k| k + 1));
-        first.is_some()
+        let mut tests = 0usize;
+        let blocked = self.unbounded.iter().any(|&id| {
+            tests += 1;
+            self.analytic(id).intersect(ray, method).is_some()
+        }) || self.top.any(ray, |item, ray| {
+            tests += 1;
+            match self.items[item as usize] {
+                Item::Shape(id) => self.analytic(id).intersect(ray, method).is_some(),
+                Item::Mesh(instance) => self.meshes[instance as usize].any_hit(ray),
+            }
+        });
+        crate::shape_tests::count_shape_tests(tests);
+        blocked
     }
 
-    /// Hit point and normal of a hit.
-    pub fn surface(&self, ray: &Ray, hit: Hit) -> Surface {
-        self.shapes[hit.object as usize].surface(ray, hit.alpha)
+    /// The analytic shape of an object known to be one.
+    fn analytic(&self, object: u32) -> &Shape {
+        match &self.objects[object as usize] {
+            Object::Shape(shape) => shape,
+            Object::Model { .. } => unreachable!("object {object} is a model, not a shape"),
+        }
     }
+
+    /// Hit point and geometric normal of a hit.
+    pub fn surface(&self, ray: &Ray, hit: Hit) -> Surface {
+        match hit.triangle {
+            Some(t) => self.meshes[t.instance as usize].surface(&mesh_hit(hit, t)),
+            None => self.analytic(hit.object).surface(ray, hit.alpha),
+        }
+    }
+
+    /// The normal to shade with: the interpolated vertex normal on meshes,
+    /// the geometric normal elsewhere.
+    pub fn shading_normal(&self, hit: Hit, surface: &Surface) -> Vec3 {
+        match hit.triangle {
+            Some(t) => {
+                self.meshes[t.instance as usize].shading_normal(&mesh_hit(hit, t), surface.normal)
+            }
+            None => surface.normal,
+        }
+    }
+
+    /// The material at a hit, its colour multiplied by the mesh's texture there.
+    pub fn material(&self, hit: Hit) -> Material {
+        match hit.triangle {
+            Some(t) => {
+                let mesh = &self.meshes[t.instance as usize];
+                Material {
+                    color: mesh.base_color(&mesh_hit(hit, t)),
+                    ..mesh.material
+                }
+            }
+            None => self.materials[hit.object as usize],
+        }
+    }
+
+    /// The (padded) boxes of the analytic shapes in the top level.
+    pub fn shape_bounds(&self) -> impl Iterator<Item = Aabb> + '_ {
+        self.items
+            .iter()
+            .zip(&self.item_bounds)
+            .filter(|(item, _)| matches!(item, Item::Shape(_)))
+            .map(|(_, b)| *b)
+    }
+
+    /// Triangles drawn (every mesh instance counts its mesh's triangles).
+    pub fn triangle_count(&self) -> usize {
+        self.meshes.iter().map(|m| m.mesh.triangles.len()).sum()
+    }
+}
+
+/// The accelerator's view of a world hit on a mesh.
+fn mesh_hit(hit: Hit, t: TriangleRef) -> crate::accel_stub::MeshHit {
+    crate::accel_stub::MeshHit {
+        triangle: t.triangle,
+        alpha: hit.alpha,
+        beta: t.beta,
+        gamma: t.gamma,
+    }
+}
+
+/// Every instance of every model object, in object order, with its BVH
+/// (shared per mesh, reused from earlier worlds) and its material.
+fn place_meshes(objects: &[ResolvedObject]) -> Vec<PlacedMesh> {
+    let mut wanted = Vec::new();
+    for (id, object) in objects.iter().enumerate() {
+        if let Geometry::Mesh {
+            model,
+            world_from_model,
+            file_materials,
+        } = &object.geometry
+        {
+            for instance in &model.instances {
+                let mesh = model.meshes[instance.mesh as usize].clone();
+                let file_material = model.materials.get(instance.material as usize);
+                let (material, texture) = match file_material {
+                    Some(m) if *file_materials => (
+                        m.material,
+                        m.base_color_texture
+                            .and_then(|k| model.textures.get(k as usize).cloned()),
+                    ),
+                    _ => (object.material, None),
+                };
+                let transform = *world_from_model * instance.model_from_mesh;
+                wanted.push((id as u32, mesh, transform, material, texture));
+            }
+        }
+    }
+    let meshes: Vec<Arc<scene::TriangleMesh>> = wanted.iter().map(|w| w.1.clone()).collect();
+    let bvhs = blas_cache::bvhs_for(&meshes);
+    wanted
+        .into_iter()
+        .zip(bvhs)
+        .map(|((object, mesh, transform, material, texture), bvh)| {
+            PlacedMesh::new(
+                object,
+                mesh,
+                bvh,
+                Affine3A::from_mat4(transform),
+                material,
+                texture,
+            )
+        })
+        .collect()
 }

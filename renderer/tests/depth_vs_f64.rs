@@ -191,6 +191,7 @@ fn hit(g: &Geometry, o: DVec3, d: DVec3) -> Option<f64> {
                 minor as f64,
             )
         }
+        Geometry::Mesh { .. } => unimplemented!("the shipped scenes compared here have no meshes"),
     }
 }
 

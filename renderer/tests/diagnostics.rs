@@ -73,7 +73,7 @@ fn relative_variance_is_zero_on_the_background_and_matches_the_samples_at_an_edg
 fn a_miss_costs_n_shape_tests_and_a_lit_hit_costs_2n() {
     for n in [1usize, 5] {
         let world = sphere_world(16, n - 1);
-        assert_eq!(world.shapes.len(), n);
+        assert_eq!(world.objects.len(), n);
         let film = Film::render(&world, &RenderOptions::default(), 3);
         let cost = film.cost_per_sample();
         // A corner ray misses every shape: one closest-hit query, no shading.

@@ -2,8 +2,8 @@
 //! unplaced objects rest on the floor, and a camera that frames the scene.
 
 use crate::model::Shape;
-use crate::resolved::Geometry;
-use glam::{Mat3, Vec3};
+use crate::resolved::{Geometry, ModelRef};
+use glam::{Mat3, Mat4, Vec3};
 
 /// The rotation of `rotate_deg` degrees about x, then y, then z (world_from_object).
 pub fn rotation_from_euler_degrees(rotate_deg: Vec3) -> Mat3 {
@@ -59,17 +59,28 @@ impl Aabb {
     }
 }
 
-/// The box around a local box [lo, hi] after rotation and translation.
-fn rotated_box(origin: Vec3, rotate_deg: Vec3, lo: Vec3, hi: Vec3) -> Aabb {
-    let rot = rotation_from_euler_degrees(rotate_deg);
-    Aabb::around((0..8).map(|k| {
-        let corner = Vec3::new(
+/// The eight corners of the box [lo, hi].
+fn box_corners(lo: Vec3, hi: Vec3) -> [Vec3; 8] {
+    std::array::from_fn(|k| {
+        Vec3::new(
             if k & 1 == 0 { lo.x } else { hi.x },
             if k & 2 == 0 { lo.y } else { hi.y },
             if k & 4 == 0 { lo.z } else { hi.z },
-        );
-        origin + rot * corner
-    }))
+        )
+    })
+}
+
+/// The box around a local box [lo, hi] after rotation and translation.
+fn rotated_box(origin: Vec3, rotate_deg: Vec3, lo: Vec3, hi: Vec3) -> Aabb {
+    let rot = rotation_from_euler_degrees(rotate_deg);
+    Aabb::around(box_corners(lo, hi).map(|corner| origin + rot * corner))
+}
+
+/// world_from_model of a placed model: translate · rotate (x, then y, then z) · scale.
+pub fn model_transform(translate: Vec3, rotate_deg: Vec3, scale: Vec3) -> Mat4 {
+    Mat4::from_translation(translate)
+        * Mat4::from_mat3(rotation_from_euler_degrees(rotate_deg))
+        * Mat4::from_scale(scale)
 }
 
 /// The world-space bounding box of a geometry; `None` for an infinite plane.
@@ -112,12 +123,30 @@ pub fn bounds(geometry: &Geometry) -> Option<Aabb> {
         }
         Geometry::Triangle { t0, t1, t2 } => Aabb::around([t0, t1, t2]),
         Geometry::Plane { .. } => return None,
+        Geometry::Mesh {
+            ref model,
+            world_from_model,
+            ..
+        } => {
+            let (lo, hi) = model.bounds()?;
+            Aabb::around(box_corners(lo, hi).map(|c| world_from_model.transform_point3(c)))
+        }
     })
 }
 
 /// The geometry of `shape` with its anchor at `anchor` when the shape has none.
 pub fn geometry_at(shape: &Shape, anchor: Vec3) -> Geometry {
     match *shape {
+        Shape::Mesh {
+            ref source,
+            translate,
+            rotate,
+            scale,
+        } => Geometry::Mesh {
+            model: ModelRef(source.model.clone()),
+            world_from_model: model_transform(translate.unwrap_or(anchor), rotate, scale),
+            file_materials: true,
+        },
         Shape::Sphere { center, radius } => Geometry::Sphere {
             center: center.unwrap_or(anchor),
             radius,
@@ -182,6 +211,10 @@ pub fn is_unplaced(shape: &Shape) -> bool {
             | Shape::Cylinder { base: None, .. }
             | Shape::Cone { base: None, .. }
             | Shape::Torus { center: None, .. }
+            | Shape::Mesh {
+                translate: None,
+                ..
+            }
     )
 }
 
@@ -191,7 +224,7 @@ const ROW_GAP: f32 = 0.5;
 /// Geometries for `shapes`: given anchors are kept; unplaced shapes rest on
 /// the floor at height `floor_y`, side by side along x in document order,
 /// the row centred on x = 0 and z = 0.
-pub fn place(shapes: &[Shape], floor_y: f32) -> Vec<Geometry> {
+pub fn place(shapes: &[&Shape], floor_y: f32) -> Vec<Geometry> {
     // Each unplaced shape's box when anchored at the origin.
     let footprints: Vec<Option<Aabb>> = shapes
         .iter()
@@ -266,7 +299,7 @@ mod tests {
             Shape::default_for_tag("sphere").expect("sphere"),
             Shape::default_for_tag("box").expect("box"),
         ];
-        let placed = place(&shapes, 0.0);
+        let placed = place(&shapes.each_ref(), 0.0);
         let boxes: Vec<Aabb> = placed.iter().map(|g| bounds(g).expect("finite")).collect();
         for b in &boxes {
             assert!(b.min.y.abs() < 1e-6, "rests on the floor: {b:?}");

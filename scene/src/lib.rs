@@ -8,11 +8,13 @@
 
 pub mod color;
 mod error;
+pub mod generate;
 pub mod layout;
 pub mod materials;
 pub mod mesh;
 pub mod model;
 pub mod model_file;
+mod model_scene;
 mod read;
 mod resolve;
 mod resolved;
@@ -24,6 +26,7 @@ pub use model::*;
 pub use model_file::{
     MeshInstance, ModelCamera, ModelError, ModelFile, ModelMaterial, Texture, Wrap, load_model,
 };
+pub use model_scene::{is_model_path, read_any, read_model_scene};
 pub use read::{read_file, read_str};
 pub use resolve::resolve;
 pub use resolved::*;

@@ -5,7 +5,9 @@
 //! fills them in. Everything else carries its fixed default, and the writer
 //! omits values equal to it, so a saved scene says no more than it needs.
 
+use crate::model_file::ModelFile;
 use glam::Vec3;
+use std::sync::Arc;
 
 /// A whole scene: camera, lights, named materials and objects, in document order.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -208,7 +210,7 @@ pub struct Object {
 /// plus planes. `rotate` is in degrees about x, then y, then z, about the
 /// shape's own anchor (centre or base). An anchor of `None` means "rest on the
 /// floor, side by side with the other unplaced objects in document order".
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Shape {
     /// A sphere.
     Sphere {
@@ -280,6 +282,46 @@ pub enum Shape {
         /// Height of the floor.
         y: f32,
     },
+    /// A model file (glTF) placed in the scene: scaled, then rotated (x, then
+    /// y, then z), then moved so that the model's origin is at `translate`.
+    Mesh {
+        /// The file as the scene names it, and what was loaded from it.
+        source: MeshSource,
+        /// Where the model's origin goes.
+        translate: Option<Vec3>,
+        /// Rotation in degrees about x, then y, then z.
+        rotate: Vec3,
+        /// Scale along the model's own x, y, z (> 0).
+        scale: Vec3,
+    },
+}
+
+/// A `<mesh src=…>` reference: the path as written in the scene file
+/// (relative to the scene file's folder) and the model loaded from it.
+#[derive(Clone)]
+pub struct MeshSource {
+    /// The path as written in the scene file.
+    pub src: String,
+    /// The loaded model, shared by every object that names the same file.
+    pub model: Arc<ModelFile>,
+}
+
+impl PartialEq for MeshSource {
+    /// Two references are equal when they name the same file (the loaded
+    /// contents follow from the name).
+    fn eq(&self, other: &Self) -> bool {
+        self.src == other.src
+    }
+}
+
+impl std::fmt::Debug for MeshSource {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        // The model's vertex arrays are far too long to print.
+        f.debug_struct("MeshSource")
+            .field("src", &self.src)
+            .field("triangles", &self.model.drawn_triangles())
+            .finish()
+    }
 }
 
 /// Default shape parameters used by the reader, the writer and the editor.
@@ -343,6 +385,7 @@ impl Shape {
             Shape::Triangle { .. } => "triangle",
             Shape::Plane { .. } => "plane",
             Shape::Floor { .. } => "floor",
+            Shape::Mesh { .. } => "mesh",
         }
     }
 
@@ -399,12 +442,13 @@ impl Shape {
             | Shape::Box { center, .. }
             | Shape::Torus { center, .. } => Some(center),
             Shape::Cylinder { base, .. } | Shape::Cone { base, .. } => Some(base),
+            Shape::Mesh { translate, .. } => Some(translate),
             Shape::Triangle { .. } | Shape::Plane { .. } | Shape::Floor { .. } => None,
         }
     }
 
     /// Every shape element name, for error suggestions.
-    pub const TAGS: [&'static str; 8] = [
-        "sphere", "box", "cylinder", "cone", "torus", "triangle", "plane", "floor",
+    pub const TAGS: [&'static str; 9] = [
+        "sphere", "box", "cylinder", "cone", "torus", "triangle", "plane", "floor", "mesh",
     ];
 }

@@ -9,7 +9,7 @@ use crate::model::Light;
 use crate::resolved::Material;
 use glam::{Mat4, Vec3};
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 /// Everything raylab takes from one model file. Shared through an `Arc` by
 /// every `<mesh>` that names the same file.
@@ -32,6 +32,9 @@ pub struct ModelFile {
     /// What the file uses that raylab does not support, one line per feature
     /// (reported once; the rest of the file still loads).
     pub warnings: Vec<String>,
+    /// [`ModelFile::bounds`], computed on first use (resolving a scene asks
+    /// for it after every edit; a million-vertex walk each time is too slow).
+    pub(crate) bounds_cache: OnceLock<Option<(Vec3, Vec3)>>,
 }
 
 /// One placed primitive: `model_from_mesh` takes the mesh into the model's space.
@@ -115,6 +118,10 @@ impl ModelFile {
     /// The model-space box around every instance, as (min, max); `None` when
     /// nothing is drawn.
     pub fn bounds(&self) -> Option<(Vec3, Vec3)> {
+        *self.bounds_cache.get_or_init(|| self.compute_bounds())
+    }
+
+    fn compute_bounds(&self) -> Option<(Vec3, Vec3)> {
         let mut bounds: Option<(Vec3, Vec3)> = None;
         for instance in &self.instances {
             let mesh = &self.meshes[instance.mesh as usize];

@@ -4,7 +4,7 @@ use crate::InvalidScene;
 use crate::layout::{self, Aabb};
 use crate::materials;
 use crate::model::{Light, LightKind, Scene, Shape};
-use crate::resolved::{ResolvedCamera, ResolvedObject, ResolvedScene};
+use crate::resolved::{Geometry, ResolvedCamera, ResolvedObject, ResolvedScene};
 use glam::Vec3;
 
 /// The scene with every default decided:
@@ -20,13 +20,19 @@ pub fn resolve(scene: &Scene) -> Result<ResolvedScene, InvalidScene> {
             _ => None,
         })
         .unwrap_or(0.0);
-    let shapes: Vec<Shape> = scene.objects.iter().map(|o| o.shape).collect();
+    let shapes: Vec<&Shape> = scene.objects.iter().map(|o| &o.shape).collect();
     let geometries = layout::place(&shapes, floor_y);
 
     let mut objects = Vec::with_capacity(scene.objects.len());
     for (index, (object, geometry)) in scene.objects.iter().zip(geometries).enumerate() {
         let base = materials::named(&scene.materials, object.material.as_deref())
             .map_err(|e| InvalidScene(format!("{} {}: {}", object.shape.tag(), index + 1, e.0)))?;
+        let mut geometry = geometry;
+        if let Geometry::Mesh { file_materials, .. } = &mut geometry {
+            // A <mesh> that names a material or sets a parameter is painted
+            // with it; otherwise the file's own materials show.
+            *file_materials = object.material.is_none() && object.params.is_empty();
+        }
         objects.push(ResolvedObject {
             name: object
                 .name

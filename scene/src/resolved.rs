@@ -1,7 +1,9 @@
 //! The scene with every default filled in: what a renderer consumes.
 
 use crate::model::{BaseMaterial, Light};
-use glam::Vec3;
+use crate::model_file::ModelFile;
+use glam::{Mat4, Vec3};
+use std::sync::Arc;
 
 /// A scene with concrete positions, camera, lights and materials.
 #[derive(Clone, Debug, PartialEq)]
@@ -45,7 +47,7 @@ pub struct ResolvedObject {
 }
 
 /// Concrete geometry in world space (the floor has become a plane).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Geometry {
     /// Sphere with centre C and radius r.
     Sphere {
@@ -112,6 +114,45 @@ pub enum Geometry {
         /// The normal.
         normal: Vec3,
     },
+    /// A model file's instances, all placed by one transform.
+    Mesh {
+        /// The loaded model.
+        model: ModelRef,
+        /// world_from_model = translate · rotate (x, then y, then z) · scale.
+        world_from_model: Mat4,
+        /// True: each primitive keeps the file's material; false: the
+        /// object's own material (named or overridden) replaces them all.
+        file_materials: bool,
+    },
+}
+
+/// A shared, loaded model inside a resolved scene; equal when it is the same
+/// load (the same `Arc`), so comparing scenes never walks vertex arrays.
+#[derive(Clone)]
+pub struct ModelRef(pub Arc<ModelFile>);
+
+impl PartialEq for ModelRef {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+    }
+}
+
+impl std::fmt::Debug for ModelRef {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "ModelRef({}, {} triangles)",
+            self.0.path.display(),
+            self.0.drawn_triangles()
+        )
+    }
+}
+
+impl std::ops::Deref for ModelRef {
+    type Target = ModelFile;
+    fn deref(&self) -> &ModelFile {
+        &self.0
+    }
 }
 
 /// A concrete material: a base with every parameter decided.

@@ -186,7 +186,7 @@ fn object(out: &mut String, o: &Object) {
     let tag_name = o.shape.tag();
     let mut tag = Tag::new(out, tag_name);
     let default = Shape::default_for_tag(tag_name);
-    match (o.shape, default) {
+    match (o.shape.clone(), default) {
         (Shape::Sphere { center, radius }, Some(Shape::Sphere { radius: r, .. })) => {
             tag.vec("center", center, None)
                 .num("radius", radius, Some(r));
@@ -276,6 +276,20 @@ fn object(out: &mut String, o: &Object) {
         }
         (Shape::Floor { y }, Some(Shape::Floor { y: d })) => {
             tag.num("y", y, Some(d));
+        }
+        (
+            Shape::Mesh {
+                source,
+                translate,
+                rotate,
+                scale,
+            },
+            _,
+        ) => {
+            tag.text("src", Some(&source.src))
+                .vec("translate", translate, None)
+                .vec("rotate", Some(rotate), Some(Vec3::ZERO))
+                .vec("scale", Some(scale), Some(Vec3::ONE));
         }
         _ => {}
     }

@@ -225,3 +225,15 @@ fn non_utf8_file_is_an_error_at_the_first_bad_byte() {
     assert_eq!((e.line, e.column), (2, 18));
     assert!(e.message.contains("not valid UTF-8"), "{e}");
 }
+
+#[test]
+fn a_mesh_without_src_or_with_a_missing_file_is_an_error_at_it() {
+    assert_error(&in_scene("  <mesh/>"), 2, 3, "needs a src attribute");
+    // The message names the file and why it could not be loaded.
+    assert_error(
+        &in_scene(r#"  <mesh src="no-such-model.glb"/>"#),
+        2,
+        14,
+        "no-such-model.glb",
+    );
+}

@@ -71,10 +71,17 @@ impl Document {
         }
     }
 
-    /// Reads the scene file at `path`.
+    /// Reads the scene file (or model file) at `path`.
     pub fn open(path: &Path, render: RenderSettings) -> Result<Self, scene::SceneError> {
-        let scene = scene::read_file(path)?;
-        Ok(Self::new(scene, Some(path.to_path_buf()), render))
+        let scene = scene::read_any(path)?;
+        Ok(Self::new(scene, Self::scene_path(path), render))
+    }
+
+    /// The file a document read from `path` saves to: the path itself for a
+    /// scene file; none for a model file (.gltf, .glb), which raylab never
+    /// overwrites — saving it asks where to write a new scene.
+    pub fn scene_path(path: &Path) -> Option<PathBuf> {
+        (!scene::is_model_path(path)).then(|| path.to_path_buf())
     }
 
     /// True when the scene differs from the file (undoing back to the saved
@@ -86,6 +93,7 @@ impl Document {
     /// Writes the scene to `path` (via a temporary file, so a failed write
     /// never truncates the old one) and makes it the document's file.
     pub fn save_as(&mut self, path: &Path) -> std::io::Result<()> {
+        rebase_mesh_sources(&mut self.state.scene, path);
         let text = scene::write_string(&self.state.scene);
         let mut temporary = path.as_os_str().to_owned();
         temporary.push(".raylab-saving");
@@ -118,6 +126,33 @@ impl Document {
             .map(|p| format!(" — {}", p.display()))
             .unwrap_or_default();
         format!("{mark}{}{folder} — raylab", self.display_name())
+    }
+}
+
+/// Points every `<mesh src>` at its model file from the folder `scene_path`
+/// is in: just the file name when the model lies in that folder, else the
+/// model's absolute path (so a scene saved elsewhere still finds its models).
+fn rebase_mesh_sources(scene: &mut Scene, scene_path: &Path) {
+    let folder = scene_path.parent().and_then(|f| {
+        std::fs::canonicalize(if f.as_os_str().is_empty() {
+            Path::new(".")
+        } else {
+            f
+        })
+        .ok()
+    });
+    for object in &mut scene.objects {
+        if let scene::Shape::Mesh { source, .. } = &mut object.shape {
+            let Ok(model) = std::fs::canonicalize(&source.model.path) else {
+                continue;
+            };
+            source.src = match (model.parent(), model.file_name(), &folder) {
+                (Some(dir), Some(name), Some(folder)) if dir == folder => {
+                    name.to_string_lossy().into_owned()
+                }
+                _ => model.display().to_string(),
+            };
+        }
     }
 }
 

@@ -67,7 +67,7 @@ impl Dialogs {
             }
             let chosen = match kind {
                 DialogKind::Open => dialog
-                    .add_filter("raylab scene", &["xml"])
+                    .add_filter("raylab scene or glTF model", &["xml", "gltf", "glb"])
                     .add_filter("any file", &["*"])
                     .pick_file(),
                 DialogKind::SaveScene => dialog.add_filter("raylab scene", &["xml"]).save_file(),

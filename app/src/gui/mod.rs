@@ -27,7 +27,8 @@ mod widgets;
 
 use crate::output::Provenance;
 use commands::Command;
-use document::{Document, RenderSettings};
+pub use document::Document;
+use document::RenderSettings;
 use edits::Selection;
 use files::{DialogKind, DialogResult, Dialogs, Settings};
 use navigation::OrbitView;
@@ -493,6 +494,7 @@ impl RaylabApp {
         egui::Window::new("Pixel inspector")
             .default_pos(ctx.content_rect().right_top() + egui::vec2(-380.0, 60.0))
             .default_width(360.0)
+            .max_width(480.0)
             .default_height(520.0)
             .show(ctx, |ui| {
                 egui::ScrollArea::vertical().show(ui, |ui| {
@@ -635,10 +637,14 @@ impl RaylabApp {
     fn open(&mut self, path: &Path) {
         match Document::open(path, self.doc.state.render) {
             Ok(doc) => {
+                let warnings = model_warnings_text(&doc.state.scene);
                 self.doc = doc;
                 self.selection = Selection::None;
                 self.navigation = None;
                 self.settings.remember(path);
+                if !warnings.is_empty() {
+                    self.message = Some(format!("Loaded, but raylab ignored:\n\n{warnings}"));
+                }
             }
             Err(e) => self.message = Some(format!("Cannot open the scene.\n\n{e}")),
         }
@@ -1016,3 +1022,14 @@ impl eframe::App for RaylabApp {
 
 #[cfg(test)]
 mod tests;
+
+/// What the scene's model files use that raylab ignores, one line each
+/// (empty when nothing was ignored).
+fn model_warnings_text(scene: &Scene) -> String {
+    scene
+        .model_warnings()
+        .into_iter()
+        .flat_map(|(src, warnings)| warnings.into_iter().map(move |w| format!("{src}: {w}")))
+        .collect::<Vec<_>>()
+        .join("\n")
+}

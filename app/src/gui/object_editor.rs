@@ -12,6 +12,9 @@ pub fn resolved_anchor(geometry: &Geometry) -> Option<Vec3> {
         | Geometry::Box { center, .. }
         | Geometry::Torus { center, .. } => Some(center),
         Geometry::Cylinder { base, .. } | Geometry::Cone { base, .. } => Some(base),
+        Geometry::Mesh {
+            world_from_model, ..
+        } => Some(world_from_model.w_axis.truncate()),
         Geometry::Triangle { .. } | Geometry::Plane { .. } => None,
     }
 }
@@ -109,6 +112,24 @@ fn shape_rows(ui: &mut egui::Ui, shape: &mut Shape, anchor: Option<Vec3>) -> boo
             ui.label("Height y");
             changed |= ui.add(widgets::drag(y).speed(0.02).prefix("y ")).changed();
             ui.end_row();
+        }
+        Shape::Mesh {
+            source,
+            translate,
+            rotate,
+            scale,
+        } => {
+            ui.label("File");
+            ui.label(&source.src).on_hover_text(format!(
+                "{}\n{} triangles drawn",
+                source.model.path.display(),
+                source.model.drawn_triangles()
+            ));
+            ui.end_row();
+            changed |= widgets::anchor_row(ui, "Translate", translate, anchor);
+            changed |= widgets::vec3_row(ui, "Rotate (°)", rotate, 1.0);
+            changed |= widgets::vec3_row(ui, "Scale", scale, 0.01);
+            *scale = scale.max(Vec3::splat(1e-4));
         }
     }
     changed

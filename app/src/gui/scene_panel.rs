@@ -25,7 +25,11 @@ const LIGHT_KINDS: [(&str, LightKind); 3] = [
 /// The "Add" menu's items; also used by the menu bar.
 pub fn add_menu(ui: &mut egui::Ui) -> Option<Action> {
     let mut action = None;
-    for tag in Shape::TAGS {
+    // A <mesh> needs a file; it comes in with File > Open or a scene's <mesh src>.
+    for tag in Shape::TAGS
+        .into_iter()
+        .filter(|t| Shape::default_for_tag(t).is_some())
+    {
         if ui.button(tag).clicked() {
             action = Some(Action::AddObject(tag));
         }

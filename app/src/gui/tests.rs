@@ -242,7 +242,7 @@ fn clicking_the_image_selects_the_object_under_the_pointer() {
     let mut h = harness(seed_app(64, 48));
     settle(&mut h);
     let world = h.state().prepared.as_ref().expect("prepared").world.clone();
-    for object in 0..world.shapes.len() as u32 {
+    for object in 0..world.objects.len() as u32 {
         // A pixel inside the object's silhouette, away from its edge.
         let pixel = (2..46u32)
             .flat_map(|j| (2..62u32).map(move |i| [i, j]))
@@ -260,6 +260,9 @@ fn clicking_the_image_selects_the_object_under_the_pointer() {
             });
         let Some(pixel) = pixel else { continue };
         // Let the panels settle after the previous selection changed them.
+        // The previous click opened the pixel inspector; close it so that it
+        // covers nothing (the image is tiny here).
+        h.state_mut().inspected = None;
         h.run_steps(3);
         let pos = h.state().image.pixel_on_screen(pixel).expect("drawn");
         click_at(&mut h, pos);

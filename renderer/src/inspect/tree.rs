@@ -81,22 +81,29 @@ impl Recorder for TreeRecorder<'_> {
     }
 
     fn hit(&mut self, at: usize, ray: &Ray, hit: Hit, surface: &Surface, front: bool) {
-        let shape = &self.world.shapes[hit.object as usize];
-        let material = &self.world.materials[hit.object as usize];
+        let shape = self.world.shape(hit.object);
+        let material = &self.world.material(hit);
         let (barycentrics, sphere) = match shape {
-            Shape::Triangle(t) => (
+            None => (
+                hit.triangle.map(|t| Barycentrics {
+                    beta: t.beta,
+                    gamma: t.gamma,
+                }),
+                None,
+            ),
+            Some(Shape::Triangle(t)) => (
                 t.hit(ray, self.method).map(|h| Barycentrics {
                     beta: h.beta,
                     gamma: h.gamma,
                 }),
                 None,
             ),
-            Shape::Sphere(s) => (None, Some(s.quadratic(ray, self.method))),
+            Some(Shape::Sphere(s)) => (None, Some(s.quadratic(ray, self.method))),
             _ => (None, None),
         };
         self.rays[at].hit = Some(SurfaceHit {
             object: self.object(hit.object),
-            shape: shape.kind_name(),
+            shape: shape.map_or("mesh triangle", Shape::kind_name),
             alpha: hit.alpha,
             point: surface.point,
             normal: surface.normal,

@@ -47,11 +47,18 @@ fn trace<R: Recorder>(
         return world.ambient;
     };
     let surface = world.surface(ray, hit);
-    let material = &world.materials[hit.object as usize];
+    let material = &world.material(hit);
+    // Which side the ray came from follows the geometric normal; shading
+    // uses the (interpolated, on meshes) shading normal turned to that side.
     let front = ray.dir.dot(surface.normal) < 0.0;
     rec.hit(node, ray, hit, &surface, front);
-    // The normal on the side the ray came from.
+    let shading_normal = world.shading_normal(hit, &surface);
     let n = if front {
+        shading_normal
+    } else {
+        -shading_normal
+    };
+    let geometric_side = if front {
         surface.normal
     } else {
         -surface.normal
@@ -62,7 +69,11 @@ fn trace<R: Recorder>(
 
     let can_recurse = depth < options.max_depth;
     let spawn = |dir: Vec3| {
-        let side = if dir.dot(n) >= 0.0 { n } else { -n };
+        let side = if dir.dot(geometric_side) >= 0.0 {
+            geometric_side
+        } else {
+            -geometric_side
+        };
         Ray::new(offset_ray_origin(point, side), dir)
     };
     // A reflected or refracted ray, recorded as `node`'s child carrying `factor`.
@@ -82,6 +93,7 @@ fn trace<R: Recorder>(
                 albedo,
                 point,
                 n,
+                geometric_side,
                 to_eye: -ray.dir,
             };
             radiance += diffuse_weight * direct(world, options, &at, diffuse_weight, rec, node);
@@ -152,8 +164,10 @@ struct Shading<'a> {
     material: &'a Material,
     albedo: Vec3,
     point: Vec3,
-    /// The unit normal on the side the ray came from.
+    /// The unit shading normal on the side the ray came from.
     n: Vec3,
+    /// The unit geometric normal on that side (shadow rays start off it).
+    geometric_side: Vec3,
     to_eye: Vec3,
 }
 
@@ -171,7 +185,7 @@ fn direct<R: Recorder>(
 ) -> Vec3 {
     let (material, albedo, point, n) = (at.material, at.albedo, at.point, at.n);
     let mut radiance = albedo * world.ambient;
-    let origin = offset_ray_origin(point, n);
+    let origin = offset_ray_origin(point, at.geometric_side);
     for (index, light) in world.lights.iter().enumerate() {
         let Some(sample) = light.sample(point) else {
             continue;

@@ -71,9 +71,10 @@ pub enum Shape {
 }
 
 impl Shape {
-    /// The renderable shape for a resolved scene geometry.
-    pub fn from_geometry(geometry: &Geometry) -> Shape {
-        match *geometry {
+    /// The renderable shape for a resolved scene geometry; `None` for a mesh
+    /// (meshes are triangles in a BVH, see [`crate::placed_mesh`]).
+    pub fn from_geometry(geometry: &Geometry) -> Option<Shape> {
+        Some(match *geometry {
             Geometry::Sphere { center, radius } => Shape::Sphere(Sphere::new(center, radius)),
             Geometry::Triangle { t0, t1, t2 } => Shape::Triangle(Triangle::new(t0, t1, t2)),
             Geometry::Box {
@@ -100,7 +101,8 @@ impl Shape {
                 rotate,
             } => Shape::Torus(Torus::new(center, major, minor, rotate)),
             Geometry::Plane { point, normal } => Shape::Plane(Plane::new(point, normal)),
-        }
+            Geometry::Mesh { .. } => return None,
+        })
     }
 
     /// The shape's kind as scene files name it ("sphere", "triangle", "box",

@@ -18,10 +18,14 @@ pub(crate) use values::parse_triple;
 
 use crate::SceneError;
 use crate::model::{BaseMaterial, Scene};
+use crate::model_file::{ModelFile, load_model};
 use element::Element;
 use position::Locator;
 use quick_xml::Reader;
 use quick_xml::events::{BytesStart, Event};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 /// Parses scene XML; `file` labels error messages.
 ///
@@ -42,6 +46,11 @@ pub fn read_str(text: &str, file: &str) -> Result<Scene, SceneError> {
         camera_at: None,
         material_names: Vec::new(),
         material_refs: Vec::new(),
+        dir: Path::new(file)
+            .parent()
+            .map(Path::to_path_buf)
+            .unwrap_or_default(),
+        models: HashMap::new(),
     };
     loop {
         let event = reader.read_event().map_err(|e| {
@@ -77,9 +86,9 @@ enum Phase {
 }
 
 /// The children `<scene>` may have.
-const CHILDREN: [&str; 11] = [
+const CHILDREN: [&str; 12] = [
     "camera", "light", "material", "sphere", "box", "cylinder", "cone", "torus", "triangle",
-    "plane", "floor",
+    "plane", "floor", "mesh",
 ];
 
 /// The reader's state while walking the events.
@@ -93,6 +102,10 @@ struct Document<'a> {
     material_names: Vec<(String, usize)>,
     /// Material names used by shapes, with their value offsets (checked at the end).
     material_refs: Vec<(String, usize)>,
+    /// The folder `<mesh src>` paths are relative to: the scene file's.
+    dir: PathBuf,
+    /// Model files loaded so far, by `src`, so that a file named twice is loaded once.
+    models: HashMap<String, Arc<ModelFile>>,
 }
 
 impl Document<'_> {
@@ -157,7 +170,11 @@ impl Document<'_> {
             }
             _ if shape_attrs(tag).is_some() => {
                 let el = Element::parse(start, loc, &objects::allowed_on_shape(tag))?;
-                let object = objects::object(&el)?;
+                let object = if tag == "mesh" {
+                    objects::mesh(&el, |src| self.load_model(src))?
+                } else {
+                    objects::object(&el)?
+                };
                 if let Some((name, value_at)) = el.raw("material") {
                     self.material_refs.push((name.to_owned(), value_at));
                 }
@@ -175,6 +192,16 @@ impl Document<'_> {
             }
         }
         Ok(())
+    }
+
+    /// The model file `src` names (relative to the scene file), loaded once.
+    fn load_model(&mut self, src: &str) -> Result<Arc<ModelFile>, String> {
+        if let Some(model) = self.models.get(src) {
+            return Ok(model.clone());
+        }
+        let model = Arc::new(load_model(&self.dir.join(src)).map_err(|e| e.to_string())?);
+        self.models.insert(src.to_owned(), model.clone());
+        Ok(model)
     }
 
     /// An end tag `</name>`.

@@ -4,8 +4,10 @@ use super::element::Element;
 use super::suggest::did_you_mean;
 use super::values::{self, Range, degenerate_triangle};
 use crate::SceneError;
-use crate::model::{BaseMaterial, MaterialDef, Object, Shape};
+use crate::model::{BaseMaterial, MaterialDef, MeshSource, Object, Shape};
+use crate::model_file::ModelFile;
 use glam::Vec3;
+use std::sync::Arc;
 
 /// The attributes every shape takes after its own, in writing order.
 pub(crate) const COMMON: [&str; 8] = [
@@ -41,6 +43,7 @@ pub(crate) fn shape_attrs(tag: &str) -> Option<&'static [&'static str]> {
         "triangle" => &["t0", "t1", "t2"],
         "plane" => &["point", "normal"],
         "floor" => &["y"],
+        "mesh" => &["src", "translate", "rotate", "scale"],
         _ => return None,
     })
 }
@@ -111,6 +114,36 @@ pub(crate) fn object(el: &Element<'_>) -> Result<Object, SceneError> {
         Shape::Floor { y } => Shape::Floor {
             y: el.number("y", Range::Any)?.unwrap_or(y),
         },
+        Shape::Mesh { .. } => return Err(el.error("<mesh> is read by objects::mesh")),
+    };
+    Ok(Object {
+        name: el.string("name"),
+        shape,
+        material: el.string("material"),
+        params: el.params()?,
+    })
+}
+
+/// A `<mesh src=… translate=… rotate=… scale=…/>`; `load` opens the model
+/// file named by `src` (relative to the scene file's folder).
+pub(crate) fn mesh(
+    el: &Element<'_>,
+    load: impl FnOnce(&str) -> Result<Arc<ModelFile>, String>,
+) -> Result<Object, SceneError> {
+    let Some(src) = el.string("src") else {
+        return Err(el.error(
+            "<mesh> needs a src attribute naming a glTF file (.gltf or .glb), \
+             relative to the scene file",
+        ));
+    };
+    let model = load(&src).map_err(|message| el.error_at("src", message))?;
+    let shape = Shape::Mesh {
+        source: MeshSource { src, model },
+        translate: el.vector("translate")?,
+        rotate: el.vector("rotate")?.unwrap_or(Vec3::ZERO),
+        scale: el
+            .parsed("scale", values::positive_vector)?
+            .unwrap_or(Vec3::ONE),
     };
     Ok(Object {
         name: el.string("name"),

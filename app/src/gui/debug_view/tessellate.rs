@@ -57,6 +57,50 @@ pub fn tessellate(geometry: &Geometry, focus: Vec3, plane_extent: f32, out: &mut
             }
         }
         Geometry::Plane { point, normal } => plane(point, normal, focus, plane_extent, out),
+        Geometry::Mesh {
+            ref model,
+            world_from_model,
+            ..
+        } => mesh(model, world_from_model, out),
+    }
+}
+
+/// Most triangles of one model drawn as they are; a bigger model is drawn
+/// as the boxes around its instances (lavapipe draws on the CPU).
+const MESH_TRIANGLE_LIMIT: usize = 200_000;
+
+/// A model's instances: each triangle with its vertex normals, placed like
+/// the tracer places them; the instances' boxes for models too big to draw.
+fn mesh(model: &scene::ModelFile, world_from_model: glam::Mat4, out: &mut Vec<MeshVertex>) {
+    let draw_triangles = model.drawn_triangles() <= MESH_TRIANGLE_LIMIT;
+    for instance in &model.instances {
+        let mesh = &model.meshes[instance.mesh as usize];
+        let transform = world_from_model * instance.model_from_mesh;
+        if !draw_triangles {
+            if let Some((lo, hi)) = mesh.bounds() {
+                let center = 0.5 * (lo + hi);
+                let local = Frame::at(Vec3::ZERO);
+                let start = out.len();
+                cuboid(local, 0.5 * (hi - lo), out);
+                for v in &mut out[start..] {
+                    v.position = transform.transform_point3(v.position + center);
+                    v.normal = transform.transform_vector3(v.normal).normalize_or(Vec3::Y);
+                }
+            }
+            continue;
+        }
+        let normal_matrix = glam::Mat3::from_mat4(transform).inverse().transpose();
+        for &[a, b, c] in &mesh.triangles {
+            let corners = [a, b, c].map(|k| mesh.positions[k as usize]);
+            let face = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
+            for (k, p) in [a, b, c].into_iter().zip(corners) {
+                let n = mesh.normals.get(k as usize).copied().unwrap_or(face);
+                out.push(MeshVertex {
+                    position: transform.transform_point3(p),
+                    normal: (normal_matrix * n).normalize_or(Vec3::Y),
+                });
+            }
+        }
     }
 }
 
@@ -268,7 +312,7 @@ mod tests {
     #[test]
     fn mesh_triangles_lie_on_the_traced_surface_with_its_normal() {
         for geometry in shapes() {
-            let shape = Shape::from_geometry(&geometry);
+            let shape = Shape::from_geometry(&geometry).expect("an analytic shape");
             let mut mesh = Vec::new();
             tessellate(&geometry, Vec3::ZERO, 3.0, &mut mesh);
             assert_eq!(mesh.len() % 3, 0);

@@ -1,0 +1,161 @@
+//! Ray-casting throughput, measured the way other ray tracers are compared:
+//! closest-hit queries on a fixed set of rays, on one thread and on all.
+
+use crate::World;
+use crate::ray::Ray;
+use crate::sampler::Sampler;
+use crate::shapes::Method;
+use glam::Vec3;
+use rayon::prelude::*;
+use std::time::{Duration, Instant};
+
+/// One ray per pixel centre P_ij, row by row from the top (coherent).
+pub fn primary_rays(world: &World) -> Vec<Ray> {
+    let camera = &world.camera;
+    (0..camera.h)
+        .flat_map(|j| (0..camera.w).map(move |i| camera.center_ray(i, j)))
+        .collect()
+}
+
+/// `count` incoherent rays: origins uniform in the box [min, max],
+/// directions uniform on the sphere, reproducible from `seed`.
+pub fn incoherent_rays(min: Vec3, max: Vec3, count: usize, seed: u64) -> Vec<Ray> {
+    (0..count)
+        .into_par_iter()
+        .map(|k| {
+            let mut s = Sampler::for_sample(seed, k as u32, (k >> 32) as u32, 0x1ac0);
+            let t = Vec3::new(s.next_f32(), s.next_f32(), s.next_f32());
+            Ray::new(min + t * (max - min), s.next_direction())
+        })
+        .collect()
+}
+
+/// What one timed cast measured.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Cast {
+    /// Rays cast.
+    pub rays: usize,
+    /// Rays that hit something.
+    pub hits: usize,
+    /// Wall-clock time of the cast.
+    pub seconds: f64,
+}
+
+impl Cast {
+    /// Million rays per second.
+    pub fn mrays_per_second(&self) -> f64 {
+        self.rays as f64 / self.seconds / 1e6
+    }
+
+    /// The fraction of rays that hit.
+    pub fn hit_fraction(&self) -> f64 {
+        self.hits as f64 / self.rays.max(1) as f64
+    }
+}
+
+/// Casts every ray for its closest hit on the current rayon pool (in
+/// chunks, so one thread or many run the same code) and times it.
+pub fn cast_closest(world: &World, rays: &[Ray]) -> Cast {
+    let start = Instant::now();
+    let hits: usize = rays
+        .par_chunks(4096)
+        .map(|chunk| {
+            chunk
+                .iter()
+                .filter(|r| world.intersect(r, Method::Robust).is_some())
+                .count()
+        })
+        .sum();
+    Cast {
+        rays: rays.len(),
+        hits,
+        seconds: start.elapsed().as_secs_f64(),
+    }
+}
+
+/// The median of `runs` repeats of `measure` (by time); the machine is
+/// shared, so one run says little.
+pub fn median_of(runs: usize, mut measure: impl FnMut() -> Cast) -> Cast {
+    let mut casts: Vec<Cast> = (0..runs.max(1)).map(|_| measure()).collect();
+    casts.sort_by(|a, b| a.seconds.total_cmp(&b.seconds));
+    casts[casts.len() / 2]
+}
+
+/// Runs `f` on a rayon pool of `threads` threads.
+pub fn on_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
+    match rayon::ThreadPoolBuilder::new().num_threads(threads).build() {
+        Ok(pool) => pool.install(f),
+        Err(_) => f(),
+    }
+}
+
+/// The time `f` takes.
+pub fn timed<T>(f: impl FnOnce() -> T) -> (T, Duration) {
+    let start = Instant::now();
+    let value = f();
+    (value, start.elapsed())
+}
+
+/// The bottom-level BVH of every distinct mesh of `world`, built again
+/// from scratch in parallel (as a first load builds them): how long that
+/// took, the triangles and the bytes of those BVHs.
+pub fn rebuild_mesh_bvhs(world: &World) -> (Duration, usize, usize) {
+    let mut distinct: Vec<&std::sync::Arc<scene::TriangleMesh>> = Vec::new();
+    for placed in &world.meshes {
+        if !distinct
+            .iter()
+            .any(|m| std::sync::Arc::ptr_eq(m, &placed.mesh))
+        {
+            distinct.push(&placed.mesh);
+        }
+    }
+    let (bvhs, took) = timed(|| {
+        distinct
+            .par_iter()
+            .map(|m| crate::accel_stub::MeshBvh::build(&m.positions, &m.triangles))
+            .collect::<Vec<_>>()
+    });
+    let triangles = distinct.iter().map(|m| m.triangles.len()).sum();
+    let bytes = bvhs.iter().map(|b| b.bytes()).sum();
+    (took, triangles, bytes)
+}
+
+/// The box around every bounded object of `world` (meshes and finite
+/// shapes), where incoherent rays start; `None` when nothing is bounded.
+pub fn finite_bounds(world: &World) -> Option<(Vec3, Vec3)> {
+    let mut bounds: Option<(Vec3, Vec3)> = None;
+    let mut add = |lo: Vec3, hi: Vec3| {
+        bounds = Some(match bounds {
+            None => (lo, hi),
+            Some((a, b)) => (a.min(lo), b.max(hi)),
+        });
+    };
+    for m in &world.meshes {
+        add(m.bounds.min, m.bounds.max);
+    }
+    if world.meshes.is_empty() {
+        for b in world.shape_bounds() {
+            add(b.min, b.max);
+        }
+    }
+    bounds
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn incoherent_rays_start_in_the_box_with_unit_directions_and_are_reproducible() {
+        let (min, max) = (Vec3::new(-1.0, 0.0, 2.0), Vec3::new(3.0, 1.0, 4.0));
+        let rays = incoherent_rays(min, max, 1000, 7);
+        assert_eq!(rays, incoherent_rays(min, max, 1000, 7));
+        for r in &rays {
+            assert!(r.origin.cmpge(min).all() && r.origin.cmple(max).all());
+            assert!((r.dir.length() - 1.0).abs() < 1e-5);
+        }
+        // Uniform directions: the mean is near zero.
+        let mean = rays.iter().map(|r| r.dir).sum::<Vec3>() / 1000.0;
+        assert!(mean.length() < 0.1, "{mean}");
+    }
+}

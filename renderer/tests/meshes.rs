@@ -1,0 +1,211 @@
+//! Meshes from model files, generated in code: placed instances hit where
+//! the same triangles as lone `<triangle>`s are hit, shading interpolates
+//! vertex normals and texture coordinates, and moving an object keeps its
+//! mesh's BVH.
+
+use glam::{Mat4, Vec2, Vec3};
+use renderer::World;
+use renderer::aov::{Aov, render_aov};
+use renderer::ray::Ray;
+use renderer::shapes::Method;
+use scene::{
+    MeshInstance, MeshSource, ModelFile, ModelMaterial, Object, Scene, Shape, Texture,
+    TriangleMesh, Wrap,
+};
+use std::sync::Arc;
+
+/// A unit quad in the xy-plane facing +z: corners (0,0), (1,0), (1,1), (0,1),
+/// texture coordinates equal to x and 1 − y.
+fn quad() -> TriangleMesh {
+    let positions = vec![
+        Vec3::new(0.0, 0.0, 0.0),
+        Vec3::new(1.0, 0.0, 0.0),
+        Vec3::new(1.0, 1.0, 0.0),
+        Vec3::new(0.0, 1.0, 0.0),
+    ];
+    let triangles = vec![[0, 1, 2], [0, 2, 3]];
+    TriangleMesh {
+        normals: TriangleMesh::face_normals_per_vertex(&positions, &triangles),
+        uvs: positions
+            .iter()
+            .map(|p| Vec2::new(p.x, 1.0 - p.y))
+            .collect(),
+        positions,
+        triangles,
+    }
+}
+
+/// A model holding `mesh` once per transform, with one matte material.
+fn model(mesh: TriangleMesh, transforms: &[Mat4]) -> ModelFile {
+    let mut model = ModelFile::default();
+    model.meshes = vec![Arc::new(mesh)];
+    model.materials = vec![ModelMaterial {
+        material: scene::materials::builtin(scene::BaseMaterial::Matte),
+        base_color_texture: None,
+    }];
+    model.instances = transforms
+        .iter()
+        .enumerate()
+        .map(|(k, &t)| MeshInstance {
+            mesh: 0,
+            material: 0,
+            model_from_mesh: t,
+            name: format!("instance {k}"),
+        })
+        .collect();
+    model
+}
+
+/// A scene with the model placed at `translate`, seen from z = 5.
+fn scene_with(model: Arc<ModelFile>, translate: Vec3) -> Scene {
+    let mut scene = scene::read_str(
+        r#"<scene><camera eye="0.5 0.5 5" toward="0 0 -1" theta="15" width="48" height="48"/></scene>"#,
+        "mesh.xml",
+    )
+    .expect("parses");
+    scene.objects.push(Object {
+        name: Some("model".into()),
+        shape: Shape::Mesh {
+            source: MeshSource {
+                src: "generated".into(),
+                model,
+            },
+            translate: Some(translate),
+            rotate: Vec3::ZERO,
+            scale: Vec3::ONE,
+        },
+        material: None,
+        params: Default::default(),
+    });
+    scene
+}
+
+#[test]
+fn placed_instances_hit_where_the_same_lone_triangles_do() {
+    // Two instances: one as is, one rotated 30° about y and moved back.
+    let moved = Mat4::from_translation(Vec3::new(-0.6, -0.4, -1.0)) * Mat4::from_rotation_y(0.5);
+    let transforms = [Mat4::IDENTITY, moved];
+    let mesh = quad();
+    let world = World::from_scene(&scene_with(
+        Arc::new(model(mesh.clone(), &transforms)),
+        Vec3::ZERO,
+    ))
+    .expect("valid");
+    // The same four triangles written out as <triangle> elements.
+    let mut xml = String::from(
+        r#"<scene><camera eye="0.5 0.5 5" toward="0 0 -1" theta="15" width="48" height="48"/>"#,
+    );
+    for t in transforms {
+        for [a, b, c] in &mesh.triangles {
+            let p = |k: &u32| t.transform_point3(mesh.positions[*k as usize]);
+            let v = |q: Vec3| format!("{} {} {}", q.x, q.y, q.z);
+            xml += &format!(
+                r#"<triangle t0="{}" t1="{}" t2="{}"/>"#,
+                v(p(a)),
+                v(p(b)),
+                v(p(c))
+            );
+        }
+    }
+    xml += "</scene>";
+    let lone =
+        World::from_scene(&scene::read_str(&xml, "lone.xml").expect("parses")).expect("valid");
+    let (a, b) = (
+        render_aov(&world, Aov::Depth, Method::Robust),
+        render_aov(&lone, Aov::Depth, Method::Robust),
+    );
+    let hits = a.iter().filter(|d| d.is_finite()).count();
+    assert!(
+        hits > 200,
+        "the quads fill part of the image: {hits} pixels"
+    );
+    for (k, (x, y)) in a.iter().zip(&b).enumerate() {
+        assert_eq!(x.is_finite(), y.is_finite(), "pixel {k}: {x} vs {y}");
+        if x.is_finite() {
+            assert!((x - y).abs() <= 1e-5 * y, "pixel {k}: α {x} vs {y}");
+        }
+    }
+}
+
+#[test]
+fn the_hit_point_lies_on_the_placed_triangle_with_its_normal() {
+    let world = World::from_scene(&scene_with(
+        Arc::new(model(quad(), &[Mat4::IDENTITY])),
+        Vec3::new(0.0, 0.0, 1.0),
+    ))
+    .expect("valid");
+    let ray = Ray::new(Vec3::new(0.25, 0.5, 5.0), Vec3::NEG_Z);
+    let hit = world
+        .intersect(&ray, Method::Robust)
+        .expect("hits the quad");
+    assert_eq!(hit.alpha, 4.0);
+    let triangle = hit.triangle.expect("a mesh hit names its triangle");
+    assert_eq!(triangle.triangle, 1, "x < y lies in the second triangle");
+    let surface = world.surface(&ray, hit);
+    assert!((surface.point - Vec3::new(0.25, 0.5, 1.0)).length() < 1e-6);
+    assert_eq!(surface.normal, Vec3::Z);
+}
+
+#[test]
+fn shading_normals_interpolate_the_vertex_normals() {
+    // Tilt the vertex normals of the quad's right edge toward +x.
+    let mut mesh = quad();
+    let tilted = Vec3::new(1.0, 0.0, 1.0).normalize();
+    mesh.normals[1] = tilted;
+    mesh.normals[2] = tilted;
+    let world = World::from_scene(&scene_with(
+        Arc::new(model(mesh, &[Mat4::IDENTITY])),
+        Vec3::ZERO,
+    ))
+    .expect("valid");
+    for x in [0.0f32, 0.5, 1.0] {
+        let ray = Ray::new(Vec3::new(x.clamp(0.01, 0.99), 0.2, 5.0), Vec3::NEG_Z);
+        let hit = world.intersect(&ray, Method::Robust).expect("hits");
+        let n = world.shading_normal(hit, &world.surface(&ray, hit));
+        let expected = (Vec3::Z.lerp(tilted, x.clamp(0.01, 0.99))).normalize();
+        assert!((n - expected).length() < 1e-5, "x {x}: {n} vs {expected}");
+    }
+}
+
+#[test]
+fn a_base_colour_texture_multiplies_the_albedo_at_the_interpolated_uv() {
+    // Left half red, right half blue (2×1 texels), clamped at the edges.
+    let mut model = model(quad(), &[Mat4::IDENTITY]);
+    model.textures = vec![Arc::new(Texture {
+        width: 2,
+        height: 1,
+        texels: vec![[255, 0, 0, 255], [0, 0, 255, 255]],
+        wrap_u: Wrap::ClampToEdge,
+        wrap_v: Wrap::ClampToEdge,
+    })];
+    model.materials[0].material.color = Vec3::splat(0.5);
+    model.materials[0].base_color_texture = Some(0);
+    let world = World::from_scene(&scene_with(Arc::new(model), Vec3::ZERO)).expect("valid");
+    let albedo_at = |x: f32| {
+        let ray = Ray::new(Vec3::new(x, 0.5, 5.0), Vec3::NEG_Z);
+        let hit = world.intersect(&ray, Method::Robust).expect("hits");
+        world.material(hit).color
+    };
+    assert_eq!(albedo_at(0.1), Vec3::new(0.5, 0.0, 0.0));
+    assert_eq!(albedo_at(0.9), Vec3::new(0.0, 0.0, 0.5));
+}
+
+#[test]
+fn moving_a_mesh_object_keeps_its_bottom_level_bvh() {
+    let model = Arc::new(model(quad(), &[Mat4::IDENTITY]));
+    let before = World::from_scene(&scene_with(model.clone(), Vec3::ZERO)).expect("valid");
+    let after = World::from_scene(&scene_with(model, Vec3::new(0.0, 1.0, 0.0))).expect("valid");
+    assert!(Arc::ptr_eq(&before.meshes[0].bvh, &after.meshes[0].bvh));
+    assert_ne!(before.meshes[0].bounds, after.meshes[0].bounds);
+}
+
+#[test]
+fn a_material_on_the_mesh_element_replaces_the_files_materials() {
+    let model = Arc::new(model(quad(), &[Mat4::IDENTITY]));
+    let mut scene = scene_with(model, Vec3::ZERO);
+    scene.objects[0].params.color = Some(Vec3::new(0.1, 0.2, 0.3));
+    let world = World::from_scene(&scene).expect("valid");
+    let ray = Ray::new(Vec3::new(0.5, 0.5, 5.0), Vec3::NEG_Z);
+    let hit = world.intersect(&ray, Method::Robust).expect("hits");
+    assert_eq!(world.material(hit).color, Vec3::new(0.1, 0.2, 0.3));
+}
