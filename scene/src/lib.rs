@@ -8,6 +8,7 @@
 
 pub mod color;
 mod error;
+mod gltf;
 pub mod layout;
 pub mod materials;
 pub mod mesh;

@@ -57,7 +57,7 @@ pub struct ModelMaterial {
 }
 
 /// How texture coordinates outside [0, 1] are mapped (glTF sampler wrap modes).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Wrap {
     /// Repeat the image (the glTF default).
     #[default]
@@ -143,9 +143,13 @@ impl ModelFile {
 }
 
 /// Loads a `.gltf` (external or embedded buffers) or `.glb` file.
+///
+/// What raylab does not support (Draco, skins, morph targets, animations,
+/// orthographic cameras…) is listed in [`ModelFile::warnings`], once per
+/// feature, and the rest loads. A file that cannot be read, parsed or
+/// trusted (an index out of range, a non-finite position, a missing buffer…)
+/// is a [`ModelError`] naming the mesh, primitive, accessor or buffer.
+/// The material mapping is documented in `scene/src/gltf/materials.rs`.
 pub fn load_model(path: &Path) -> Result<ModelFile, ModelError> {
-    Err(ModelError {
-        path: path.display().to_string(),
-        message: "glTF loading is not written yet".into(),
-    })
+    crate::gltf::load(path)
 }
