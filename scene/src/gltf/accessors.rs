@@ -9,7 +9,7 @@ use ::gltf::accessor::{DataType, Dimensions, sparse::IndexType};
 use glam::{Vec2, Vec3};
 
 /// Largest element count of an accessor without a buffer view (its data is
-/// zeros plus sparse values, so nothing in the file bounds its size).
+/// zeros, plus sparse values if any, so nothing in the file bounds its size).
 const MAX_VIEWLESS_COUNT: usize = 1 << 26;
 
 /// The `count` elements of `accessor` as 3-vectors.
@@ -138,7 +138,8 @@ fn elements(data: &[u8], offset: usize, stride: usize, count: usize, size: usize
 }
 
 /// Reads `accessor` element by element with `decode` (which gets exactly
-/// `size` bytes), then applies its sparse substitutions.
+/// `size` bytes; zeros when it has no buffer view, as glTF specifies), then
+/// applies its sparse substitutions.
 fn read_with<T: Copy + Default>(
     accessor: &Accessor,
     buffers: &Buffers,
@@ -172,11 +173,6 @@ fn read_with<T: Copy + Default>(
             let mut out = Vec::with_capacity(count);
             out.extend((0..count).map(|i| decode(&bytes[i * stride..i * stride + size])));
             out
-        }
-        None if accessor.sparse().is_none() => {
-            return Err(format!(
-                "accessor {index} has neither a bufferView nor sparse values, so it has no data"
-            ));
         }
         None if count > MAX_VIEWLESS_COUNT => {
             return Err(format!(

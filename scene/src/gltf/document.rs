@@ -104,7 +104,8 @@ fn explain_json_error(json: &[u8], error: &::gltf::json::Error) -> String {
 
 /// Runs the `gltf` crate's validation (every index in range, every enum
 /// known…). Required extensions that the crate does not know are left to
-/// [`super::warnings`], which reports them and loads the rest.
+/// [`super::warnings`], which reports them and loads the rest; accessors
+/// without a bufferView, which the crate refuses, are valid glTF.
 fn validate(doc: &Document) -> Result<(), String> {
     let root = doc.as_json();
     if !root.asset.version.starts_with("2.") {
@@ -118,7 +119,12 @@ fn validate(doc: &Document) -> Result<(), String> {
         let path = path();
         let required_extension = path.as_str().starts_with("extensionsRequired")
             && error == ValidationError::Unsupported;
-        if !required_extension {
+        // glTF 2.0 allows an accessor without bufferView (zeros, or data an
+        // extension such as Draco provides); the crate insists on one.
+        let viewless_accessor = path.as_str().starts_with("accessors[")
+            && path.as_str().ends_with("].bufferView")
+            && error == ValidationError::Missing;
+        if !required_extension && !viewless_accessor {
             errors.push(format!("{path}: {error}"));
         }
     });
@@ -202,6 +208,15 @@ mod tests {
             .err()
             .expect("node 3 does not exist");
         assert!(e.contains("scenes[0].nodes[0]"), "{e}");
+    }
+
+    #[test]
+    fn accessors_without_buffer_views_pass_validation() {
+        parse(
+            br#"{"asset": {"version": "2.0"},
+                "accessors": [{"componentType": 5126, "count": 3, "type": "VEC3"}]}"#,
+        )
+        .expect("zeros by the glTF spec");
     }
 
     #[test]
