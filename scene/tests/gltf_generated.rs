@@ -6,222 +6,13 @@
 
 use glam::{Mat4, Vec2, Vec3};
 use scene::{BaseMaterial, LightKind, ModelError, ModelFile, Wrap, load_model};
-use serde_json::{Value, json};
+use serde_json::json;
 use std::f32::consts::FRAC_1_SQRT_2;
 use std::path::{Path, PathBuf};
 
-const BYTE: u32 = 5121;
-const SHORT: u32 = 5123;
-const INT: u32 = 5125;
-const FLOAT: u32 = 5126;
+mod gltf_common;
 
-/// A folder of its own under the system's temporary folder, removed on drop.
-struct TempDir(PathBuf);
-
-impl TempDir {
-    fn new(name: &str) -> Self {
-        let dir = std::env::temp_dir().join(format!("raylab-gltf-{}-{name}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).expect("temporary folder");
-        TempDir(dir)
-    }
-
-    fn join(&self, file: &str) -> PathBuf {
-        self.0.join(file)
-    }
-}
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
-/// Where the binary buffer goes.
-enum Storage<'a> {
-    /// A base64 `data:` URI in the JSON.
-    DataUri,
-    /// A file beside the .gltf: (file name, the URI that names it).
-    External(&'a str, &'a str),
-    /// The BIN chunk of a .glb.
-    Glb,
-}
-
-/// One binary buffer, its views and accessors, gathered while a test builds.
-#[derive(Default)]
-struct Builder {
-    bin: Vec<u8>,
-    views: Vec<Value>,
-    accessors: Vec<Value>,
-}
-
-impl Builder {
-    fn view(&mut self, bytes: &[u8], stride: Option<usize>) -> usize {
-        while !self.bin.len().is_multiple_of(4) {
-            self.bin.push(0);
-        }
-        let mut view =
-            json!({"buffer": 0, "byteOffset": self.bin.len(), "byteLength": bytes.len()});
-        if let Some(stride) = stride {
-            view["byteStride"] = json!(stride);
-        }
-        self.bin.extend_from_slice(bytes);
-        self.views.push(view);
-        self.views.len() - 1
-    }
-
-    fn accessor(
-        &mut self,
-        view: Option<usize>,
-        component: u32,
-        count: usize,
-        ty: &str,
-        extra: Value,
-    ) -> usize {
-        let mut accessor = json!({"componentType": component, "count": count, "type": ty});
-        if let Some(view) = view {
-            accessor["bufferView"] = json!(view);
-        }
-        if let Value::Object(extra) = extra {
-            for (k, v) in extra {
-                accessor[k] = v;
-            }
-        }
-        self.accessors.push(accessor);
-        self.accessors.len() - 1
-    }
-
-    fn vec3s(&mut self, values: &[[f32; 3]]) -> usize {
-        let bytes: Vec<u8> = values
-            .iter()
-            .flatten()
-            .flat_map(|f| f.to_le_bytes())
-            .collect();
-        let view = self.view(&bytes, None);
-        let finite: Vec<&[f32; 3]> = values
-            .iter()
-            .filter(|v| v.iter().all(|f| f.is_finite()))
-            .collect();
-        let min: Vec<f32> = (0..3)
-            .map(|i| finite.iter().map(|v| v[i]).fold(f32::MAX, f32::min))
-            .collect();
-        let max: Vec<f32> = (0..3)
-            .map(|i| finite.iter().map(|v| v[i]).fold(f32::MIN, f32::max))
-            .collect();
-        self.accessor(
-            Some(view),
-            FLOAT,
-            values.len(),
-            "VEC3",
-            json!({"min": min, "max": max}),
-        )
-    }
-
-    fn indices(&mut self, indices: &[u32], component: u32) -> usize {
-        let bytes: Vec<u8> = match component {
-            BYTE => indices.iter().map(|&i| i as u8).collect(),
-            SHORT => indices
-                .iter()
-                .flat_map(|&i| (i as u16).to_le_bytes())
-                .collect(),
-            _ => indices.iter().flat_map(|&i| i.to_le_bytes()).collect(),
-        };
-        let view = self.view(&bytes, None);
-        self.accessor(Some(view), component, indices.len(), "SCALAR", json!({}))
-    }
-
-    /// Writes `doc` plus this buffer as `name` in `dir`; returns its path.
-    fn write(self, mut doc: Value, storage: Storage, dir: &TempDir, name: &str) -> PathBuf {
-        doc["asset"] = json!({"version": "2.0"});
-        doc["bufferViews"] = json!(self.views);
-        doc["accessors"] = json!(self.accessors);
-        let mut buffer = json!({"byteLength": self.bin.len()});
-        match storage {
-            Storage::DataUri => {
-                buffer["uri"] = json!(format!(
-                    "data:application/octet-stream;base64,{}",
-                    base64(&self.bin)
-                ));
-            }
-            Storage::External(file, uri) => {
-                std::fs::write(dir.join(file), &self.bin).expect("write .bin");
-                buffer["uri"] = json!(uri);
-            }
-            Storage::Glb => {}
-        }
-        doc["buffers"] = json!([buffer]);
-        let path = dir.join(name);
-        let text = serde_json::to_vec(&doc).expect("json");
-        let bytes = match storage {
-            Storage::Glb => glb(&text, &self.bin),
-            _ => text,
-        };
-        std::fs::write(&path, bytes).expect("write model");
-        path
-    }
-}
-
-/// A GLB container: header, JSON chunk (space-padded), BIN chunk (zero-padded).
-fn glb(json: &[u8], bin: &[u8]) -> Vec<u8> {
-    let pad = |data: &[u8], with: u8| {
-        let mut v = data.to_vec();
-        while !v.len().is_multiple_of(4) {
-            v.push(with);
-        }
-        v
-    };
-    let (json, bin) = (pad(json, b' '), pad(bin, 0));
-    let mut out = Vec::new();
-    out.extend_from_slice(b"glTF");
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&((12 + 8 + json.len() + 8 + bin.len()) as u32).to_le_bytes());
-    out.extend_from_slice(&(json.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"JSON");
-    out.extend_from_slice(&json);
-    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"BIN\0");
-    out.extend_from_slice(&bin);
-    out
-}
-
-/// Standard base64 with padding.
-fn base64(bytes: &[u8]) -> String {
-    const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
-    for chunk in bytes.chunks(3) {
-        let n = chunk
-            .iter()
-            .enumerate()
-            .fold(0u32, |n, (i, &b)| n | u32::from(b) << (16 - 8 * i));
-        for i in 0..4 {
-            if i <= chunk.len() {
-                out.push(ALPHABET[(n >> (18 - 6 * i)) as usize & 63] as char);
-            } else {
-                out.push('=');
-            }
-        }
-    }
-    out
-}
-
-/// The unit square in the xy-plane, counter-clockwise seen from +z.
-const QUAD: [[f32; 3]; 4] = [
-    [0.0, 0.0, 0.0],
-    [1.0, 0.0, 0.0],
-    [1.0, 1.0, 0.0],
-    [0.0, 1.0, 0.0],
-];
-const QUAD_INDICES: [u32; 6] = [0, 1, 2, 0, 2, 3];
-
-/// A document with one mesh of one primitive, drawn by one node.
-fn one_mesh(primitive: Value) -> Value {
-    json!({
-        "scene": 0,
-        "scenes": [{"nodes": [0]}],
-        "nodes": [{"mesh": 0}],
-        "meshes": [{"name": "quad", "primitives": [primitive]}],
-    })
-}
+use gltf_common::*;
 
 fn load(path: &Path) -> ModelFile {
     load_model(path).unwrap_or_else(|e| panic!("must load: {e}"))
@@ -276,6 +67,20 @@ fn non_indexed_triangles_take_vertices_three_by_three() {
     let model = load(&b.write(doc, Storage::DataUri, &dir, "flat.gltf"));
     assert_eq!(model.meshes[0].triangles, vec![[0, 1, 2], [3, 4, 5]]);
     assert_eq!(model.meshes[0].positions.len(), 6);
+    assert_eq!(model.bounds(), Some((Vec3::ZERO, Vec3::new(1.0, 1.0, 0.0))));
+}
+
+#[test]
+fn position_min_max_are_optional_for_raylab() {
+    let dir = TempDir::new("no-minmax");
+    let mut b = Builder::default();
+    let position = b.vec3s(&QUAD);
+    let accessor = b.accessors[position].as_object_mut().expect("object");
+    accessor.remove("min");
+    accessor.remove("max");
+    let indices = b.indices(&QUAD_INDICES, BYTE);
+    let doc = one_mesh(json!({"attributes": {"POSITION": position}, "indices": indices}));
+    let model = load(&b.write(doc, Storage::DataUri, &dir, "no-minmax.gltf"));
     assert_eq!(model.bounds(), Some((Vec3::ZERO, Vec3::new(1.0, 1.0, 0.0))));
 }
 
@@ -783,6 +588,22 @@ fn a_file_that_is_not_gltf_is_a_clear_error() {
         &load_err(&dangling).message,
         &["invalid glTF", "scenes[0].nodes[0]"],
     );
+
+    // An attribute naming a missing accessor (the gltf crate's own check
+    // would index out of bounds).
+    let missing = dir.join("missing-accessor.gltf");
+    std::fs::write(
+        &missing,
+        r#"{"asset":{"version":"2.0"},"meshes":[{"primitives":[{"attributes":{"POSITION":9}}]}]}"#,
+    )
+    .expect("write");
+    assert_contains(
+        &load_err(&missing).message,
+        &[
+            "meshes[0].primitives[0].attributes[\"POSITION\"]",
+            "accessor 9 does not exist",
+        ],
+    );
 }
 
 #[test]
@@ -849,6 +670,49 @@ fn a_node_reached_twice_is_an_error_not_a_hang() {
     let doc = json!({"scenes": [{"nodes": [0]}], "nodes": [{"children": [1]}, {"children": [0]}]});
     let e = load_err(&b.write(doc, Storage::DataUri, &dir, "cycle.gltf"));
     assert_contains(&e.message, &["node 0 is reached twice"]);
+}
+
+#[test]
+fn json_the_gltf_crate_would_panic_on_is_an_error_or_loads() {
+    let dir = TempDir::new("crate-panics");
+    // A camera whose type names an object it lacks.
+    let b = Builder::default();
+    let doc = json!({
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"camera": 0}],
+        "cameras": [{"type": "perspective", "orthographic": {"xmag": 1, "ymag": 1, "zfar": 10, "znear": 1}}],
+    });
+    let e = load_err(&b.write(doc, Storage::DataUri, &dir, "camera.gltf"));
+    assert_contains(&e.message, &["camera 0", "no \"perspective\" object"]);
+
+    // An image in a bufferView without mimeType: the PNG is recognised by
+    // its signature. An image with neither uri nor bufferView: an error.
+    for (image, ok) in [(json!({"bufferView": 2}), true), (json!({}), false)] {
+        let mut b = Builder::default();
+        let position = b.vec3s(&QUAD);
+        let indices = b.indices(&QUAD_INDICES, BYTE);
+        let (png, _) = png_3x2();
+        assert_eq!(b.view(&png, None), 2);
+        let doc = json!({
+            "scenes": [{"nodes": [0]}],
+            "nodes": [{"mesh": 0}],
+            "meshes": [{"primitives": [{"attributes": {"POSITION": position}, "indices": indices, "material": 0}]}],
+            "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],
+            "textures": [{"source": 0}],
+            "images": [image],
+        });
+        let path = b.write(doc, Storage::Glb, &dir, "image.glb");
+        match load_model(&path) {
+            Ok(model) => {
+                assert!(ok, "an image without data loaded");
+                assert_eq!((model.textures[0].width, model.textures[0].height), (3, 2));
+            }
+            Err(e) => {
+                assert!(!ok, "{e}");
+                assert_contains(&e.message, &["image 0", "neither a uri nor a bufferView"]);
+            }
+        }
+    }
 }
 
 /// A flat grid of `n × n` quads (2n² triangles) as a .glb with normals.

@@ -10,7 +10,7 @@ use glam::{Vec2, Vec3};
 
 /// Largest element count of an accessor without a buffer view (its data is
 /// zeros, plus sparse values if any, so nothing in the file bounds its size).
-const MAX_VIEWLESS_COUNT: usize = 1 << 26;
+const MAX_VIEWLESS_COUNT: usize = 1 << 24;
 
 /// The `count` elements of `accessor` as 3-vectors.
 pub(super) fn read_vec3(accessor: &Accessor, buffers: &Buffers) -> Result<Vec<Vec3>, String> {

@@ -3,7 +3,7 @@
 //! required extensions, which raylab reports as warnings instead).
 
 use ::gltf::Document;
-use ::gltf::json::validation::{Error as ValidationError, Validate};
+use ::gltf::json::validation::{Checked, Error as ValidationError, Validate};
 
 /// A parsed file: the document and, for `.glb`, its BIN chunk.
 pub(super) struct Parsed {
@@ -104,8 +104,10 @@ fn explain_json_error(json: &[u8], error: &::gltf::json::Error) -> String {
 
 /// Runs the `gltf` crate's validation (every index in range, every enum
 /// known…). Required extensions that the crate does not know are left to
-/// [`super::warnings`], which reports them and loads the rest; accessors
-/// without a bufferView, which the crate refuses, are valid glTF.
+/// [`super::warnings`], which reports them and loads the rest. Accessors
+/// without a bufferView, primitives without POSITION and POSITION accessors
+/// without min/max, which the crate refuses, are accepted: glTF allows the
+/// first two and raylab does not need the third.
 fn validate(doc: &Document) -> Result<(), String> {
     let root = doc.as_json();
     if !root.asset.version.starts_with("2.") {
@@ -113,6 +115,25 @@ fn validate(doc: &Document) -> Result<(), String> {
             "glTF version {} is not supported (raylab reads glTF 2.0)",
             root.asset.version
         ));
+    }
+    // The crate's primitive check indexes `accessors` with POSITION's
+    // accessor before checking it exists: check it first.
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            for (semantic, accessor) in &primitive.attributes {
+                if accessor.value() >= root.accessors.len() {
+                    let name = match semantic {
+                        Checked::Valid(s) => s.to_string(),
+                        Checked::Invalid => "an attribute".into(),
+                    };
+                    return Err(format!(
+                        "invalid glTF: meshes[{m}].primitives[{p}].attributes[\"{name}\"]: accessor {} does not exist (the file has {})",
+                        accessor.value(),
+                        root.accessors.len()
+                    ));
+                }
+            }
+        }
     }
     let mut errors = Vec::new();
     root.validate(root, ::gltf::json::Path::new, &mut |path, error| {
@@ -124,7 +145,11 @@ fn validate(doc: &Document) -> Result<(), String> {
         let viewless_accessor = path.as_str().starts_with("accessors[")
             && path.as_str().ends_with("].bufferView")
             && error == ValidationError::Missing;
-        if !required_extension && !viewless_accessor {
+        // POSITION may be absent (the primitive is skipped) and its min/max
+        // are not needed here; the crate requires both.
+        let position = path.as_str().contains(".attributes[\"POSITION\"]")
+            && matches!(error, ValidationError::Missing | ValidationError::Invalid);
+        if !required_extension && !viewless_accessor && !position {
             errors.push(format!("{path}: {error}"));
         }
     });

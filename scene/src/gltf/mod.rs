@@ -24,7 +24,7 @@ mod textures;
 mod warnings;
 
 use crate::model_file::{MeshInstance, ModelError, ModelFile, ModelMaterial, Wrap};
-use ::gltf::Node;
+use ::gltf::{Document, Node};
 use buffers::Buffers;
 use glam::Mat4;
 use primitives::Compression;
@@ -48,6 +48,7 @@ pub(crate) fn load(path: &Path) -> Result<ModelFile, ModelError> {
     let mut warnings = Warnings::default();
     warnings::document_warnings(&doc, &mut warnings);
     let mut builder = Builder {
+        doc: &doc,
         buffers: &buffers,
         base,
         compression: Compression::of(&doc),
@@ -71,6 +72,7 @@ pub(crate) fn load(path: &Path) -> Result<ModelFile, ModelError> {
 
 /// The model being built, with the indices of what it already holds.
 struct Builder<'a> {
+    doc: &'a Document,
     buffers: &'a Buffers,
     base: &'a Path,
     compression: Compression,
@@ -106,7 +108,8 @@ impl Builder<'_> {
             }
         }
         if let Some(camera) = node.camera()
-            && let Some(camera) = cameras::camera(&camera, &name, world, warnings)
+            && let Some(json) = self.doc.as_json().cameras.get(camera.index())
+            && let Some(camera) = cameras::camera(camera.index(), json, &name, world, warnings)?
         {
             self.model.cameras.push(camera);
         }
@@ -208,7 +211,7 @@ impl Builder<'_> {
                 let t = &self.model.textures[*first as usize];
                 Some((t.width, t.height, t.texels.clone()))
             }
-            None => textures::decode(&image, self.buffers, self.base, warnings)?,
+            None => textures::decode(self.doc, &image, self.buffers, self.base, warnings)?,
         };
         let Some(texels) = texels else {
             self.images.insert(image.index(), None);

@@ -5,7 +5,6 @@
 use super::buffers::{Buffers, read_uri};
 use super::warnings::Warnings;
 use crate::model_file::{Texture, Wrap};
-use ::gltf::image::Source;
 use ::gltf::texture::WrappingMode;
 use image::ImageFormat;
 use std::path::Path;
@@ -28,10 +27,12 @@ pub(super) fn wraps(texture: &::gltf::Texture) -> (Wrap, Wrap) {
     (wrap(sampler.wrap_s()), wrap(sampler.wrap_t()))
 }
 
-/// Decodes `image` to RGBA8 texels (width, height, texels), or `None` with a
-/// warning when its format is not PNG or JPEG. A missing or corrupt image is
-/// an error.
+/// Decodes `image` to RGBA8 texels, or `None` with a warning when its format
+/// is not PNG or JPEG. A missing or corrupt image is an error. The image's
+/// JSON is read directly: the `gltf` crate panics on a bufferView without
+/// mimeType or an image with neither uri nor bufferView.
 pub(super) fn decode(
+    doc: &::gltf::Document,
     image: &::gltf::Image,
     buffers: &Buffers,
     base: &Path,
@@ -41,18 +42,20 @@ pub(super) fn decode(
         Some(name) => format!("image {} \"{name}\"", image.index()),
         None => format!("image {}", image.index()),
     };
-    let (bytes, mime) = match image.source() {
-        Source::View { view, mime_type } => (
-            buffers
-                .view(&view)
-                .map_err(|e| format!("{name}: {e}"))?
-                .to_vec(),
-            Some(mime_type),
-        ),
-        Source::Uri { uri, mime_type } => (
-            read_uri(uri, base).map_err(|e| format!("{name}: {e}"))?,
-            mime_type,
-        ),
+    let json = doc
+        .as_json()
+        .images
+        .get(image.index())
+        .ok_or_else(|| format!("{name} does not exist"))?;
+    let mime = json.mime_type.as_ref().map(|m| m.0.as_str());
+    let view = json.buffer_view.and_then(|v| doc.views().nth(v.value()));
+    let bytes = match (view, &json.uri) {
+        (Some(view), _) => buffers
+            .view(&view)
+            .map_err(|e| format!("{name}: {e}"))?
+            .to_vec(),
+        (None, Some(uri)) => read_uri(uri, base).map_err(|e| format!("{name}: {e}"))?,
+        (None, None) => return Err(format!("{name} has neither a uri nor a bufferView")),
     };
     let format = match image::guess_format(&bytes) {
         Ok(format @ (ImageFormat::Png | ImageFormat::Jpeg)) => format,
