@@ -17,11 +17,13 @@ use std::sync::Arc;
 pub struct ModelFile {
     /// The file as it was opened.
     pub path: PathBuf,
-    /// One mesh per glTF primitive (mesh space), shared by all its instances.
+    /// One mesh per glTF primitive (mesh space), shared by all its instances;
+    /// only primitives the loaded scene draws, in the order first drawn.
     pub meshes: Vec<Arc<TriangleMesh>>,
-    /// The file's materials mapped to raylab materials, with their textures.
+    /// The file's materials mapped to raylab materials, with their textures
+    /// (those the drawn primitives use, plus the default when one has none).
     pub materials: Vec<ModelMaterial>,
-    /// Decoded images used as textures.
+    /// Decoded images used as base-colour textures, one per (image, wrap modes).
     pub textures: Vec<Arc<Texture>>,
     /// Every drawn (node, primitive) pair: which mesh, which material, where.
     pub instances: Vec<MeshInstance>,

@@ -85,6 +85,78 @@ fn position_min_max_are_optional_for_raylab() {
 }
 
 #[test]
+fn a_primitive_without_position_is_skipped_with_one_warning() {
+    let dir = TempDir::new("no-position");
+    let mut b = Builder::default();
+    let position = b.vec3s(&QUAD);
+    let normal = b.vec3s(&[[0.0, 0.0, 1.0]; 4]);
+    let doc = json!({
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [
+            {"attributes": {"NORMAL": normal}},
+            {"attributes": {"NORMAL": normal}},
+            {"attributes": {"POSITION": position}, "mode": 6},
+        ]}],
+    });
+    let model = load(&b.write(doc, Storage::DataUri, &dir, "no-position.gltf"));
+    assert_eq!(model.meshes.len(), 1);
+    assert_eq!(model.drawn_triangles(), 2);
+    assert_eq!(model.warnings.len(), 1, "{:?}", model.warnings);
+    assert_contains(&model.warnings[0], &["without a POSITION", "skipped"]);
+}
+
+#[test]
+fn ignored_material_parts_are_warned_once_each() {
+    let dir = TempDir::new("material-parts");
+    let mut b = Builder::default();
+    let position = b.vec3s(&QUAD);
+    let indices = b.indices(&QUAD_INDICES, BYTE);
+    let (png, _) = png_3x2();
+    let image = b.view(&png, None);
+    let material = json!({
+        "pbrMetallicRoughness": {"metallicFactor": 0.0, "roughnessFactor": 0.3,
+                                 "metallicRoughnessTexture": {"index": 0}},
+        "normalTexture": {"index": 0},
+        "occlusionTexture": {"index": 0},
+        "emissiveTexture": {"index": 0},
+        "emissiveFactor": [1.0, 1.0, 1.0],
+        "alphaMode": "BLEND",
+    });
+    let doc = json!({
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [
+            {"attributes": {"POSITION": position}, "indices": indices, "material": 0},
+            {"attributes": {"POSITION": position}, "indices": indices, "material": 1},
+        ]}],
+        "materials": [material.clone(), material],
+        "textures": [{"source": 0}],
+        "images": [{"bufferView": image, "mimeType": "image/png"}],
+    });
+    let model = load(&b.write(doc, Storage::DataUri, &dir, "parts.gltf"));
+    let w = &model.warnings;
+    for part in [
+        "metallic-roughness textures",
+        "normal maps",
+        "occlusion textures",
+        "emissive textures",
+        "alphaMode",
+    ] {
+        let n = w.iter().filter(|m| m.contains(part)).count();
+        assert_eq!(n, 1, "{part} warned {n} times in {w:#?}");
+    }
+    assert_eq!(w.len(), 5, "{w:#?}");
+    let m = model.materials[0].material;
+    assert_eq!(m.base, BaseMaterial::Plastic);
+    assert_eq!(m.emission, Vec3::ZERO, "emissive texture: no emission");
+    assert!(
+        model.textures.is_empty(),
+        "only base-colour textures are decoded"
+    );
+}
+
+#[test]
 fn strips_and_fans_become_triangle_lists() {
     let dir = TempDir::new("strips");
     for (mode, expected) in [

@@ -6,7 +6,9 @@
 //! directional one. raylab renders in relative units with no luminous
 //! efficacy, so the numbers are taken over unchanged (1 cd → 1 W/sr,
 //! 1 lx → 1 W/m²): the same geometry, falloff and colour, and a glTF scene lit
-//! for a physically based viewer keeps its relative light balance.
+//! for a physically based viewer keeps its relative light balance. (Such a
+//! scene may be lit for an exposure, e.g. a 100 000 lx sun, and then renders
+//! far brighter than raylab's own defaults of 60 W/sr and 2 W/m².)
 //!
 //! Point lights sit at the node's origin; directional lights shine along the
 //! node's −z. Spot lights become point lights (their cone is ignored, with a
