@@ -9,6 +9,7 @@
 pub mod color;
 mod error;
 pub mod generate;
+mod gltf;
 pub mod layout;
 pub mod materials;
 pub mod mesh;

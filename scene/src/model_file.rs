@@ -17,11 +17,13 @@ use std::sync::{Arc, OnceLock};
 pub struct ModelFile {
     /// The file as it was opened.
     pub path: PathBuf,
-    /// One mesh per glTF primitive (mesh space), shared by all its instances.
+    /// One mesh per glTF primitive (mesh space), shared by all its instances;
+    /// only primitives the loaded scene draws, in the order first drawn.
     pub meshes: Vec<Arc<TriangleMesh>>,
-    /// The file's materials mapped to raylab materials, with their textures.
+    /// The file's materials mapped to raylab materials, with their textures
+    /// (those the drawn primitives use, plus the default when one has none).
     pub materials: Vec<ModelMaterial>,
-    /// Decoded images used as textures.
+    /// Decoded images used as base-colour textures, one per (image, wrap modes).
     pub textures: Vec<Arc<Texture>>,
     /// Every drawn (node, primitive) pair: which mesh, which material, where.
     pub instances: Vec<MeshInstance>,
@@ -60,7 +62,7 @@ pub struct ModelMaterial {
 }
 
 /// How texture coordinates outside [0, 1] are mapped (glTF sampler wrap modes).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Wrap {
     /// Repeat the image (the glTF default).
     #[default]
@@ -150,9 +152,13 @@ impl ModelFile {
 }
 
 /// Loads a `.gltf` (external or embedded buffers) or `.glb` file.
+///
+/// What raylab does not support (Draco, skins, morph targets, animations,
+/// orthographic cameras…) is listed in [`ModelFile::warnings`], once per
+/// feature, and the rest loads. A file that cannot be read, parsed or
+/// trusted (an index out of range, a non-finite position, a missing buffer…)
+/// is a [`ModelError`] naming the mesh, primitive, accessor or buffer.
+/// The material mapping is documented in `scene/src/gltf/materials.rs`.
 pub fn load_model(path: &Path) -> Result<ModelFile, ModelError> {
-    Err(ModelError {
-        path: path.display().to_string(),
-        message: "glTF loading is not written yet".into(),
-    })
+    crate::gltf::load(path)
 }

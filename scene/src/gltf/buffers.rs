@@ -1,0 +1,197 @@
+//! Buffer data: the GLB's BIN chunk, `data:` URIs and external files
+//! (relative to the model file), and checked slices of buffer views.
+
+use super::warnings::MESHOPT;
+use ::gltf::Document;
+use ::gltf::buffer::{Data, Source, View};
+use std::path::{Path, PathBuf};
+
+/// Every buffer's bytes. `None` only for a buffer without data that the
+/// meshopt extension leaves as a fallback: reading from it is skipped.
+#[derive(Debug)]
+pub(super) struct Buffers {
+    data: Vec<Option<Vec<u8>>>,
+}
+
+/// Loads every buffer of `doc`; external files are looked up beside `base`.
+pub(super) fn load(doc: &Document, base: &Path, blob: Option<Vec<u8>>) -> Result<Buffers, String> {
+    let meshopt = doc.extensions_used().any(|e| e == MESHOPT);
+    let mut blob = blob;
+    let mut data = Vec::with_capacity(doc.buffers().len());
+    for buffer in doc.buffers() {
+        let name = match buffer.name() {
+            Some(name) => format!("buffer {} \"{name}\"", buffer.index()),
+            None => format!("buffer {}", buffer.index()),
+        };
+        let bytes = match buffer.source() {
+            Source::Uri(uri) => read_uri(uri, base).map_err(|e| format!("{name}: {e}"))?,
+            // Only the first buffer may be the GLB's BIN chunk.
+            Source::Bin if buffer.index() == 0 && blob.is_some() => blob.take().unwrap_or_default(),
+            Source::Bin if meshopt => {
+                data.push(None);
+                continue;
+            }
+            Source::Bin => {
+                return Err(format!(
+                    "{name} has no uri and is not the binary chunk of a .glb, so its data is missing"
+                ));
+            }
+        };
+        if bytes.len() < buffer.length() {
+            return Err(format!(
+                "{name} should hold {} bytes but its data has only {}",
+                buffer.length(),
+                bytes.len()
+            ));
+        }
+        data.push(Some(bytes));
+    }
+    Ok(Buffers { data })
+}
+
+impl Buffers {
+    /// Whether the buffer holds data (false for a meshopt fallback buffer).
+    pub(super) fn has_data(&self, buffer: usize) -> bool {
+        matches!(self.data.get(buffer), Some(Some(_)))
+    }
+
+    /// The bytes of `view`, checked against its buffer.
+    pub(super) fn view(&self, view: &View) -> Result<&[u8], String> {
+        let buffer = view.buffer().index();
+        let bytes = self
+            .data
+            .get(buffer)
+            .and_then(Option::as_deref)
+            .ok_or_else(|| {
+                format!(
+                    "bufferView {} reads buffer {buffer}, which has no data",
+                    view.index()
+                )
+            })?;
+        view.offset()
+            .checked_add(view.length())
+            .and_then(|end| bytes.get(view.offset()..end))
+            .ok_or_else(|| {
+                format!(
+                    "bufferView {} (bytes {}..{}) lies outside buffer {buffer} ({} bytes)",
+                    view.index(),
+                    view.offset(),
+                    view.offset().saturating_add(view.length()),
+                    bytes.len()
+                )
+            })
+    }
+}
+
+/// The bytes a URI names: a base64 `data:` URI, or a file relative to `base`
+/// (percent-encoded as URIs are), or a `file:` URI.
+pub(super) fn read_uri(uri: &str, base: &Path) -> Result<Vec<u8>, String> {
+    if let Some(rest) = uri.strip_prefix("data:") {
+        let Some((_, payload)) = rest.split_once(";base64,") else {
+            return Err(
+                "its data: URI is not base64-encoded (only \";base64,\" data URIs are supported)"
+                    .into(),
+            );
+        };
+        let Data(mut bytes) = Data::from_source(Source::Uri(uri), None)
+            .map_err(|e| format!("its data: URI is not valid base64: {e}"))?;
+        // The crate pads to a multiple of 4 bytes; keep exactly the decoded length.
+        let decoded = payload.trim_end_matches('=').len() * 3 / 4;
+        bytes.truncate(decoded);
+        return Ok(bytes);
+    }
+    let path = file_path(uri, base)?;
+    std::fs::read(&path).map_err(|e| format!("cannot read \"{}\": {e}", path.display()))
+}
+
+/// The file a non-data URI names.
+fn file_path(uri: &str, base: &Path) -> Result<PathBuf, String> {
+    let decoded = percent_decode(uri)?;
+    if let Some(rest) = decoded.strip_prefix("file://") {
+        return Ok(PathBuf::from(rest));
+    }
+    if let Some(rest) = decoded.strip_prefix("file:") {
+        return Ok(PathBuf::from(rest));
+    }
+    // A scheme is letters, digits, '+', '-' or '.' before the first ':'
+    // (a Windows drive letter would be a single letter).
+    if let Some((scheme, _)) = decoded.split_once(':') {
+        let is_scheme = scheme.len() > 1
+            && scheme
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || "+-.".contains(c));
+        if is_scheme {
+            return Err(format!(
+                "URI scheme \"{scheme}:\" is not supported (only files and data: URIs)"
+            ));
+        }
+    }
+    Ok(base.join(decoded))
+}
+
+/// Decodes `%XX` escapes; the result must be UTF-8.
+fn percent_decode(uri: &str) -> Result<String, String> {
+    if !uri.contains('%') {
+        return Ok(uri.to_owned());
+    }
+    let bytes = uri.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        if bytes[i] == b'%' {
+            let hex = bytes
+                .get(i + 1..i + 3)
+                .and_then(|h| std::str::from_utf8(h).ok())
+                .and_then(|h| u8::from_str_radix(h, 16).ok())
+                .ok_or_else(|| format!("URI \"{uri}\" has a bad %-escape at byte {i}"))?;
+            out.push(hex);
+            i += 3;
+        } else {
+            out.push(bytes[i]);
+            i += 1;
+        }
+    }
+    String::from_utf8(out).map_err(|_| format!("URI \"{uri}\" does not decode to UTF-8"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn data_uris_decode_to_their_exact_length() {
+        // "hello" is 5 bytes; the crate pads to 8, read_uri keeps 5.
+        let bytes = read_uri(
+            "data:application/octet-stream;base64,aGVsbG8=",
+            Path::new("."),
+        )
+        .expect("valid base64");
+        assert_eq!(bytes, b"hello");
+        let e = read_uri("data:text/plain,hello", Path::new(".")).expect_err("not base64");
+        assert!(e.contains("base64"), "{e}");
+        assert!(read_uri("data:;base64,@@@@", Path::new(".")).is_err());
+    }
+
+    #[test]
+    fn relative_uris_are_percent_decoded_beside_the_model() {
+        assert_eq!(
+            file_path("my%20mesh.bin", Path::new("/models")).expect("relative"),
+            PathBuf::from("/models/my mesh.bin")
+        );
+        assert_eq!(
+            file_path("file:///tmp/a.bin", Path::new("/models")).expect("file uri"),
+            PathBuf::from("/tmp/a.bin")
+        );
+        let e = file_path("https://example.org/a.bin", Path::new(".")).expect_err("remote");
+        assert!(e.contains("https:"), "{e}");
+        assert!(percent_decode("bad%zzescape").is_err());
+        assert!(percent_decode("cut%2").is_err());
+        assert!(percent_decode("%ff%fe").is_err(), "not UTF-8");
+    }
+
+    #[test]
+    fn missing_files_name_the_path() {
+        let e = read_uri("no-such-file.bin", Path::new("/nonexistent-dir")).expect_err("missing");
+        assert!(e.contains("/nonexistent-dir/no-such-file.bin"), "{e}");
+    }
+}
