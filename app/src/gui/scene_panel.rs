@@ -75,12 +75,16 @@ pub fn show(
             action = Some(Action::Delete);
         }
     });
+    ui.label(egui::RichText::new("Objects").weak());
+    // Only the rows in view are laid out: a scene may hold ten thousand objects.
+    let row_height = ui.spacing().interact_size.y;
     egui::ScrollArea::vertical()
         .id_salt("scene-list")
         .max_height(220.0)
-        .show(ui, |ui| {
-            ui.label(egui::RichText::new("Objects").weak());
-            for (i, object) in scene.objects.iter().enumerate() {
+        .auto_shrink([false, true])
+        .show_rows(ui, row_height, scene.objects.len(), |ui, rows| {
+            for i in rows {
+                let object = &scene.objects[i];
                 let name = object.name.clone().unwrap_or_else(|| {
                     resolved.and_then(|r| r.objects.get(i)).map_or_else(
                         || format!("{} {}", object.shape.tag(), i + 1),
@@ -92,6 +96,11 @@ pub fn show(
                     *selection = Selection::Object(i);
                 }
             }
+        });
+    egui::ScrollArea::vertical()
+        .id_salt("light-list")
+        .max_height(120.0)
+        .show(ui, |ui| {
             ui.label(egui::RichText::new("Lights").weak());
             if scene.lights.is_empty() {
                 ui.weak("none: a default key light and ambient light");

@@ -5,7 +5,7 @@
 //! [`Camera`], so the picture is the lecture's geometry, not a copy of it.
 
 use super::gpu::{GpuSegment, GpuVertex};
-use super::tessellate::{MeshVertex, tessellate};
+use super::tessellate::{MeshVertex, OBJECTS_DRAWN_IN_FULL, tessellate, tessellate_bounds};
 use egui::Color32;
 use glam::Vec3;
 use renderer::{Camera, World};
@@ -274,9 +274,14 @@ pub fn build(inputs: &Inputs<'_>) -> Drawing {
 
 fn objects(drawing: &mut Drawing, inputs: &Inputs<'_>, centre: Vec3, radius: f32) {
     let mut mesh: Vec<MeshVertex> = Vec::new();
+    let as_boxes = inputs.objects.len() > OBJECTS_DRAWN_IN_FULL;
     for (index, geometry) in inputs.objects.iter().map(|o| &o.geometry).enumerate() {
         mesh.clear();
-        tessellate(geometry, centre, 2.0 * radius, &mut mesh);
+        if as_boxes {
+            tessellate_bounds(geometry, centre, 2.0 * radius, &mut mesh);
+        } else {
+            tessellate(geometry, centre, 2.0 * radius, &mut mesh);
+        }
         let selected = inputs.selected_object == Some(index);
         let material = inputs.world.materials.get(index);
         let base = material.map_or(Vec3::splat(0.7), |m| m.color);

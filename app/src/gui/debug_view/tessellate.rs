@@ -104,6 +104,24 @@ fn mesh(model: &scene::ModelFile, world_from_model: glam::Mat4, out: &mut Vec<Me
     }
 }
 
+/// Objects beyond which each is drawn as its bounding box (lavapipe draws
+/// on the CPU: ten thousand tessellated spheres would be 16 million triangles).
+pub const OBJECTS_DRAWN_IN_FULL: usize = 2_000;
+
+/// Appends the axis-aligned box around `geometry` (an infinite plane as
+/// [`tessellate`] draws it).
+pub fn tessellate_bounds(
+    geometry: &Geometry,
+    focus: Vec3,
+    plane_extent: f32,
+    out: &mut Vec<MeshVertex>,
+) {
+    match scene::layout::bounds(geometry) {
+        Some(b) => cuboid(Frame::at(b.center()), 0.5 * (b.max - b.min), out),
+        None => tessellate(geometry, focus, plane_extent, out),
+    }
+}
+
 /// Pushes the quad a, b, c, d (counter-clockwise seen from outside) as two triangles.
 fn quad(out: &mut Vec<MeshVertex>, [a, b, c, d]: [MeshVertex; 4]) {
     out.extend([a, b, c, a, c, d]);
