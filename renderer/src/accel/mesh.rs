@@ -7,14 +7,13 @@
 
 use super::scene::Aabb;
 use super::stack::Stack;
-use super::wide::WideRay;
+use super::wide::{WideNode, WideRay};
 use crate::ray::Ray;
 use crate::shapes::WatertightRay;
 use glam::{Vec3, Vec3A};
 use obvhs::BvhBuildParams;
 use obvhs::bvh2::reinsertion::ReinsertionOptimizer;
 use obvhs::cwbvh::bvh2_to_cwbvh::bvh2_to_cwbvh;
-use obvhs::cwbvh::node::CwBvhNode;
 use obvhs::ploc::PlocBuilder;
 
 /// The closest hit of a ray with a mesh: P0 + α v = (1 − β − γ) t0 + β t1 + γ t2.
@@ -61,22 +60,23 @@ impl BuildQuality {
     }
 }
 
-/// One triangle in leaf order: its vertices and its index in the caller's list.
+/// One triangle in leaf order: t0, t1, t2.
 #[derive(Clone, Copy, Debug)]
 struct LeafTriangle {
     /// t0, t1, t2.
     v: [Vec3; 3],
-    /// Index into the caller's `triangles`.
-    index: u32,
 }
 
 /// A BVH over one triangle mesh.
 #[derive(Clone, Debug)]
 pub struct MeshBvh {
-    /// obvhs's CWBVH nodes; node 0 is the root (empty for an empty mesh).
-    nodes: Vec<CwBvhNode>,
+    /// The nodes (obvhs's CWBVH with exact boxes); node 0 is the root
+    /// (none for an empty mesh).
+    nodes: Vec<WideNode>,
     /// Triangles in the order of the nodes' primitive indices.
     triangles: Vec<LeafTriangle>,
+    /// For each of `triangles`, its index in the caller's list.
+    indices: Vec<u32>,
     /// The box around every triangle.
     bounds: Aabb,
 }
@@ -113,6 +113,7 @@ impl MeshBvh {
             return MeshBvh {
                 nodes: Vec::new(),
                 triangles: Vec::new(),
+                indices: Vec::new(),
                 bounds,
             };
         }
@@ -126,19 +127,23 @@ impl MeshBvh {
         );
         drop(boxes);
         ReinsertionOptimizer::default().run(&mut bvh2, params.reinsertion_batch_ratio, None);
-        let cw = bvh2_to_cwbvh(&bvh2, params.max_prims_per_leaf, true, false);
+        let cw = bvh2_to_cwbvh(&bvh2, params.max_prims_per_leaf, true, true);
         drop(bvh2);
+        let nodes = WideNode::from_cwbvh(&cw, |slot| {
+            let [a, b, c] = corners(&triangles[cw.primitive_indices[slot] as usize]);
+            (a.min(b).min(c).to_array(), a.max(b).max(c).to_array())
+        });
         let triangles = cw
             .primitive_indices
             .iter()
             .map(|&i| LeafTriangle {
                 v: corners(&triangles[i as usize]),
-                index: i,
             })
             .collect();
         MeshBvh {
-            nodes: cw.nodes,
+            nodes,
             triangles,
+            indices: cw.primitive_indices,
             bounds,
         }
     }
@@ -161,8 +166,9 @@ impl MeshBvh {
     /// Bytes held by the structure: nodes plus the leaf-order triangle copies.
     pub fn bytes(&self) -> usize {
         std::mem::size_of::<Self>()
-            + self.nodes.capacity() * std::mem::size_of::<CwBvhNode>()
+            + self.nodes.capacity() * std::mem::size_of::<WideNode>()
             + self.triangles.capacity() * std::mem::size_of::<LeafTriangle>()
+            + self.indices.capacity() * std::mem::size_of::<u32>()
     }
 
     /// The hit with the smallest α in (t_min, t_max), with the same α as
@@ -174,17 +180,19 @@ impl MeshBvh {
         let mut best = None;
         self.traverse(&mut wide, |slot, wide| {
             let t = &self.triangles[slot];
-            if let Some(alpha) = tri.alpha(t.v[0], t.v[1], t.v[2], wide.t_min, wide.t_max) {
-                wide.t_max = alpha;
+            let s = &mut wide.slab;
+            if let Some(alpha) = tri.alpha(t.v[0], t.v[1], t.v[2], s.t_min, s.t_max) {
+                s.set_t_max(alpha);
                 best = Some(slot);
             }
             false
         });
-        let t = &self.triangles[best?];
+        let best = best?;
+        let t = &self.triangles[best];
         // The same arithmetic again, now with β and γ; α is unchanged.
         let hit = tri.hit(ray, t.v[0], t.v[1], t.v[2])?;
         Some(MeshHit {
-            triangle: t.index,
+            triangle: self.indices[best],
             alpha: hit.alpha,
             beta: hit.beta,
             gamma: hit.gamma,
@@ -200,7 +208,7 @@ impl MeshBvh {
         self.traverse(&mut wide, |slot, wide| {
             let t = &self.triangles[slot];
             hit = tri
-                .alpha(t.v[0], t.v[1], t.v[2], wide.t_min, wide.t_max)
+                .alpha(t.v[0], t.v[1], t.v[2], wide.slab.t_min, wide.slab.t_max)
                 .is_some();
             hit
         });
@@ -218,10 +226,10 @@ impl MeshBvh {
         };
         let hits = ray.intersect(root);
         // (first child node, bits 24..32: children to visit, 0..8: imask)
-        let mut nodes = (root.child_base_idx, (hits & NODE_BITS) | root.imask as u32);
+        let mut nodes = (root.child_base, (hits & NODE_BITS) | root.imask as u32);
         // (first triangle slot, bits: triangles to test)
-        let mut tris = (root.primitive_base_idx, hits & !NODE_BITS);
-        let mut stack = Stack::<(u32, u32)>::new();
+        let mut tris = (root.prim_base, hits & !NODE_BITS);
+        let mut stack = Stack::<(u32, u32), 32>::new();
         loop {
             while tris.1 != 0 {
                 let k = tris.1.trailing_zeros();
@@ -241,8 +249,8 @@ impl MeshBvh {
                 let before = (group.1 & 0xff & ((1 << slot) - 1)).count_ones();
                 let node = &self.nodes[(group.0 + before) as usize];
                 let hits = ray.intersect(node);
-                nodes = (node.child_base_idx, (hits & NODE_BITS) | node.imask as u32);
-                tris = (node.primitive_base_idx, hits & !NODE_BITS);
+                nodes = (node.child_base, (hits & NODE_BITS) | node.imask as u32);
+                tris = (node.prim_base, hits & !NODE_BITS);
             } else if let Some(group) = stack.pop() {
                 nodes = group;
             } else {

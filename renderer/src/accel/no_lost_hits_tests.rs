@@ -7,7 +7,7 @@
 use super::mesh::MeshBvh;
 use super::reference;
 use super::test_meshes::{grid, mapped, merge};
-use crate::generate;
+use crate::generate::{self, rays_at_shared_edges};
 use crate::ray::Ray;
 use crate::sampler::Sampler;
 use crate::shapes::WatertightRay;
@@ -63,51 +63,6 @@ fn assert_equals_brute_force(mesh: &Mesh, rays: &[Ray], what: &str) -> usize {
             .join("\n")
     );
     outcomes.iter().filter(|o| matches!(o, Ok(true))).count()
-}
-
-/// A point on a shared edge or vertex of the unit grid cell (i, j) of
-/// [`grid`]: its corner, a point on its bottom or left edge, or on its diagonal.
-fn shared_point(i: u32, j: u32, kind: u32, f: f32) -> Vec3 {
-    let (x, y) = (i as f32, j as f32);
-    match kind % 4 {
-        0 => Vec3::new(x, y, 0.0),
-        1 => Vec3::new(x + f, y, 0.0),
-        2 => Vec3::new(x, y + f, 0.0),
-        _ if (i + j).is_multiple_of(2) => Vec3::new(x + f, y + f, 0.0),
-        _ => Vec3::new(x + 1.0 - f, y + f, 0.0),
-    }
-}
-
-/// Rays from above and below aimed at shared edges and vertices of an
-/// n × n grid, from steep to grazing (elevation down to 10⁻³ rad).
-fn rays_at_shared_edges(n: u32, count: usize, seed: u64) -> Vec<Ray> {
-    let mut rng = Sampler::for_sample(seed, 0, 0, 0);
-    (0..count)
-        .map(|k| {
-            let i = 1 + (rng.next_f32() * (n - 2) as f32) as u32;
-            let j = 1 + (rng.next_f32() * (n - 2) as f32) as u32;
-            let f = if k % 2 == 0 {
-                rng.next_f32()
-            } else {
-                (rng.next_f32() * 64.0).floor() / 64.0
-            };
-            let target = shared_point(i, j, k as u32, f);
-            let elevation = if k % 4 == 3 {
-                1e-3 + 0.05 * rng.next_f32()
-            } else {
-                0.05 + 1.5 * rng.next_f32()
-            };
-            let azimuth = std::f32::consts::TAU * rng.next_f32();
-            let side = if k % 5 == 0 { -1.0 } else { 1.0 };
-            let to_origin = Vec3::new(
-                elevation.cos() * azimuth.cos(),
-                elevation.cos() * azimuth.sin(),
-                side * elevation.sin(),
-            );
-            let origin = target + to_origin * (0.5 + 30.0 * rng.next_f32());
-            Ray::new(origin, (target - origin).normalize())
-        })
-        .collect()
 }
 
 #[test]

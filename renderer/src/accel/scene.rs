@@ -144,7 +144,7 @@ impl SceneBvh {
             return;
         };
         let mut current = 0usize;
-        let mut stack = Stack::<(u32, f32)>::new();
+        let mut stack = Stack::<(u32, f32), 64>::new();
         loop {
             // A node popped from the stack may now lie beyond the closest hit.
             if t_enter <= slab.t_max_wide {

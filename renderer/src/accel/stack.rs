@@ -2,11 +2,9 @@
 //! heap only for pathologically deep trees, so traversal never allocates in
 //! practice and never overflows.
 
-/// Entries kept in the fixed array before spilling.
-const INLINE: usize = 64;
-
-/// A LIFO stack of `T` with `INLINE` entries in place.
-pub(crate) struct Stack<T: Copy + Default> {
+/// A LIFO stack of `T` with `INLINE` entries in place (each traversal
+/// initialises them, so keep `INLINE` near the trees' depth).
+pub(crate) struct Stack<T: Copy + Default, const INLINE: usize> {
     /// The first `INLINE` entries.
     inline: [T; INLINE],
     /// How many of `inline` are in use.
@@ -15,7 +13,7 @@ pub(crate) struct Stack<T: Copy + Default> {
     spill: Vec<T>,
 }
 
-impl<T: Copy + Default> Stack<T> {
+impl<T: Copy + Default, const INLINE: usize> Stack<T, INLINE> {
     /// An empty stack (no allocation).
     #[inline(always)]
     pub(crate) fn new() -> Self {
@@ -58,7 +56,7 @@ mod tests {
 
     #[test]
     fn stack_is_lifo_across_the_spill_boundary() {
-        let mut s = Stack::<u32>::new();
+        let mut s = Stack::<u32, 64>::new();
         for v in 0..200 {
             s.push(v);
         }

@@ -3,31 +3,10 @@
 
 use glam::Vec3;
 
-/// An `nx` × `ny` grid of unit squares in the plane z = `z`, corners at
-/// integer (x, y), each square split along alternating diagonals into two
-/// triangles: 2 nx ny triangles, every box flat in z.
+/// [`crate::generate::tiled_floor`] as a (positions, triangles) pair.
 pub(crate) fn grid(nx: u32, ny: u32, z: f32) -> (Vec<Vec3>, Vec<[u32; 3]>) {
-    let mut positions = Vec::with_capacity(((nx + 1) * (ny + 1)) as usize);
-    for j in 0..=ny {
-        for i in 0..=nx {
-            positions.push(Vec3::new(i as f32, j as f32, z));
-        }
-    }
-    let mut triangles = Vec::with_capacity((2 * nx * ny) as usize);
-    let v = |i: u32, j: u32| j * (nx + 1) + i;
-    for j in 0..ny {
-        for i in 0..nx {
-            let (a, b, c, d) = (v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1));
-            if (i + j).is_multiple_of(2) {
-                triangles.push([a, b, c]);
-                triangles.push([a, c, d]);
-            } else {
-                triangles.push([a, b, d]);
-                triangles.push([b, c, d]);
-            }
-        }
-    }
-    (positions, triangles)
+    let m = crate::generate::tiled_floor(nx, ny, z);
+    (m.positions, m.triangles)
 }
 
 /// Appends mesh `b` to mesh `a`.
