@@ -2,7 +2,7 @@
 //! reused by every later world that draws the same (`Arc`-shared) mesh, so
 //! an edit rebuilds only the top level, never a million-triangle mesh.
 
-use crate::accel_stub::MeshBvh;
+use crate::accel::MeshBvh;
 use rayon::prelude::*;
 use scene::TriangleMesh;
 use std::sync::{Arc, Mutex, Weak};

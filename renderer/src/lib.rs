@@ -4,7 +4,7 @@
 //! θ, d, H_d, W_d, C00, P_ij, v_ij); every primitive of the lecture has its
 //! own intersection file under [`shapes`].
 
-pub mod accel_stub;
+pub mod accel;
 pub mod aov;
 pub mod blas_cache;
 pub mod camera;
@@ -13,6 +13,7 @@ pub mod display;
 pub mod display_image;
 pub mod film;
 pub mod frame;
+pub mod generate;
 pub mod heatmap;
 pub mod image_texture;
 pub mod inspect;

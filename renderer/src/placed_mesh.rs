@@ -1,11 +1,11 @@
 //! A mesh placed in the world: one instance of a model file's primitive,
 //! sharing its bottom-level BVH with every other instance of the same mesh.
 
-use crate::accel_stub::{Aabb, MeshBvh, MeshHit};
+use crate::accel::{Aabb, Instance, MeshBvh, MeshHit};
 use crate::image_texture;
 use crate::ray::Ray;
 use crate::shapes::Surface;
-use glam::{Affine3A, Mat3, Vec2, Vec3};
+use glam::{Affine3A, Vec2, Vec3};
 use scene::{Material, Texture, TriangleMesh};
 use std::sync::Arc;
 
@@ -18,12 +18,9 @@ pub struct PlacedMesh {
     pub mesh: Arc<TriangleMesh>,
     /// Its bottom-level BVH (shared by every instance of `mesh`).
     pub bvh: Arc<MeshBvh>,
-    /// world_from_mesh: the model file's node transform, then the object's placement.
-    pub world_from_mesh: Affine3A,
-    /// The inverse, which takes rays into mesh space.
-    pub mesh_from_world: Affine3A,
-    /// Normals go to world space by the inverse transpose of the linear part.
-    pub normal_to_world: Mat3,
+    /// world_from_mesh (the model file's node transform, then the object's
+    /// placement) with its inverse, which takes rays into mesh space.
+    pub instance: Instance,
     /// The material the instance is shaded with.
     pub material: Material,
     /// The base-colour texture multiplied with `material.color`, if any.
@@ -42,55 +39,29 @@ impl PlacedMesh {
         material: Material,
         texture: Option<Arc<Texture>>,
     ) -> PlacedMesh {
-        let local = bvh.bounds();
-        let corners = (0..8).map(|k| {
-            Vec3::new(
-                if k & 1 == 0 { local.min.x } else { local.max.x },
-                if k & 2 == 0 { local.min.y } else { local.max.y },
-                if k & 4 == 0 { local.min.z } else { local.max.z },
-            )
-        });
-        let (mut min, mut max) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
-        for c in corners {
-            let p = world_from_mesh.transform_point3(c);
-            min = min.min(p);
-            max = max.max(p);
-        }
-        let linear = Mat3::from(world_from_mesh.matrix3);
+        let instance = Instance::new(world_from_mesh);
         PlacedMesh {
             object,
             mesh,
+            bounds: instance.world_bounds(bvh.bounds()),
             bvh,
-            world_from_mesh,
-            mesh_from_world: world_from_mesh.inverse(),
-            normal_to_world: linear.inverse().transpose(),
+            instance,
             material,
             texture,
-            bounds: Aabb { min, max },
         }
     }
 
-    /// The ray in mesh space: the direction is transformed but not
-    /// normalised, so α means the same point in both spaces.
-    #[inline]
-    pub fn ray_to_mesh(&self, ray: &Ray) -> Ray {
-        Ray {
-            origin: self.mesh_from_world.transform_point3(ray.origin),
-            dir: self.mesh_from_world.transform_vector3(ray.dir),
-            ..*ray
-        }
-    }
-
-    /// The closest triangle hit inside the ray's interval (watertight test).
+    /// The closest triangle hit inside the ray's interval (watertight test);
+    /// α is the world ray's.
     #[inline]
     pub fn closest_hit(&self, ray: &Ray) -> Option<MeshHit> {
-        self.bvh.closest_hit(&self.ray_to_mesh(ray))
+        self.instance.closest_hit(&self.bvh, ray)
     }
 
     /// True when any triangle lies on the ray inside its interval.
     #[inline]
     pub fn any_hit(&self, ray: &Ray) -> bool {
-        self.bvh.any_hit(&self.ray_to_mesh(ray))
+        self.instance.any_hit(&self.bvh, ray)
     }
 
     /// The triangle's corners in mesh space.
@@ -106,10 +77,14 @@ impl PlacedMesh {
         let p = &self.mesh.positions;
         let (p0, p1, p2) = (p[a as usize], p[b as usize], p[c as usize]);
         let local = p0 + hit.beta * (p1 - p0) + hit.gamma * (p2 - p0);
-        let normal = (self.normal_to_world * (p1 - p0).cross(p2 - p0)).normalize_or(Vec3::Y);
+        let normal = self.instance.normal_to_world((p1 - p0).cross(p2 - p0));
         Surface {
-            point: self.world_from_mesh.transform_point3(local),
-            normal,
+            point: self.instance.point_to_world(local),
+            normal: if normal == Vec3::ZERO {
+                Vec3::Y
+            } else {
+                normal
+            },
         }
     }
 
@@ -125,9 +100,8 @@ impl PlacedMesh {
         };
         let alpha = 1.0 - hit.beta - hit.gamma;
         let local = alpha * *n0 + hit.beta * *n1 + hit.gamma * *n2;
-        (self.normal_to_world * local)
-            .try_normalize()
-            .unwrap_or(geometric)
+        let n = self.instance.normal_to_world(local);
+        if n == Vec3::ZERO { geometric } else { n }
     }
 
     /// The interpolated texture coordinate, if the mesh has them.

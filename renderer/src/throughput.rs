@@ -112,7 +112,7 @@ pub fn rebuild_mesh_bvhs(world: &World) -> (Duration, usize, usize) {
     let (bvhs, took) = timed(|| {
         distinct
             .par_iter()
-            .map(|m| crate::accel_stub::MeshBvh::build(&m.positions, &m.triangles))
+            .map(|m| crate::accel::MeshBvh::build(&m.positions, &m.triangles))
             .collect::<Vec<_>>()
     });
     let triangles = distinct.iter().map(|m| m.triangles.len()).sum();

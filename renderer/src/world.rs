@@ -1,7 +1,7 @@
 //! The prepared, immutable render copy of a scene: camera, objects,
 //! materials, lights, and the two-level BVH over them.
 
-use crate::accel_stub::{Aabb, SceneBvh};
+use crate::accel::{Aabb, SceneBvh};
 use crate::blas_cache;
 use crate::camera::{Camera, CameraError};
 use crate::light::Light;
@@ -311,8 +311,8 @@ impl World {
 }
 
 /// The accelerator's view of a world hit on a mesh.
-fn mesh_hit(hit: Hit, t: TriangleRef) -> crate::accel_stub::MeshHit {
-    crate::accel_stub::MeshHit {
+fn mesh_hit(hit: Hit, t: TriangleRef) -> crate::accel::MeshHit {
+    crate::accel::MeshHit {
         triangle: t.triangle,
         alpha: hit.alpha,
         beta: t.beta,

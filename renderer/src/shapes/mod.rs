@@ -22,7 +22,7 @@ pub use cylinder::Cylinder;
 pub use plane::Plane;
 pub use sphere::{Sphere, SphereQuadratic, SphereRoots};
 pub use torus::Torus;
-pub use triangle::{Triangle, TriangleHit};
+pub use triangle::{Triangle, TriangleHit, WatertightRay};
 
 use crate::ray::Ray;
 use glam::Vec3;

@@ -82,51 +82,7 @@ impl Triangle {
     /// functions, recomputed in f64 when one is exactly zero. Rays through a
     /// shared edge or vertex of a mesh hit at least one of its triangles.
     fn watertight_hit(&self, ray: &Ray) -> Option<TriangleHit> {
-        let d = ray.dir;
-        let kz = d.abs().max_position();
-        let mut kx = (kz + 1) % 3;
-        let mut ky = (kx + 1) % 3;
-        if d[kz] < 0.0 {
-            std::mem::swap(&mut kx, &mut ky);
-        }
-        let sx = d[kx] / d[kz];
-        let sy = d[ky] / d[kz];
-        let sz = 1.0 / d[kz];
-
-        let a = self.t0 - ray.origin;
-        let b = self.t1 - ray.origin;
-        let c = self.t2 - ray.origin;
-        let (ax, ay) = (a[kx] - sx * a[kz], a[ky] - sy * a[kz]);
-        let (bx, by) = (b[kx] - sx * b[kz], b[ky] - sy * b[kz]);
-        let (cx, cy) = (c[kx] - sx * c[kz], c[ky] - sy * c[kz]);
-
-        let mut eu = cx * by - cy * bx;
-        let mut ev = ax * cy - ay * cx;
-        let mut ew = bx * ay - by * ax;
-        if eu == 0.0 || ev == 0.0 || ew == 0.0 {
-            let f =
-                |p: f32, q: f32, r: f32, s: f32| (p as f64 * q as f64 - r as f64 * s as f64) as f32;
-            eu = f(cx, by, cy, bx);
-            ev = f(ax, cy, ay, cx);
-            ew = f(bx, ay, by, ax);
-        }
-        if (eu < 0.0 || ev < 0.0 || ew < 0.0) && (eu > 0.0 || ev > 0.0 || ew > 0.0) {
-            return None;
-        }
-        let det = eu + ev + ew;
-        if det == 0.0 {
-            return None;
-        }
-        let t_scaled = eu * (sz * a[kz]) + ev * (sz * b[kz]) + ew * (sz * c[kz]);
-        let alpha = t_scaled / det;
-        if !alpha.is_finite() || !ray.contains(alpha) {
-            return None;
-        }
-        Some(TriangleHit {
-            alpha,
-            beta: ev / det,
-            gamma: ew / det,
-        })
+        WatertightRay::new(ray).hit(ray, self.t0, self.t1, self.t2)
     }
 
     /// β and γ of a point in the triangle's plane, by the lecture's 2×2 solve
@@ -162,6 +118,114 @@ impl Triangle {
             point: point.as_vec3(),
             normal: self.normal(),
         }
+    }
+}
+
+/// The per-ray half of the watertight test (Woop, Benthin, Wald 2013): the
+/// axis permutation and shear, computed once per ray. [`WatertightRay::hit`]
+/// is the per-triangle half; [`Triangle::hit`] with [`Method::Robust`] is
+/// exactly `WatertightRay::new(ray).hit(ray, t0, t1, t2)`, so an acceleration
+/// structure calling it gets bit-identical α, β, γ.
+#[derive(Clone, Copy, Debug)]
+pub struct WatertightRay {
+    /// The ray's origin P0.
+    origin: Vec3,
+    /// The axis of the direction's largest magnitude (the shear's z)...
+    kz: usize,
+    /// ...and the other two, swapped when v[kz] < 0 to keep the winding.
+    kx: usize,
+    /// See `kx`.
+    ky: usize,
+    /// Shear factors v[kx]/v[kz], v[ky]/v[kz] and 1/v[kz].
+    sx: f32,
+    /// See `sx`.
+    sy: f32,
+    /// See `sx`.
+    sz: f32,
+}
+
+impl WatertightRay {
+    /// The permutation and shear of `ray`.
+    #[inline]
+    pub fn new(ray: &Ray) -> Self {
+        let d = ray.dir;
+        let kz = d.abs().max_position();
+        let mut kx = (kz + 1) % 3;
+        let mut ky = (kx + 1) % 3;
+        if d[kz] < 0.0 {
+            std::mem::swap(&mut kx, &mut ky);
+        }
+        Self {
+            origin: ray.origin,
+            kz,
+            kx,
+            ky,
+            sx: d[kx] / d[kz],
+            sy: d[ky] / d[kz],
+            sz: 1.0 / d[kz],
+        }
+    }
+
+    /// The edge functions U, V, W and the scaled distance of the triangle
+    /// t0, t1, t2, or `None` when the ray passes outside it or the
+    /// determinant U + V + W is zero. α = t_scaled / det, β = V / det,
+    /// γ = W / det.
+    #[inline(always)]
+    fn edges(&self, t0: Vec3, t1: Vec3, t2: Vec3) -> Option<[f32; 5]> {
+        let (kx, ky, kz) = (self.kx, self.ky, self.kz);
+        let (sx, sy, sz) = (self.sx, self.sy, self.sz);
+        let a = (t0 - self.origin).to_array();
+        let b = (t1 - self.origin).to_array();
+        let c = (t2 - self.origin).to_array();
+        let (ax, ay) = (a[kx] - sx * a[kz], a[ky] - sy * a[kz]);
+        let (bx, by) = (b[kx] - sx * b[kz], b[ky] - sy * b[kz]);
+        let (cx, cy) = (c[kx] - sx * c[kz], c[ky] - sy * c[kz]);
+
+        let mut eu = cx * by - cy * bx;
+        let mut ev = ax * cy - ay * cx;
+        let mut ew = bx * ay - by * ax;
+        if eu == 0.0 || ev == 0.0 || ew == 0.0 {
+            let f =
+                |p: f32, q: f32, r: f32, s: f32| (p as f64 * q as f64 - r as f64 * s as f64) as f32;
+            eu = f(cx, by, cy, bx);
+            ev = f(ax, cy, ay, cx);
+            ew = f(bx, ay, by, ax);
+        }
+        if (eu < 0.0 || ev < 0.0 || ew < 0.0) && (eu > 0.0 || ev > 0.0 || ew > 0.0) {
+            return None;
+        }
+        let det = eu + ev + ew;
+        if det == 0.0 {
+            return None;
+        }
+        let t_scaled = eu * (sz * a[kz]) + ev * (sz * b[kz]) + ew * (sz * c[kz]);
+        Some([eu, ev, ew, det, t_scaled])
+    }
+
+    /// α of the hit with triangle t0, t1, t2 inside the ray's interval
+    /// (t_min, t_max), if any; the same α as [`WatertightRay::hit`].
+    #[inline(always)]
+    pub fn alpha(&self, t0: Vec3, t1: Vec3, t2: Vec3, t_min: f32, t_max: f32) -> Option<f32> {
+        let [_, _, _, det, t_scaled] = self.edges(t0, t1, t2)?;
+        let alpha = t_scaled / det;
+        (alpha.is_finite() && alpha > t_min && alpha < t_max).then_some(alpha)
+    }
+
+    /// The hit with triangle t0, t1, t2 inside `ray`'s interval, with its
+    /// barycentric coordinates. `ray` must be the ray this was made from
+    /// (only its interval is read here).
+    #[inline(always)]
+    pub fn hit(&self, ray: &Ray, t0: Vec3, t1: Vec3, t2: Vec3) -> Option<TriangleHit> {
+        let [_, ev, ew, det, t_scaled] = self.edges(t0, t1, t2)?;
+        let alpha = t_scaled / det;
+        if !alpha.is_finite() || !ray.contains(alpha) {
+            return None;
+        }
+        Some(TriangleHit {
+            alpha,
+            beta: ev / det,
+            gamma: ew / det,
+        })
     }
 }
 

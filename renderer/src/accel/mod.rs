@@ -1,0 +1,34 @@
+//! Ray-tracing acceleration: a two-level bounding-volume hierarchy built with
+//! `obvhs` and traversed by our own conservative code, which never loses a hit
+//! that a brute-force watertight test over every triangle would find.
+//!
+//! - [`MeshBvh`]: the bottom level, one per triangle mesh (obvhs's compressed
+//!   8-wide CWBVH, triangles copied in leaf order).
+//! - [`SceneBvh`]: the top level over items known only by their boxes (mesh
+//!   instances, analytic shapes); the caller intersects each item.
+//! - [`Instance`]: an affine placement of a mesh, mapping rays into the mesh's
+//!   space so that α is unchanged.
+//! - [`reference`]: brute force over every triangle, the oracle of the tests.
+//!
+//! Why obvhs's own traversal is not used: its node test has no conservative
+//! t_far correction (Ize, "Robust BVH Ray Traversal", JCGT 2013), its CWBVH
+//! node test replaces the ray's t_min by a fixed 1e-4, and its rays clamp
+//! near-zero direction components; each loses hits (see the tests of
+//! [`mesh`]). Our node tests are in [`slab`] and [`wide`].
+
+pub mod instance;
+pub mod mesh;
+pub mod reference;
+pub mod scene;
+pub mod slab;
+mod stack;
+pub mod wide;
+
+#[cfg(test)]
+mod no_lost_hits_tests;
+#[cfg(test)]
+pub(crate) mod test_meshes;
+
+pub use self::scene::{Aabb, SceneBvh};
+pub use instance::Instance;
+pub use mesh::{MeshBvh, MeshHit};
