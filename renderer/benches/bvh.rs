@@ -9,7 +9,23 @@
 //! boxes, and how many hits obvhs's own traversal loses on the same rays.
 //!
 //! Run: `cargo bench -p raylab-renderer --bench bvh -- [--triangles N]
-//! [--repeats R] [--width W --height H] [--qualities] [--lost]`
+//! [--repeats R] [--width W --height H] [--qualities] [--lost]
+//! [--export DIR]`; Embree on the same exported mesh and rays:
+//! `scripts/bench_embree.py DIR`.
+//!
+//! Measured 2025-11-23 on the shared 2-vCPU machine under load (other
+//! builds running: load average ≈ 3), two alternating runs, medians of 5:
+//! raylab 1 thread primary 6.15 / 5.46, 16×16-tiled 6.68 / 4.69, incoherent
+//! 1.12 / 1.22 Mrays/s, build 0.72–0.99 s, 63.2 B/triangle; Embree 4.4
+//! (embreex) in the same runs 1 thread primary 10.2 / 9.3, tiled 10.9 / 11.7,
+//! incoherent 2.0 / 2.5 Mrays/s, build 0.95 / 0.92 s (embreex, including its
+//! Python set-up). Not yet at Embree's traversal speed (≈ 0.55–0.6×).
+//!
+//! `--lost` (same day): closest α differing from ours (ours equals brute
+//! force) with obvhs 0.4's own traversal and our triangle test, fast_build:
+//! 300×300 floor, 10⁶ rays at shared edges/vertices (incl. grazing and from
+//! below): CWBVH 11.2%, BVH2 3.2%; 10⁵ hits at α in [1e-6, 1e-4]: CWBVH
+//! 99.99%, BVH2 0; torus knot primary and incoherent rays: 0 for both.
 
 use glam::{Vec3, Vec3A};
 use rayon::prelude::*;
@@ -29,6 +45,8 @@ struct Args {
     height: u32,
     qualities: bool,
     lost: bool,
+    /// Write the mesh and ray sets to this folder (for scripts/bench_embree.py).
+    export: Option<String>,
     /// Only build once and trace each ray set once on 1 thread (for profilers).
     profile: bool,
 }
@@ -42,6 +60,7 @@ fn args() -> Args {
         qualities: false,
         lost: false,
         profile: false,
+        export: None,
     };
     let mut it = std::env::args().skip(1);
     while let Some(s) = it.next() {
@@ -58,6 +77,7 @@ fn args() -> Args {
             "--qualities" => a.qualities = true,
             "--lost" => a.lost = true,
             "--profile" => a.profile = true,
+            "--export" => a.export = it.next(),
             _ => {} // cargo bench passes --bench
         }
     }
@@ -199,6 +219,39 @@ fn build_phases(mesh: &Mesh, name: &str) {
     }
 }
 
+/// Little-endian raw arrays: positions (f32 × 3), triangles (u32 × 3), and
+/// per ray set origins and directions (f32 × 3).
+fn export(dir: &str, mesh: &Mesh, sets: &[(&str, &[Ray])]) {
+    let write = |name: &str, floats: Vec<u8>| {
+        std::fs::write(format!("{dir}/{name}.bin"), floats).expect("write export");
+    };
+    std::fs::create_dir_all(dir).expect("export folder");
+    let f32s = |v: &mut dyn Iterator<Item = f32>| v.flat_map(f32::to_le_bytes).collect::<Vec<u8>>();
+    write(
+        "positions",
+        f32s(&mut mesh.positions.iter().flat_map(|p| p.to_array())),
+    );
+    write(
+        "triangles",
+        mesh.triangles
+            .iter()
+            .flatten()
+            .flat_map(|k| k.to_le_bytes())
+            .collect(),
+    );
+    for (name, rays) in sets {
+        write(
+            &format!("{name}_origins"),
+            f32s(&mut rays.iter().flat_map(|r| r.origin.to_array())),
+        );
+        write(
+            &format!("{name}_dirs"),
+            f32s(&mut rays.iter().flat_map(|r| r.dir.to_array())),
+        );
+    }
+    println!("wrote {dir}");
+}
+
 fn main() {
     let a = args();
     let all = rayon::current_num_threads();
@@ -208,7 +261,20 @@ fn main() {
     let (lo, hi) = generate::torus_knot(a.triangles).bounds();
     let camera = generate::knot_camera(a.width, a.height);
     let primary = generate::primary_rays(&camera, a.width, a.height);
+    let tiled = generate::primary_rays_tiled(&camera, a.width, a.height, 16);
     let incoherent = generate::incoherent_rays(lo, hi, primary.len(), 1);
+    if let Some(dir) = &a.export {
+        export(
+            dir,
+            &mesh,
+            &[
+                ("primary", &primary),
+                ("tiled", &tiled),
+                ("incoherent", &incoherent),
+            ],
+        );
+        return;
+    }
     println!(
         "torus knot + floor: {n} triangles; {} rays per set; {} repeats, medians; {all} threads",
         primary.len(),
@@ -223,7 +289,7 @@ fn main() {
     }
     if a.profile {
         let bvh = MeshBvh::build(&mesh.positions, &mesh.triangles);
-        let (p, hits) = trace(&one, &bvh, &primary, 1);
+        let (p, hits) = trace(&one, &bvh, &tiled, 1);
         let (i, _) = trace(&one, &bvh, &incoherent, 1);
         println!("profile run: primary {p:.2} Mrays/s ({hits} hits), incoherent {i:.2}");
         return;
@@ -239,8 +305,17 @@ fn main() {
         &[BuildQuality::default()]
     };
     println!(
-        "{:<10} {:>8} {:>8} {:>7} | {:>9} {:>9} | {:>9} {:>9} | hit%",
-        "build", "s 1 thr", "s all", "B/tri", "prim 1t", "prim all", "incoh 1t", "incoh all"
+        "{:<10} {:>8} {:>8} {:>7} | {:>9} {:>9} | {:>9} {:>9} | {:>9} {:>9} | hit%",
+        "build",
+        "s 1 thr",
+        "s all",
+        "B/tri",
+        "prim 1t",
+        "prim all",
+        "tiled 1t",
+        "tiled all",
+        "incoh 1t",
+        "incoh all"
     );
     for &q in qualities {
         let b1 = build_seconds(&one, &mesh, q, a.repeats.min(3));
@@ -248,10 +323,12 @@ fn main() {
         let bvh = many.install(|| MeshBvh::build_with(&mesh.positions, &mesh.triangles, q));
         let (p1, hits) = trace(&one, &bvh, &primary, a.repeats);
         let (pa, _) = trace(&many, &bvh, &primary, a.repeats);
+        let (t1, _) = trace(&one, &bvh, &tiled, a.repeats);
+        let (ta, _) = trace(&many, &bvh, &tiled, a.repeats);
         let (i1, _) = trace(&one, &bvh, &incoherent, a.repeats);
         let (ia, _) = trace(&many, &bvh, &incoherent, a.repeats);
         println!(
-            "{:<10} {b1:>8.3} {ba:>8.3} {:>7.1} | {p1:>9.2} {pa:>9.2} | {i1:>9.2} {ia:>9.2} | {:.1}",
+            "{:<10} {b1:>8.3} {ba:>8.3} {:>7.1} | {p1:>9.2} {pa:>9.2} | {t1:>9.2} {ta:>9.2} | {i1:>9.2} {ia:>9.2} | {:.1}",
             format!("{q:?}"),
             bvh.bytes() as f64 / n as f64,
             100.0 * hits as f64 / primary.len() as f64

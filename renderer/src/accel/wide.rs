@@ -18,9 +18,10 @@ use obvhs::cwbvh::CwBvh;
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(32))]
 pub struct WideNode {
-    /// planes[2k][i] is child i's min along axis k, planes[2k + 1][i] its
-    /// max; empty slots have min = +∞ and max = −∞ (never hit).
-    planes: [[f32; 8]; 6],
+    /// planes[2k][h][j] is child 4h + j's min along axis k, planes[2k + 1]
+    /// its max (two halves of four lanes, the width of an SSE register);
+    /// empty slots have min = +∞ and max = −∞ (never hit).
+    planes: [[[f32; 4]; 2]; 6],
     /// Index of the first inner child; the others follow in slot order.
     pub child_base: u32,
     /// Index of the first triangle of the leaf children.
@@ -75,7 +76,7 @@ impl WideNode {
                     }
                 }
                 WideNode {
-                    planes: std::array::from_fn(|j| planes[j]),
+                    planes: halves(&planes),
                     child_base: n.child_base_idx,
                     prim_base: n.primitive_base_idx,
                     imask: n.imask,
@@ -84,6 +85,11 @@ impl WideNode {
             })
             .collect()
     }
+}
+
+/// Eight lanes per plane split into two halves of four.
+fn halves(planes: &[[f32; 8]]) -> [[[f32; 4]; 2]; 6] {
+    std::array::from_fn(|j| std::array::from_fn(|h| std::array::from_fn(|i| planes[j][4 * h + i])))
 }
 
 /// A ray prepared for 8-wide node tests: the slab ray and obvhs's octant
@@ -95,6 +101,9 @@ pub struct WideRay {
     /// Bit 2 for v.x ≥ 0, 1 for y, 0 for z; child slot i is visited in the
     /// order of i XOR `oct` (obvhs orders the slots for this at build time).
     pub oct: u32,
+    /// Per axis k, the index in `WideNode::planes` of the near planes
+    /// (2k + sign bit of 1/v) and of the far planes.
+    near_far: [(usize, usize); 3],
 }
 
 impl WideRay {
@@ -102,8 +111,13 @@ impl WideRay {
     #[inline(always)]
     pub fn new(ray: &crate::ray::Ray) -> Self {
         let d = ray.dir;
+        let slab = SlabRay::new(ray);
         Self {
-            slab: SlabRay::new(ray),
+            near_far: std::array::from_fn(|k| {
+                let n = slab.neg[k] as usize;
+                (2 * k + n, 2 * k + 1 - n)
+            }),
+            slab,
             oct: (if d.x < 0.0 { 0 } else { 4 })
                 | (if d.y < 0.0 { 0 } else { 2 })
                 | (if d.z < 0.0 { 0 } else { 1 }),
@@ -117,22 +131,24 @@ impl WideRay {
         let s = &self.slab;
         let o = s.origin.to_array();
         let inv = s.inv_dir.to_array();
-        let mut t_near = [s.t_min; 8];
-        let mut t_far = [f32::INFINITY; 8];
-        for k in 0..3 {
-            let n = s.neg[k] as usize;
-            let near = &node.planes[2 * k + n];
-            let far = &node.planes[2 * k + 1 - n];
-            for i in 0..8 {
-                t_near[i] = max_ignoring_nan(t_near[i], (near[i] - o[k]) * inv[k]);
-                t_far[i] = min_ignoring_nan(t_far[i], (far[i] - o[k]) * inv[k]);
-            }
-        }
         let mut mask = 0u32;
-        for i in 0..8 {
-            let far = t_far[i] + t_far[i].abs() * FAR_SLACK;
-            let hit = t_near[i] <= far && t_near[i] <= s.t_max_wide;
-            mask |= (hit as u32) << i;
+        for h in 0..2 {
+            // Starting the exit at t_max folds its test into the widened
+            // exit (widening is monotonic, so this only adds slack).
+            let mut t_near = [s.t_min; 4];
+            let mut t_far = [s.t_max; 4];
+            for k in 0..3 {
+                let (n, f) = self.near_far[k];
+                let (near, far) = (&node.planes[n][h], &node.planes[f][h]);
+                for i in 0..4 {
+                    t_near[i] = max_ignoring_nan(t_near[i], (near[i] - o[k]) * inv[k]);
+                    t_far[i] = min_ignoring_nan(t_far[i], (far[i] - o[k]) * inv[k]);
+                }
+            }
+            for i in 0..4 {
+                let far = t_far[i] + t_far[i].abs() * FAR_SLACK;
+                mask |= ((t_near[i] <= far) as u32) << (4 * h + i);
+            }
         }
         mask
     }
@@ -196,7 +212,7 @@ mod tests {
             planes[2 * k + 1][0] = hi;
         }
         WideNode {
-            planes: std::array::from_fn(|j| planes[j]),
+            planes: halves(&planes),
             child_base: 0,
             prim_base: 0,
             imask: 0,
