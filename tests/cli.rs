@@ -486,3 +486,77 @@ fn bench_names_the_scene_it_cannot_read() {
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(stderr.contains("no-such-scene.xml"), "{stderr}");
 }
+
+#[test]
+fn bench_export_writes_files_whose_sizes_agree_with_its_manifest() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let export = dir.path().join("knot");
+    let output = raylab(&[
+        "bench",
+        "knot:240",
+        "--width",
+        "16",
+        "--height",
+        "9",
+        "--json",
+        "--export",
+        export.to_str().expect("utf-8"),
+    ]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let text = std::fs::read_to_string(export.join("manifest.json")).expect("manifest");
+    let m: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+    let count = |v: &serde_json::Value| v.as_u64().expect("a count");
+    let size = |name: &serde_json::Value| {
+        std::fs::metadata(export.join(name.as_str().expect("a file name")))
+            .expect("exported file")
+            .len()
+    };
+    let (vertices, triangles) = (count(&m["vertices"]), count(&m["triangles"]));
+    assert_eq!(size(&m["vertices_file"]), 12 * vertices);
+    assert_eq!(size(&m["triangles_file"]), 12 * triangles);
+    for rays in ["primary", "incoherent"] {
+        assert_eq!(count(&m[rays]["count"]), 16 * 9, "{rays}");
+        assert_eq!(size(&m[rays]["file"]), 24 * 16 * 9, "{rays}");
+    }
+    // The knot and the floor as a square of 2 triangles, in contiguous ranges.
+    let geometries = m["geometries"].as_array().expect("geometries");
+    assert_eq!(geometries.len(), 2);
+    assert_eq!(geometries[0]["kind"], "mesh");
+    assert_eq!(count(&geometries[0]["triangles"]), 240);
+    assert_eq!(geometries[1]["kind"], "plane");
+    assert_eq!(count(&geometries[1]["triangles"]), 2);
+    assert_eq!(count(&geometries[1]["first_triangle"]), 240);
+    assert_eq!(
+        count(&geometries[1]["first_vertex"]) + count(&geometries[1]["vertices"]),
+        vertices
+    );
+    let bytes = std::fs::read(export.join("triangles.u32")).expect("triangles");
+    assert!(
+        bytes
+            .chunks_exact(4)
+            .all(|b| u64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]])) < vertices),
+        "every index names a vertex"
+    );
+    // raylab's own figures on the same rays, from the same process.
+    assert_eq!(m["raylab"]["primary"]["all"]["rays"], 16 * 9);
+    assert!(m["raylab"]["incoherent"]["all"]["hit_fraction"].as_f64() > Some(0.0));
+    let stdout: serde_json::Value = serde_json::from_slice(&output.stdout).expect("JSON");
+    assert_eq!(stdout["triangles"], 240, "the figures are still printed");
+}
+
+#[test]
+fn bench_export_is_refused_for_the_window_benchmarks() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let output = raylab(&[
+        "bench",
+        "interactive",
+        "--export",
+        dir.path().to_str().expect("utf-8"),
+    ]);
+    assert_eq!(output.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&output.stderr).contains("--export"));
+}

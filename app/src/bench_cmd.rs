@@ -1,6 +1,7 @@
 //! `raylab bench`: ray-tracing throughput (any scene, or the suite of
 //! generated scenes), and the window's responsiveness measured headless.
 
+use crate::bench_export;
 use crate::cli::BenchArgs;
 use crate::gui::bench::{self, quantile};
 use crate::scene_spec;
@@ -15,13 +16,39 @@ fn ms(d: Duration) -> f64 {
 
 /// Runs the benchmark `args` asks for and prints its figures.
 pub fn run(args: &BenchArgs, default_scene: PathBuf) -> Result<()> {
+    let measures_a_scene = !matches!(args.which.as_str(), "interactive" | "debug-view" | "suite");
+    if args.export.is_some() && !measures_a_scene {
+        anyhow::bail!(
+            "--export goes with a scene to measure (e.g. `raylab bench knot --export DIR`), not with `{}`",
+            args.which
+        );
+    }
     match args.which.as_str() {
         "interactive" => interactive(args, &default_scene),
         "debug-view" => debug_view(args, &default_scene),
         "suite" => suite(args.json, &default_scene),
         spec => {
             let (scene, label) = scene_spec::load(spec, &default_scene)?;
-            let figures = trace_bench::measure(scene, &label, args.width, args.height)?;
+            let scene = trace_bench::sized(scene, args.width, args.height);
+            let exported = match &args.export {
+                Some(dir) => {
+                    let manifest = bench_export::export(&scene, &label, dir)?;
+                    eprintln!(
+                        "exported {} triangles, {} primary and {} incoherent rays to {}",
+                        manifest.triangles,
+                        manifest.primary.count,
+                        manifest.incoherent.as_ref().map_or(0, |r| r.count),
+                        dir.display()
+                    );
+                    Some((dir, manifest))
+                }
+                None => None,
+            };
+            let figures = trace_bench::measure(scene, &label, None, None)?;
+            if let Some((dir, mut manifest)) = exported {
+                manifest.raylab = Some(figures.clone());
+                bench_export::write_manifest(dir, &manifest)?;
+            }
             if args.json {
                 println!("{}", serde_json::to_string_pretty(&figures)?);
             } else {

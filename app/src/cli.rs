@@ -98,6 +98,13 @@ pub struct BenchArgs {
     /// debug-view: keep the debug view hidden, to compare the same frames without it.
     #[arg(long)]
     pub hide_debug_view: bool,
+    /// With a scene to measure: first write its triangles (world space; a
+    /// plane as a large square of 2 triangles) and the primary and incoherent
+    /// rays to this folder as raw little-endian arrays with a manifest.json,
+    /// then measure and add raylab's figures to the manifest, so that another
+    /// ray tracer can cast the same rays (scripts/bench-vs-embree.sh).
+    #[arg(long, value_name = "DIR")]
+    pub export: Option<PathBuf>,
 }
 
 /// Arguments of `raylab render`.

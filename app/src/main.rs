@@ -1,6 +1,7 @@
 //! The `raylab` program: the desktop window (`raylab [SCENE]`) and the command line.
 
 mod bench_cmd;
+mod bench_export;
 mod cli;
 mod gui;
 mod inspect_cmd;

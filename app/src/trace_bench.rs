@@ -3,6 +3,8 @@
 //! on one thread and on all, as a table or JSON.
 
 use anyhow::Result;
+use glam::Vec3;
+use renderer::ray::Ray;
 use renderer::throughput::{self, Cast};
 use renderer::{Film, RenderOptions, World};
 use scene::Scene;
@@ -74,17 +76,12 @@ impl From<Cast> for CastFigures {
 /// Measures `scene` at `width × height` (its own size when `None`); the
 /// incoherent set has as many rays as the image has pixels.
 pub fn measure(
-    mut scene: Scene,
+    scene: Scene,
     label: &str,
     width: Option<u32>,
     height: Option<u32>,
 ) -> Result<SceneFigures> {
-    if let Some(w) = width {
-        scene.camera.width = w;
-    }
-    if let Some(h) = height {
-        scene.camera.height = h;
-    }
+    let scene = sized(scene, width, height);
     let resolved = scene::resolve(&scene)?;
     let world = World::new(&resolved)?;
     let threads = rayon::current_num_threads();
@@ -95,7 +92,7 @@ pub fn measure(
         start.elapsed().as_secs_f64()
     });
     let primary_rays = throughput::primary_rays(&world);
-    let cast = |rays: &[renderer::ray::Ray]| PerThreads {
+    let cast = |rays: &[Ray]| PerThreads {
         one: throughput::on_threads(1, || {
             throughput::median_of(RUNS, || throughput::cast_closest(&world, rays))
         })
@@ -104,11 +101,7 @@ pub fn measure(
     };
     let primary = cast(&primary_rays);
     drop(primary_rays);
-    let incoherent = throughput::finite_bounds(&world).map(|(lo, hi)| {
-        let rays =
-            throughput::incoherent_rays(lo, hi, (world.camera.w * world.camera.h) as usize, 1);
-        cast(&rays)
-    });
+    let incoherent = incoherent_rays(&world).map(|(_, rays)| cast(&rays));
     let options = RenderOptions::default();
     let frame = || {
         median_seconds(|| {
@@ -135,6 +128,30 @@ pub fn measure(
         incoherent,
         whitted_frame_seconds,
     })
+}
+
+/// Seed of the incoherent rays, so that every run (and an export) casts the same ones.
+pub const INCOHERENT_SEED: u64 = 1;
+
+/// The incoherent rays `measure` casts in `world`: as many as the image has
+/// pixels, starting in the box around its bounded objects (returned too);
+/// `None` when nothing is bounded.
+pub fn incoherent_rays(world: &World) -> Option<((Vec3, Vec3), Vec<Ray>)> {
+    let (lo, hi) = throughput::finite_bounds(world)?;
+    let count = (world.camera.w * world.camera.h) as usize;
+    let rays = throughput::incoherent_rays(lo, hi, count, INCOHERENT_SEED);
+    Some(((lo, hi), rays))
+}
+
+/// `scene` at `width × height` (its own size where `None`).
+pub fn sized(mut scene: Scene, width: Option<u32>, height: Option<u32>) -> Scene {
+    if let Some(w) = width {
+        scene.camera.width = w;
+    }
+    if let Some(h) = height {
+        scene.camera.height = h;
+    }
+    scene
 }
 
 /// The median of [`RUNS`] timings.
@@ -205,7 +222,7 @@ pub fn scaling() -> Result<Vec<ScalingRow>> {
             let primary = throughput::primary_rays(&world);
             let p = throughput::median_of(RUNS, || throughput::cast_closest(&world, &primary));
             let (lo, hi) = throughput::finite_bounds(&world).unwrap_or_default();
-            let rays = throughput::incoherent_rays(lo, hi, primary.len(), 1);
+            let rays = throughput::incoherent_rays(lo, hi, primary.len(), INCOHERENT_SEED);
             let i = throughput::median_of(RUNS, || throughput::cast_closest(&world, &rays));
             Ok(ScalingRow {
                 triangles,
