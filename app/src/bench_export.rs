@@ -190,7 +190,7 @@ pub fn export(scene: &Scene, label: &str, dir: &Path) -> Result<Manifest> {
                     } else {
                         name.clone()
                     };
-                    let to_world = placed.world_from_mesh;
+                    let to_world = placed.instance.world_from_object;
                     let vertices = placed
                         .mesh
                         .positions
