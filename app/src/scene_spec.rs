@@ -36,7 +36,7 @@ pub fn load(spec: &str, seed_path: &Path) -> Result<(Scene, String)> {
     Ok(match name {
         "knot" => {
             let scene = scene::generate::knot_scene(count(KNOT_TRIANGLES)?);
-            let label = format!("torus knot ({} triangles) + floor", triangles(&scene));
+            let label = format!("torus knot + floor ({} triangles)", triangles(&scene));
             (scene, label)
         }
         "spheres" => {
@@ -79,8 +79,9 @@ mod tests {
     fn generated_names_take_an_optional_count() {
         let seed = Path::new("unused.xml");
         let (knot, label) = load("knot:2000", seed).expect("generates");
-        assert_eq!(triangles(&knot), 2000);
-        assert!(label.contains("2000 triangles"), "{label}");
+        // The knot's 2000 and the floor square's 4.
+        assert_eq!(triangles(&knot), 2004);
+        assert!(label.contains("2004 triangles"), "{label}");
         let (spheres, _) = load("spheres:25", seed).expect("generates");
         assert_eq!(spheres.objects.len(), 26);
         assert!(load("knot:lots", seed).is_err());

@@ -134,10 +134,10 @@ pub fn measure(
 pub const INCOHERENT_SEED: u64 = 1;
 
 /// The incoherent rays `measure` casts in `world`: as many as the image has
-/// pixels, starting in the box around its bounded objects (returned too);
-/// `None` when nothing is bounded.
+/// pixels, starting in [`throughput::incoherent_origin_box`] (returned
+/// too); `None` when nothing is bounded.
 pub fn incoherent_rays(world: &World) -> Option<((Vec3, Vec3), Vec<Ray>)> {
-    let (lo, hi) = throughput::finite_bounds(world)?;
+    let (lo, hi) = throughput::incoherent_origin_box(world)?;
     let count = (world.camera.w * world.camera.h) as usize;
     let rays = throughput::incoherent_rays(lo, hi, count, INCOHERENT_SEED);
     Some(((lo, hi), rays))
@@ -221,7 +221,7 @@ pub fn scaling() -> Result<Vec<ScalingRow>> {
             let (build, triangles, bytes) = throughput::rebuild_mesh_bvhs(&world);
             let primary = throughput::primary_rays(&world);
             let p = throughput::median_of(RUNS, || throughput::cast_closest(&world, &primary));
-            let (lo, hi) = throughput::finite_bounds(&world).unwrap_or_default();
+            let (lo, hi) = throughput::incoherent_origin_box(&world).unwrap_or_default();
             let rays = throughput::incoherent_rays(lo, hi, primary.len(), INCOHERENT_SEED);
             let i = throughput::median_of(RUNS, || throughput::cast_closest(&world, &rays));
             Ok(ScalingRow {

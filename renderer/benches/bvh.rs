@@ -1,19 +1,22 @@
-//! BVH benchmark (release, no criterion: one run prints a table).
+//! BVH benchmark (release, no criterion: one run prints a table): what
+//! `raylab bench knot` does not show — build-quality presets, tile-ordered
+//! primary rays, a profiling run, and how many hits obvhs's own traversal
+//! loses.
 //!
-//! Scene: a (2, 3) torus knot of 1,000,000 triangles plus a 4-triangle floor
-//! (`generate::knot_on_floor`); 1920 × 1080 rays: primary (one per pixel
-//! centre of `generate::knot_camera`) and incoherent (origins uniform in the
-//! knot's box, uniform directions). Reports build seconds, closest-hit
-//! Mrays/s on a rayon pool of 1 thread and of all threads (median of
-//! `--repeats`), bytes per triangle, the top level's build time over 10,000
-//! boxes, and how many hits obvhs's own traversal loses on the same rays.
+//! Scene: `scene::generate::knot_scene` (a (2, 3) torus knot of 1,000,000
+//! triangles on a 4-triangle floor square), flattened into one mesh in world
+//! space; 1920 × 1080 rays: primary (one per pixel centre P_ij of the
+//! scene's camera) and incoherent (origins uniform in the knot's box,
+//! uniform directions), as `renderer::throughput` makes them. Reports build
+//! seconds, closest-hit Mrays/s on a rayon pool of 1 thread and of all
+//! threads (median of `--repeats`), bytes per triangle, and the top level's
+//! build time over 10,000 boxes.
 //!
 //! Run: `cargo bench -p raylab-renderer --bench bvh -- [--triangles N]
-//! [--repeats R] [--width W --height H] [--qualities] [--lost]
-//! [--export DIR]`; Embree on the same exported mesh and rays:
-//! `scripts/bench_embree.py DIR`.
+//! [--repeats R] [--width W --height H] [--qualities] [--lost]`. Embree on
+//! the same triangles and rays: `scripts/bench-vs-embree.sh`.
 //!
-//! Measured 2025-11-23 on the shared 2-vCPU machine under load (other
+//! Measured 2026-11-23 (with the earlier knot and camera of this bench) on the shared 2-vCPU machine under load (other
 //! builds running: load average ≈ 3), two alternating runs, medians of 5:
 //! raylab 1 thread primary 6.15 / 5.46, 16×16-tiled 6.68 / 4.69, incoherent
 //! 1.12 / 1.22 Mrays/s, build 0.72–0.99 s, 63.2 B/triangle; Embree 4.4
@@ -31,10 +34,12 @@ use glam::{Vec3, Vec3A};
 use rayon::prelude::*;
 use renderer::accel::mesh::BuildQuality;
 use renderer::accel::{Aabb, MeshBvh, SceneBvh, reference};
-use renderer::generate::{self, Mesh};
+use renderer::generate;
 use renderer::ray::Ray;
 use renderer::sampler::Sampler;
 use renderer::shapes::WatertightRay;
+use renderer::throughput;
+use scene::TriangleMesh as Mesh;
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -45,8 +50,6 @@ struct Args {
     height: u32,
     qualities: bool,
     lost: bool,
-    /// Write the mesh and ray sets to this folder (for scripts/bench_embree.py).
-    export: Option<String>,
     /// Only build once and trace each ray set once on 1 thread (for profilers).
     profile: bool,
 }
@@ -60,7 +63,6 @@ fn args() -> Args {
         qualities: false,
         lost: false,
         profile: false,
-        export: None,
     };
     let mut it = std::env::args().skip(1);
     while let Some(s) = it.next() {
@@ -77,7 +79,6 @@ fn args() -> Args {
             "--qualities" => a.qualities = true,
             "--lost" => a.lost = true,
             "--profile" => a.profile = true,
-            "--export" => a.export = it.next(),
             _ => {} // cargo bench passes --bench
         }
     }
@@ -221,60 +222,42 @@ fn build_phases(mesh: &Mesh, name: &str) {
 
 /// Little-endian raw arrays: positions (f32 × 3), triangles (u32 × 3), and
 /// per ray set origins and directions (f32 × 3).
-fn export(dir: &str, mesh: &Mesh, sets: &[(&str, &[Ray])]) {
-    let write = |name: &str, floats: Vec<u8>| {
-        std::fs::write(format!("{dir}/{name}.bin"), floats).expect("write export");
-    };
-    std::fs::create_dir_all(dir).expect("export folder");
-    let f32s = |v: &mut dyn Iterator<Item = f32>| v.flat_map(f32::to_le_bytes).collect::<Vec<u8>>();
-    write(
-        "positions",
-        f32s(&mut mesh.positions.iter().flat_map(|p| p.to_array())),
-    );
-    write(
-        "triangles",
-        mesh.triangles
-            .iter()
-            .flatten()
-            .flat_map(|k| k.to_le_bytes())
-            .collect(),
-    );
-    for (name, rays) in sets {
-        write(
-            &format!("{name}_origins"),
-            f32s(&mut rays.iter().flat_map(|r| r.origin.to_array())),
-        );
-        write(
-            &format!("{name}_dirs"),
-            f32s(&mut rays.iter().flat_map(|r| r.dir.to_array())),
-        );
+/// The knot scene at `width` × `height` as one world-space mesh, its
+/// primary rays, the same rays in 16 × 16 tiles, and as many incoherent rays.
+fn knot_and_rays(triangles: usize, width: u32, height: u32) -> (Mesh, [Vec<Ray>; 3]) {
+    let mut scene = scene::generate::knot_scene(triangles);
+    (scene.camera.width, scene.camera.height) = (width, height);
+    let world = renderer::World::from_scene(&scene).expect("the knot scene is valid");
+    let mut mesh = Mesh::default();
+    for placed in &world.meshes {
+        let base = mesh.positions.len() as u32;
+        let to_world = |p: &Vec3| placed.instance.point_to_world(*p);
+        mesh.positions
+            .extend(placed.mesh.positions.iter().map(to_world));
+        let shifted = placed.mesh.triangles.iter().map(|t| t.map(|k| k + base));
+        mesh.triangles.extend(shifted);
     }
-    println!("wrote {dir}");
+    let primary = throughput::primary_rays(&world);
+    let camera = &world.camera;
+    let mut tiled = Vec::with_capacity(primary.len());
+    for ty in (0..height).step_by(16) {
+        for tx in (0..width).step_by(16) {
+            for j in ty..(ty + 16).min(height) {
+                tiled.extend((tx..(tx + 16).min(width)).map(|i| camera.center_ray(i, j)));
+            }
+        }
+    }
+    let knot = world.meshes[0].bounds;
+    let incoherent = throughput::incoherent_rays(knot.min, knot.max, primary.len(), 1);
+    (mesh, [primary, tiled, incoherent])
 }
 
 fn main() {
     let a = args();
     let all = rayon::current_num_threads();
     let (one, many) = (pool(1), pool(all));
-    let mesh = generate::knot_on_floor(a.triangles);
+    let (mesh, [primary, tiled, incoherent]) = knot_and_rays(a.triangles, a.width, a.height);
     let n = mesh.triangles.len();
-    let (lo, hi) = generate::torus_knot(a.triangles).bounds();
-    let camera = generate::knot_camera(a.width, a.height);
-    let primary = generate::primary_rays(&camera, a.width, a.height);
-    let tiled = generate::primary_rays_tiled(&camera, a.width, a.height, 16);
-    let incoherent = generate::incoherent_rays(lo, hi, primary.len(), 1);
-    if let Some(dir) = &a.export {
-        export(
-            dir,
-            &mesh,
-            &[
-                ("primary", &primary),
-                ("tiled", &tiled),
-                ("incoherent", &incoherent),
-            ],
-        );
-        return;
-    }
     println!(
         "torus knot + floor: {n} triangles; {} rays per set; {} repeats, medians; {all} threads",
         primary.len(),

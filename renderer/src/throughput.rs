@@ -120,25 +120,16 @@ pub fn rebuild_mesh_bvhs(world: &World) -> (Duration, usize, usize) {
     (took, triangles, bytes)
 }
 
-/// The box around every bounded object of `world` (meshes and finite
-/// shapes), where incoherent rays start; `None` when nothing is bounded.
-pub fn finite_bounds(world: &World) -> Option<(Vec3, Vec3)> {
-    let mut bounds: Option<(Vec3, Vec3)> = None;
-    let mut add = |lo: Vec3, hi: Vec3| {
-        bounds = Some(match bounds {
-            None => (lo, hi),
-            Some((a, b)) => (a.min(lo), b.max(hi)),
-        });
+/// Where incoherent rays start: the box of the mesh instance with the most
+/// triangles (the model under test: the knot, not its floor), or, in a
+/// scene without meshes, the box around every bounded shape; `None` when
+/// nothing is bounded.
+pub fn incoherent_origin_box(world: &World) -> Option<(Vec3, Vec3)> {
+    let b = match world.meshes.iter().max_by_key(|m| m.mesh.triangles.len()) {
+        Some(main) => main.bounds,
+        None => world.bounded_box(),
     };
-    for m in &world.meshes {
-        add(m.bounds.min, m.bounds.max);
-    }
-    if world.meshes.is_empty() {
-        for b in world.shape_bounds() {
-            add(b.min, b.max);
-        }
-    }
-    bounds
+    (!b.is_empty()).then_some((b.min, b.max))
 }
 
 #[cfg(test)]

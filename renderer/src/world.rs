@@ -91,8 +91,6 @@ pub struct World {
     pub ambient: Vec3,
     /// The top level's items, in BVH item order.
     items: Vec<Item>,
-    /// Each item's box, as the top level was built over them.
-    item_bounds: Vec<Aabb>,
     /// The top level over every bounded item.
     top: SceneBvh,
     /// Objects no box holds (infinite planes), tested by every ray.
@@ -166,7 +164,6 @@ impl World {
             lights,
             ambient,
             top: SceneBvh::build(&bounds),
-            item_bounds: bounds,
             items,
             unbounded,
         })
@@ -295,13 +292,9 @@ impl World {
         }
     }
 
-    /// The (padded) boxes of the analytic shapes in the top level.
-    pub fn shape_bounds(&self) -> impl Iterator<Item = Aabb> + '_ {
-        self.items
-            .iter()
-            .zip(&self.item_bounds)
-            .filter(|(item, _)| matches!(item, Item::Shape(_)))
-            .map(|(_, b)| *b)
+    /// The box around every bounded object (the top level's root box).
+    pub fn bounded_box(&self) -> Aabb {
+        self.top.bounds()
     }
 
     /// Triangles drawn (every mesh instance counts its mesh's triangles).

@@ -161,6 +161,47 @@ mod tests {
     use super::*;
 
     #[test]
+    fn saving_elsewhere_points_mesh_sources_at_their_models() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let models = dir.path().join("models");
+        std::fs::create_dir(&models).expect("mkdir");
+        let model_path = models.join("box.gltf");
+        std::fs::write(&model_path, "{}").expect("write");
+        let mut model = scene::ModelFile::default();
+        model.path = model_path.clone();
+        let mut scene = Scene::default();
+        scene.objects.push(scene::Object {
+            name: None,
+            shape: scene::Shape::Mesh {
+                source: scene::MeshSource {
+                    src: "box.gltf".into(),
+                    model: std::sync::Arc::new(model),
+                },
+                translate: None,
+                rotate: glam::Vec3::ZERO,
+                scale: glam::Vec3::ONE,
+            },
+            material: None,
+            params: Default::default(),
+        });
+        let src = |scene: &Scene| match &scene.objects[0].shape {
+            scene::Shape::Mesh { source, .. } => source.src.clone(),
+            _ => unreachable!(),
+        };
+        // Beside the model: its file name.
+        rebase_mesh_sources(&mut scene, &models.join("scene.xml"));
+        assert_eq!(src(&scene), "box.gltf");
+        // In another folder: the model's absolute path, which still opens.
+        rebase_mesh_sources(&mut scene, &dir.path().join("scene.xml"));
+        let absolute = PathBuf::from(src(&scene));
+        assert!(absolute.is_absolute(), "{absolute:?}");
+        assert_eq!(
+            std::fs::canonicalize(absolute).expect("exists"),
+            std::fs::canonicalize(model_path).expect("exists")
+        );
+    }
+
+    #[test]
     fn saving_then_reopening_gives_the_same_scene_and_clears_the_mark() {
         let dir = tempfile::tempdir().expect("temp dir");
         let path = dir.path().join("s.xml");

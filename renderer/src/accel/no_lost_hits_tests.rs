@@ -7,7 +7,7 @@
 use super::mesh::MeshBvh;
 use super::reference;
 use super::test_meshes::{grid, mapped, merge};
-use crate::generate::{self, rays_at_shared_edges};
+use crate::generate::rays_at_shared_edges;
 use crate::ray::Ray;
 use crate::sampler::Sampler;
 use crate::shapes::WatertightRay;
@@ -274,12 +274,26 @@ fn t_min_skips_nearer_hits_exactly() {
 
 #[test]
 fn closest_hit_equals_brute_force_on_a_torus_knot_for_primary_and_incoherent_rays() {
-    let knot = generate::knot_on_floor(20_000);
-    let (w, h) = (64, 36);
-    let mut rays = generate::primary_rays(&generate::knot_camera(w, h), w, h);
-    let (lo, hi) = generate::torus_knot(20_000).bounds();
-    rays.extend(generate::incoherent_rays(lo, hi, 2_000, 7));
-    let hits = assert_equals_brute_force(&(knot.positions, knot.triangles), &rays, "torus knot");
+    // The benchmark's scene, small: the knot and its floor square as one
+    // world-space mesh, the camera's primary rays and incoherent rays.
+    let mut scene = ::scene::generate::knot_scene(20_000);
+    (scene.camera.width, scene.camera.height) = (64, 36);
+    let world = crate::World::from_scene(&scene).expect("valid");
+    let mut mesh = (Vec::new(), Vec::new());
+    for placed in &world.meshes {
+        let part = placed.mesh.positions.clone();
+        let placed_part = (part, placed.mesh.triangles.clone());
+        merge(
+            &mut mesh,
+            mapped(placed_part, |p| placed.instance.point_to_world(p)),
+        );
+    }
+    let knot = world.meshes[0].bounds;
+    let mut rays = crate::throughput::primary_rays(&world);
+    rays.extend(crate::throughput::incoherent_rays(
+        knot.min, knot.max, 2_000, 7,
+    ));
+    let hits = assert_equals_brute_force(&mesh, &rays, "torus knot");
     assert!(hits > rays.len() / 2, "{hits}");
 }
 
