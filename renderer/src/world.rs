@@ -292,6 +292,21 @@ impl World {
         }
     }
 
+    /// The colour that stands for an object in drawings: its material's, or
+    /// for a model its first instance's (textures aside); grey for an
+    /// object id out of range.
+    pub fn object_color(&self, object: u32) -> Vec3 {
+        let first_instance = match self.objects.get(object as usize) {
+            Some(Object::Model { instances }) => self.meshes.get(instances.start as usize),
+            _ => None,
+        };
+        match (first_instance, self.materials.get(object as usize)) {
+            (Some(mesh), _) => mesh.material.color,
+            (None, Some(material)) => material.color,
+            (None, None) => Vec3::splat(0.7),
+        }
+    }
+
     /// The box around every bounded object (the top level's root box).
     pub fn bounded_box(&self) -> Aabb {
         self.top.bounds()

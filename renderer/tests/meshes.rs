@@ -209,3 +209,16 @@ fn a_material_on_the_mesh_element_replaces_the_files_materials() {
     let hit = world.intersect(&ray, Method::Robust).expect("hits");
     assert_eq!(world.material(hit).color, Vec3::new(0.1, 0.2, 0.3));
 }
+
+#[test]
+fn a_model_is_drawn_in_its_files_material_colour_unless_overridden() {
+    let mut model = model(quad(), &[Mat4::IDENTITY]);
+    model.materials[0].material.color = Vec3::new(0.9, 0.8, 0.1);
+    let model = Arc::new(model);
+    let world = World::from_scene(&scene_with(model.clone(), Vec3::ZERO)).expect("valid");
+    assert_eq!(world.object_color(0), Vec3::new(0.9, 0.8, 0.1));
+    let mut painted = scene_with(model, Vec3::ZERO);
+    painted.objects[0].params.color = Some(Vec3::new(0.1, 0.2, 0.3));
+    let world = World::from_scene(&painted).expect("valid");
+    assert_eq!(world.object_color(0), Vec3::new(0.1, 0.2, 0.3));
+}

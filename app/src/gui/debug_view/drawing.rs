@@ -283,8 +283,7 @@ fn objects(drawing: &mut Drawing, inputs: &Inputs<'_>, centre: Vec3, radius: f32
             tessellate(geometry, centre, 2.0 * radius, &mut mesh);
         }
         let selected = inputs.selected_object == Some(index);
-        let material = inputs.world.materials.get(index);
-        let base = material.map_or(Vec3::splat(0.7), |m| m.color);
+        let base = inputs.world.object_color(index as u32);
         // An infinite plane is only a backdrop here: dimmed so it does not outshine the rest.
         let color = if matches!(geometry, Geometry::Plane { .. }) {
             0.3 * base
