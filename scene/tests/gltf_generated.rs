@@ -836,3 +836,28 @@ fn a_million_triangle_glb_loads_in_well_under_a_second_in_release() {
         assert!(seconds < 0.5, "{seconds} s");
     }
 }
+
+#[test]
+fn a_file_named_by_several_mesh_elements_is_loaded_once() {
+    let dir = TempDir::new("shared-src");
+    let mut b = Builder::default();
+    let position = b.vec3s(&QUAD);
+    let indices = b.indices(&QUAD_INDICES, SHORT);
+    let doc = one_mesh(json!({"attributes": {"POSITION": position}, "indices": indices}));
+    b.write(doc, Storage::DataUri, &dir, "quad.gltf");
+    let scene_path = dir.join("scene.xml");
+    std::fs::write(
+        &scene_path,
+        r#"<scene><mesh src="quad.gltf"/><mesh src="quad.gltf" translate="2 0 0"/></scene>"#,
+    )
+    .expect("write scene");
+    let scene = scene::read_file(&scene_path).expect("reads");
+    let model = |k: usize| match &scene.objects[k].shape {
+        scene::Shape::Mesh { source, .. } => source.model.clone(),
+        other => panic!("object {k} is a {}", other.tag()),
+    };
+    assert!(std::sync::Arc::ptr_eq(&model(0), &model(1)));
+    // Written back, the scene names the file as it was given.
+    let text = scene::write_string(&scene);
+    assert_eq!(text.matches(r#"src="quad.gltf""#).count(), 2, "{text}");
+}
