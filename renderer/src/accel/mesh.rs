@@ -1,19 +1,22 @@
 //! The bottom level: a BVH over one triangle mesh, built with obvhs (PLOC,
-//! reinsertion, then collapsed to its compressed 8-wide CWBVH) and traversed
-//! by our conservative code ([`super::wide`]). Triangles are copied in leaf
-//! order so a leaf's triangles are adjacent in memory, and tested with the
-//! same watertight arithmetic as [`crate::shapes::Triangle`]
-//! ([`WatertightRay`]), so closest hits equal brute force exactly.
+//! then reinsertion) as a binary tree, collapsed to our 8-wide nodes with
+//! exact boxes ([`super::collapse`]) and traversed by our conservative code
+//! ([`super::wide`]), nearest child first. Leaf triangles are copied into
+//! packs of four ([`TrianglePack`]) tested with the same watertight
+//! arithmetic as [`crate::shapes::Triangle`] ([`WatertightRay`]), so
+//! closest hits equal brute force exactly.
 
+use super::collapse::collapse;
 use super::scene::Aabb;
+use super::simd::{prefetch, with_widest_simd};
 use super::stack::Stack;
-use super::wide::{WideNode, WideRay};
+use super::triangle_pack::TrianglePack;
+use super::wide::{ChildRef, WIDTH, WideNode, WideRay};
 use crate::ray::Ray;
 use crate::shapes::WatertightRay;
 use glam::{Vec3, Vec3A};
 use obvhs::BvhBuildParams;
 use obvhs::bvh2::reinsertion::ReinsertionOptimizer;
-use obvhs::cwbvh::bvh2_to_cwbvh::bvh2_to_cwbvh;
 use obvhs::ploc::PlocBuilder;
 
 /// The closest hit of a ray with a mesh: P0 + α v = (1 − β − γ) t0 + β t1 + γ t2.
@@ -55,28 +58,19 @@ impl BuildQuality {
             BuildQuality::Medium => BvhBuildParams::medium_build(),
         };
         p.pre_split = false;
-        p.max_prims_per_leaf = 3;
         p
     }
-}
-
-/// One triangle in leaf order: t0, t1, t2.
-#[derive(Clone, Copy, Debug)]
-struct LeafTriangle {
-    /// t0, t1, t2.
-    v: [Vec3; 3],
 }
 
 /// A BVH over one triangle mesh.
 #[derive(Clone, Debug)]
 pub struct MeshBvh {
-    /// The nodes (obvhs's CWBVH with exact boxes); node 0 is the root
-    /// (none for an empty mesh).
+    /// The 8-wide nodes; node 0 is the root (none for an empty mesh).
     nodes: Vec<WideNode>,
-    /// Triangles in the order of the nodes' primitive indices.
-    triangles: Vec<LeafTriangle>,
-    /// For each of `triangles`, its index in the caller's list.
-    indices: Vec<u32>,
+    /// The leaves' triangles, in packs of four.
+    packs: Vec<TrianglePack>,
+    /// Number of triangles.
+    triangle_count: usize,
     /// The box around every triangle.
     bounds: Aabb,
 }
@@ -95,25 +89,27 @@ impl MeshBvh {
         triangles: &[[u32; 3]],
         quality: BuildQuality,
     ) -> MeshBvh {
+        use rayon::prelude::*;
         let corners = |t: &[u32; 3]| t.map(|i| positions[i as usize]);
         let boxes: Vec<obvhs::aabb::Aabb> = triangles
-            .iter()
+            .par_iter()
             .map(|t| {
                 let [a, b, c] = corners(t);
                 obvhs::aabb::Aabb::new(Vec3A::from(a.min(b).min(c)), Vec3A::from(a.max(b).max(c)))
             })
             .collect();
-        let bounds = boxes.iter().fold(Aabb::EMPTY, |acc, b| {
-            acc.union(Aabb {
+        let bounds = boxes
+            .par_iter()
+            .map(|b| Aabb {
                 min: b.min.into(),
                 max: b.max.into(),
             })
-        });
+            .reduce(|| Aabb::EMPTY, Aabb::union);
         if triangles.is_empty() {
             return MeshBvh {
                 nodes: Vec::new(),
-                triangles: Vec::new(),
-                indices: Vec::new(),
+                packs: Vec::new(),
+                triangle_count: 0,
                 bounds,
             };
         }
@@ -127,23 +123,11 @@ impl MeshBvh {
         );
         drop(boxes);
         ReinsertionOptimizer::default().run(&mut bvh2, params.reinsertion_batch_ratio, None);
-        let cw = bvh2_to_cwbvh(&bvh2, params.max_prims_per_leaf, true, true);
-        drop(bvh2);
-        let nodes = WideNode::from_cwbvh(&cw, |slot| {
-            let [a, b, c] = corners(&triangles[cw.primitive_indices[slot] as usize]);
-            (a.min(b).min(c).to_array(), a.max(b).max(c).to_array())
-        });
-        let triangles = cw
-            .primitive_indices
-            .iter()
-            .map(|&i| LeafTriangle {
-                v: corners(&triangles[i as usize]),
-            })
-            .collect();
+        let (nodes, packs) = collapse(&bvh2, |i| corners(&triangles[i as usize]));
         MeshBvh {
             nodes,
-            triangles,
-            indices: cw.primitive_indices,
+            packs,
+            triangle_count: triangles.len(),
             bounds,
         }
     }
@@ -155,106 +139,142 @@ impl MeshBvh {
 
     /// Number of triangles.
     pub fn len(&self) -> usize {
-        self.triangles.len()
+        self.triangle_count
     }
 
     /// True for a mesh without triangles.
     pub fn is_empty(&self) -> bool {
-        self.triangles.is_empty()
+        self.triangle_count == 0
     }
 
-    /// Bytes held by the structure: nodes plus the leaf-order triangle copies.
+    /// Bytes held by the structure: nodes plus the leaf packs.
     pub fn bytes(&self) -> usize {
         std::mem::size_of::<Self>()
             + self.nodes.capacity() * std::mem::size_of::<WideNode>()
-            + self.triangles.capacity() * std::mem::size_of::<LeafTriangle>()
-            + self.indices.capacity() * std::mem::size_of::<u32>()
+            + self.packs.capacity() * std::mem::size_of::<TrianglePack>()
     }
 
     /// The hit with the smallest α in (t_min, t_max), with the same α as
     /// testing every triangle with the watertight test (ties: any triangle at
     /// that α).
     pub fn closest_hit(&self, ray: &Ray) -> Option<MeshHit> {
+        with_widest_simd(
+            #[inline(always)]
+            || self.closest_hit_inline(ray),
+        )
+    }
+
+    /// True when any triangle is hit in (t_min, t_max) (for shadow rays:
+    /// stops at the first hit found).
+    pub fn any_hit(&self, ray: &Ray) -> bool {
+        with_widest_simd(
+            #[inline(always)]
+            || self.any_hit_inline(ray),
+        )
+    }
+
+    /// [`MeshBvh::closest_hit`], compiled into its caller.
+    #[inline(always)]
+    fn closest_hit_inline(&self, ray: &Ray) -> Option<MeshHit> {
         let tri = WatertightRay::new(ray);
         let mut wide = WideRay::new(ray);
-        let mut best = None;
-        self.traverse(&mut wide, |slot, wide| {
-            let t = &self.triangles[slot];
+        let mut best: Option<(&TrianglePack, usize)> = None;
+        self.traverse(&mut wide, |pack, wide| {
             let s = &mut wide.slab;
-            if let Some(alpha) = tri.alpha(t.v[0], t.v[1], t.v[2], s.t_min, s.t_max) {
+            if let Some((lane, alpha)) = pack.nearest(&tri, s.t_min, s.t_max) {
                 s.set_t_max(alpha);
-                best = Some(slot);
+                best = Some((pack, lane));
             }
             false
         });
-        let best = best?;
-        let t = &self.triangles[best];
+        let (pack, lane) = best?;
+        let [t0, t1, t2] = pack.corners(lane);
         // The same arithmetic again, now with β and γ; α is unchanged.
-        let hit = tri.hit(ray, t.v[0], t.v[1], t.v[2])?;
+        let hit = tri.hit(ray, t0, t1, t2)?;
         Some(MeshHit {
-            triangle: self.indices[best],
+            triangle: pack.id(lane),
             alpha: hit.alpha,
             beta: hit.beta,
             gamma: hit.gamma,
         })
     }
 
-    /// True when any triangle is hit in (t_min, t_max) (for shadow rays:
-    /// stops at the first hit found).
-    pub fn any_hit(&self, ray: &Ray) -> bool {
+    /// [`MeshBvh::any_hit`], compiled into its caller.
+    #[inline(always)]
+    fn any_hit_inline(&self, ray: &Ray) -> bool {
         let tri = WatertightRay::new(ray);
         let mut wide = WideRay::new(ray);
         let mut hit = false;
-        self.traverse(&mut wide, |slot, wide| {
-            let t = &self.triangles[slot];
-            hit = tri
-                .alpha(t.v[0], t.v[1], t.v[2], wide.slab.t_min, wide.slab.t_max)
+        self.traverse(&mut wide, |pack, wide| {
+            hit = pack
+                .nearest(&tri, wide.slab.t_min, wide.slab.t_max)
                 .is_some();
             hit
         });
         hit
     }
 
-    /// Visits, nearest children first, every leaf triangle whose boxes the
-    /// ray may hit, calling `leaf(slot, ray)` (which may lower `ray.t_max`);
-    /// stops early when `leaf` returns true.
+    /// Visits, nearest child first, every leaf pack whose boxes the ray may
+    /// hit, calling `leaf(pack, ray)` (which may lower `ray.t_max`); stops
+    /// early when `leaf` returns true. A child waiting on the stack is
+    /// skipped when its entry distance is beyond the (shrunk) t_max.
     #[inline(always)]
-    fn traverse(&self, ray: &mut WideRay, mut leaf: impl FnMut(usize, &mut WideRay) -> bool) {
-        const NODE_BITS: u32 = 0xff00_0000;
-        let Some(root) = self.nodes.first() else {
+    fn traverse<'a>(
+        &'a self,
+        ray: &mut WideRay,
+        mut leaf: impl FnMut(&'a TrianglePack, &mut WideRay) -> bool,
+    ) {
+        if self.nodes.is_empty() {
             return;
-        };
-        let hits = ray.intersect(root);
-        // (first child node, bits 24..32: children to visit, 0..8: imask)
-        let mut nodes = (root.child_base, (hits & NODE_BITS) | root.imask as u32);
-        // (first triangle slot, bits: triangles to test)
-        let mut tris = (root.prim_base, hits & !NODE_BITS);
-        let mut stack = Stack::<(u32, u32), 32>::new();
+        }
+        let mut stack = Stack::<(ChildRef, f32), 48>::new();
+        let mut current = ChildRef::node(0);
         loop {
-            while tris.1 != 0 {
-                let k = tris.1.trailing_zeros();
-                tris.1 &= tris.1 - 1;
-                if leaf((tris.0 + k) as usize, ray) {
-                    return;
+            if let Some(range) = current.packs() {
+                for pack in &self.packs[range] {
+                    if leaf(pack, ray) {
+                        return;
+                    }
+                }
+            } else {
+                let node = &self.nodes[current.0 as usize];
+                let (mut mask, t_near) = ray.child_hits(node);
+                if mask != 0 {
+                    // The hit children, nearest last.
+                    let mut hits = [(ChildRef::EMPTY, 0.0f32); WIDTH];
+                    let mut n = 0;
+                    while mask != 0 {
+                        let i = mask.trailing_zeros() as usize;
+                        mask &= mask - 1;
+                        let mut j = n;
+                        while j > 0 && hits[j - 1].1 < t_near[i] {
+                            hits[j] = hits[j - 1];
+                            j -= 1;
+                        }
+                        let child = node.children[i];
+                        match child.packs() {
+                            Some(range) => prefetch(&self.packs[range.start]),
+                            None => prefetch(&self.nodes[child.0 as usize]),
+                        }
+                        hits[j] = (child, t_near[i]);
+                        n += 1;
+                    }
+                    for &h in &hits[..n - 1] {
+                        stack.push(h);
+                    }
+                    current = hits[n - 1].0;
+                    continue;
                 }
             }
-            if nodes.1 & NODE_BITS != 0 {
-                let bit = 31 - nodes.1.leading_zeros();
-                nodes.1 &= !(1 << bit);
-                let group = nodes;
-                if group.1 & NODE_BITS != 0 {
-                    stack.push(group);
+            // The next waiting child that may still hold a closer hit.
+            loop {
+                let Some((child, t_near)) = stack.pop() else {
+                    return;
+                };
+                if t_near <= ray.slab.t_max_wide {
+                    current = child;
+                    break;
                 }
-                let slot = (bit - 24) ^ ray.oct;
-                let before = (group.1 & 0xff & ((1 << slot) - 1)).count_ones();
-                let node = &self.nodes[(group.0 + before) as usize];
-                let hits = ray.intersect(node);
-                nodes = (node.child_base, (hits & NODE_BITS) | node.imask as u32);
-                tris = (node.prim_base, hits & !NODE_BITS);
-            } else if let Some(group) = stack.pop() {
-                nodes = group;
-            } else {
-                return;
             }
         }
     }
@@ -308,10 +328,29 @@ mod tests {
     }
 
     #[test]
+    fn widest_simd_and_baseline_code_find_the_same_hits() {
+        let (p, t) = grid(30, 30, 0.0);
+        let bvh = MeshBvh::build(&p, &t);
+        let mut rng = crate::sampler::Sampler::for_sample(3, 0, 0, 0);
+        for _ in 0..2000 {
+            let origin = Vec3::new(30.0 * rng.next_f32(), 30.0 * rng.next_f32(), 5.0);
+            let ray = Ray::new(origin, rng.next_direction());
+            // `closest_hit` runs AVX2 code where the CPU has it; the
+            // `_inline` functions called here are compiled for the baseline.
+            assert_eq!(
+                bvh.closest_hit(&ray),
+                bvh.closest_hit_inline(&ray),
+                "{ray:?}"
+            );
+            assert_eq!(bvh.any_hit(&ray), bvh.any_hit_inline(&ray), "{ray:?}");
+        }
+    }
+
+    #[test]
     fn bytes_counts_nodes_and_triangle_copies() {
         let (p, t) = grid(20, 20, 0.0);
         let bvh = MeshBvh::build(&p, &t);
-        assert!(bvh.bytes() >= t.len() * std::mem::size_of::<LeafTriangle>());
+        assert!(bvh.bytes() >= t.len() * std::mem::size_of::<[Vec3; 3]>());
         assert!(bvh.bytes() < t.len() * 200, "{}", bvh.bytes());
     }
 }

@@ -2,8 +2,9 @@
 //! `obvhs` and traversed by our own conservative code, which never loses a hit
 //! that a brute-force watertight test over every triangle would find.
 //!
-//! - [`MeshBvh`]: the bottom level, one per triangle mesh (obvhs's compressed
-//!   8-wide CWBVH, triangles copied in leaf order).
+//! - [`MeshBvh`]: the bottom level, one per triangle mesh (obvhs's binary
+//!   PLOC tree collapsed to 8-wide nodes, triangles copied into packs of
+//!   four in leaf order).
 //! - [`SceneBvh`]: the top level over items known only by their boxes (mesh
 //!   instances, analytic shapes); the caller intersects each item.
 //! - [`Instance`]: an affine placement of a mesh, mapping rays into the mesh's
@@ -14,14 +15,18 @@
 //! t_far correction (Ize, "Robust BVH Ray Traversal", JCGT 2013), its CWBVH
 //! node test replaces the ray's t_min by a fixed 1e-4, and its rays clamp
 //! near-zero direction components; each loses hits (see the tests of
-//! [`mesh`]). Our node tests are in [`slab`] and [`wide`].
+//! [`mesh`]). Our node tests are in [`slab`] and [`wide`]; [`simd`] compiles
+//! them for the widest SIMD the CPU has.
 
+mod collapse;
 pub mod instance;
 pub mod mesh;
 pub mod reference;
 pub mod scene;
+mod simd;
 pub mod slab;
 mod stack;
+pub mod triangle_pack;
 pub mod wide;
 
 #[cfg(test)]

@@ -1,0 +1,110 @@
+//! Leaf triangles in packs of four, stored coordinate plane by coordinate
+//! plane, so that one ray is tested against four triangles at once with the
+//! watertight test ([`WatertightRay::alpha_lanes`]).
+
+use crate::shapes::WatertightRay;
+use glam::Vec3;
+
+/// Triangles per pack.
+pub const PACK: usize = 4;
+
+/// Up to four triangles of a leaf. A pack of fewer repeats its last
+/// triangle in the spare lanes (same α, same index: harmless).
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(16))]
+pub struct TrianglePack {
+    /// corners[c][k][i]: coordinate k of corner t_c of triangle i.
+    corners: [[[f32; PACK]; 3]; 3],
+    /// The caller's index of each triangle.
+    ids: [u32; PACK],
+}
+
+impl TrianglePack {
+    /// The pack of `triangles` (1 to 4 of them): (caller's index, t0, t1, t2).
+    pub fn new(triangles: &[(u32, [Vec3; 3])]) -> TrianglePack {
+        assert!((1..=PACK).contains(&triangles.len()));
+        let lane = |i: usize| triangles[i.min(triangles.len() - 1)];
+        TrianglePack {
+            corners: std::array::from_fn(|c| {
+                std::array::from_fn(|k| std::array::from_fn(|i| lane(i).1[c][k]))
+            }),
+            ids: std::array::from_fn(|i| lane(i).0),
+        }
+    }
+
+    /// The caller's index of the triangle in `lane`.
+    #[inline(always)]
+    pub fn id(&self, lane: usize) -> u32 {
+        self.ids[lane]
+    }
+
+    /// t0, t1, t2 of the triangle in `lane`.
+    #[inline(always)]
+    pub fn corners(&self, lane: usize) -> [Vec3; 3] {
+        std::array::from_fn(|c| {
+            Vec3::new(
+                self.corners[c][0][lane],
+                self.corners[c][1][lane],
+                self.corners[c][2][lane],
+            )
+        })
+    }
+
+    /// The nearest hit in (t_min, t_max) among the pack's triangles: its
+    /// lane and α (the lowest lane on a tie), with α exactly
+    /// [`WatertightRay::alpha`]'s.
+    #[inline(always)]
+    pub fn nearest(&self, ray: &WatertightRay, t_min: f32, t_max: f32) -> Option<(usize, f32)> {
+        let alphas = ray.alpha_lanes(&self.corners, t_min, t_max);
+        let mut best: Option<(usize, f32)> = None;
+        for (lane, &alpha) in alphas.iter().enumerate() {
+            if alpha < best.map_or(t_max, |b| b.1) {
+                best = Some((lane, alpha));
+            }
+        }
+        best
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ray::Ray;
+
+    fn unit_triangle_at(z: f32) -> [Vec3; 3] {
+        [
+            Vec3::new(-1.0, -1.0, z),
+            Vec3::new(1.0, -1.0, z),
+            Vec3::new(0.0, 1.0, z),
+        ]
+    }
+
+    #[test]
+    fn nearest_picks_the_closest_triangle_and_reports_its_index() {
+        let pack = TrianglePack::new(&[
+            (10, unit_triangle_at(-5.0)),
+            (11, unit_triangle_at(-2.0)),
+            (12, unit_triangle_at(-3.0)),
+        ]);
+        let ray = Ray::new(Vec3::ZERO, -Vec3::Z);
+        let w = WatertightRay::new(&ray);
+        let (lane, alpha) = pack.nearest(&w, 0.0, f32::INFINITY).expect("hit");
+        assert_eq!((pack.id(lane), alpha), (11, 2.0));
+        assert_eq!(pack.corners(lane), unit_triangle_at(-2.0));
+        // Beyond t_max or before t_min: no hit.
+        assert_eq!(pack.nearest(&w, 0.0, 2.0), None);
+        assert_eq!(pack.nearest(&w, 5.0, f32::INFINITY), None);
+        assert_eq!(
+            pack.nearest(&w, 2.5, 4.0).map(|(l, _)| pack.id(l)),
+            Some(12)
+        );
+    }
+
+    #[test]
+    fn spare_lanes_repeat_the_last_triangle() {
+        let pack = TrianglePack::new(&[(7, unit_triangle_at(-1.0))]);
+        for lane in 0..PACK {
+            assert_eq!(pack.id(lane), 7);
+        }
+    }
+}
