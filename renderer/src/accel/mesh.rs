@@ -253,7 +253,7 @@ impl MeshBvh {
                         }
                         let child = node.children[i];
                         match child.packs() {
-                            Some(range) => prefetch(&self.packs[range.start]),
+                            Some(range) => self.packs[range].iter().for_each(prefetch),
                             None => prefetch(&self.nodes[child.0 as usize]),
                         }
                         hits[j] = (child, t_near[i]);
