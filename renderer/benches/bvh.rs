@@ -16,13 +16,14 @@
 //! [--repeats R] [--width W --height H] [--qualities] [--lost]`. Embree on
 //! the same triangles and rays: `scripts/bench-vs-embree.sh`.
 //!
-//! Measured 2026-11-23 (with the earlier knot and camera of this bench) on the shared 2-vCPU machine under load (other
-//! builds running: load average ≈ 3), two alternating runs, medians of 5:
-//! raylab 1 thread primary 6.15 / 5.46, 16×16-tiled 6.68 / 4.69, incoherent
-//! 1.12 / 1.22 Mrays/s, build 0.72–0.99 s, 63.2 B/triangle; Embree 4.4
-//! (embreex) in the same runs 1 thread primary 10.2 / 9.3, tiled 10.9 / 11.7,
-//! incoherent 2.0 / 2.5 Mrays/s, build 0.95 / 0.92 s (embreex, including its
-//! Python set-up). Not yet at Embree's traversal speed (≈ 0.55–0.6×).
+//! Measured 2026-11-23 on the shared 2-vCPU machine (quiet: load ≈ 0.9), one
+//! run, medians of 3, fast build: 8-wide nodes with leaves of up to 8
+//! triangles: build 0.68 s on 1 thread, 0.39 s on 2; 61.5 B/triangle;
+//! primary 7.1 / 13.5 Mrays/s (1 / 2 threads), 16×16-tiled 7.2 / 13.4,
+//! incoherent 1.45 / 3.2. (The CWBVH-based tree this replaced, same day:
+//! primary 6.2 / 12.2, incoherent 0.70 / 1.5, build 0.53 / 0.41 s.) Embree
+//! side by side: `scripts/bench-vs-embree.sh` (raylab ≈ 0.5× Embree's
+//! Mrays/s on this scene, see the commit log).
 //!
 //! `--lost` (same day): closest α differing from ours (ours equals brute
 //! force) with obvhs 0.4's own traversal and our triangle test, fast_build:
