@@ -10,7 +10,7 @@ use super::collapse::collapse;
 use super::scene::Aabb;
 use super::simd::{prefetch, with_widest_simd};
 use super::stack::Stack;
-use super::triangle_pack::TrianglePack;
+use super::triangle_pack::{PackHit, TrianglePack};
 use super::wide::{ChildRef, WIDTH, WideNode, WideRay};
 use crate::ray::Ray;
 use crate::shapes::WatertightRay;
@@ -178,24 +178,22 @@ impl MeshBvh {
     fn closest_hit_inline(&self, ray: &Ray) -> Option<MeshHit> {
         let tri = WatertightRay::new(ray);
         let mut wide = WideRay::new(ray);
-        let mut best: Option<(&TrianglePack, usize)> = None;
+        let mut best: Option<(&TrianglePack, PackHit)> = None;
         self.traverse(&mut wide, |pack, wide| {
             let s = &mut wide.slab;
-            if let Some((lane, alpha)) = pack.nearest(&tri, s.t_min, s.t_max) {
-                s.set_t_max(alpha);
-                best = Some((pack, lane));
+            if let Some(hit) = pack.nearest(&tri, s.t_min, s.t_max) {
+                s.set_t_max(hit.alpha);
+                best = Some((pack, hit));
             }
             false
         });
-        let (pack, lane) = best?;
-        let [t0, t1, t2] = pack.corners(lane);
-        // The same arithmetic again, now with β and γ; α is unchanged.
-        let hit = tri.hit(ray, t0, t1, t2)?;
+        let (pack, hit) = best?;
+        let (beta, gamma) = hit.barycentrics();
         Some(MeshHit {
-            triangle: pack.id(lane),
+            triangle: pack.id(hit.lane),
             alpha: hit.alpha,
-            beta: hit.beta,
-            gamma: hit.gamma,
+            beta,
+            gamma,
         })
     }
 

@@ -1,6 +1,6 @@
 //! Leaf triangles in packs of four, stored coordinate plane by coordinate
 //! plane, so that one ray is tested against four triangles at once with the
-//! watertight test ([`WatertightRay::alpha_lanes`]).
+//! watertight test ([`WatertightRay::hit_lanes`]).
 
 use crate::shapes::WatertightRay;
 use glam::Vec3;
@@ -50,19 +50,48 @@ impl TrianglePack {
         })
     }
 
-    /// The nearest hit in (t_min, t_max) among the pack's triangles: its
-    /// lane and α (the lowest lane on a tie), with α exactly
-    /// [`WatertightRay::alpha`]'s.
+    /// The nearest hit in (t_min, t_max) among the pack's triangles (the
+    /// lowest lane on a tie), with α, β, γ exactly [`WatertightRay::hit`]'s.
     #[inline(always)]
-    pub fn nearest(&self, ray: &WatertightRay, t_min: f32, t_max: f32) -> Option<(usize, f32)> {
-        let alphas = ray.alpha_lanes(&self.corners, t_min, t_max);
-        let mut best: Option<(usize, f32)> = None;
-        for (lane, &alpha) in alphas.iter().enumerate() {
-            if alpha < best.map_or(t_max, |b| b.1) {
-                best = Some((lane, alpha));
+    pub fn nearest(&self, ray: &WatertightRay, t_min: f32, t_max: f32) -> Option<PackHit> {
+        let hits = ray.hit_lanes(&self.corners, t_min, t_max);
+        let mut best: Option<usize> = None;
+        for (lane, &alpha) in hits.alpha.iter().enumerate() {
+            if alpha < best.map_or(t_max, |b| hits.alpha[b]) {
+                best = Some(lane);
             }
         }
-        best
+        best.map(|lane| PackHit {
+            lane,
+            alpha: hits.alpha[lane],
+            v: hits.v[lane],
+            w: hits.w[lane],
+            det: hits.det[lane],
+        })
+    }
+}
+
+/// A hit in a pack: which lane, α, and what gives β and γ (divided only
+/// for the closest hit of all).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PackHit {
+    /// The lane of the triangle hit.
+    pub lane: usize,
+    /// α of the hit.
+    pub alpha: f32,
+    /// The edge function V (β = V / det).
+    v: f32,
+    /// The edge function W (γ = W / det).
+    w: f32,
+    /// The determinant U + V + W.
+    det: f32,
+}
+
+impl PackHit {
+    /// β and γ of the hit.
+    #[inline(always)]
+    pub fn barycentrics(&self) -> (f32, f32) {
+        (self.v / self.det, self.w / self.det)
     }
 }
 
@@ -88,14 +117,16 @@ mod tests {
         ]);
         let ray = Ray::new(Vec3::ZERO, -Vec3::Z);
         let w = WatertightRay::new(&ray);
-        let (lane, alpha) = pack.nearest(&w, 0.0, f32::INFINITY).expect("hit");
-        assert_eq!((pack.id(lane), alpha), (11, 2.0));
-        assert_eq!(pack.corners(lane), unit_triangle_at(-2.0));
+        let hit = pack.nearest(&w, 0.0, f32::INFINITY).expect("hit");
+        assert_eq!((pack.id(hit.lane), hit.alpha), (11, 2.0));
+        assert_eq!(pack.corners(hit.lane), unit_triangle_at(-2.0));
+        // The ray meets the plane at (0, 0): β = 0.25, γ = 0.5.
+        assert_eq!(hit.barycentrics(), (0.25, 0.5));
         // Beyond t_max or before t_min: no hit.
         assert_eq!(pack.nearest(&w, 0.0, 2.0), None);
         assert_eq!(pack.nearest(&w, 5.0, f32::INFINITY), None);
         assert_eq!(
-            pack.nearest(&w, 2.5, 4.0).map(|(l, _)| pack.id(l)),
+            pack.nearest(&w, 2.5, 4.0).map(|h| pack.id(h.lane)),
             Some(12)
         );
     }

@@ -121,6 +121,29 @@ impl Triangle {
     }
 }
 
+/// What [`WatertightRay::hit_lanes`] finds for N triangles: per lane, α
+/// (+∞ for no hit), and the edge functions V, W and the determinant that
+/// give β = V / det and γ = W / det.
+#[derive(Clone, Copy, Debug)]
+pub struct LaneHits<const N: usize> {
+    /// α per lane, +∞ where the ray misses the triangle in its interval.
+    pub alpha: [f32; N],
+    /// V per lane.
+    pub v: [f32; N],
+    /// W per lane.
+    pub w: [f32; N],
+    /// det = U + V + W per lane.
+    pub det: [f32; N],
+}
+
+impl<const N: usize> LaneHits<N> {
+    /// β and γ of the hit in `lane`, as [`WatertightRay::hit`] computes them.
+    #[inline(always)]
+    pub fn barycentrics(&self, lane: usize) -> (f32, f32) {
+        (self.v[lane] / self.det[lane], self.w[lane] / self.det[lane])
+    }
+}
+
 /// The per-ray half of the watertight test (Woop, Benthin, Wald 2013): the
 /// axis permutation and shear, computed once per ray. [`WatertightRay::hit`]
 /// is the per-triangle half; [`Triangle::hit`] with [`Method::Robust`] is
@@ -211,18 +234,18 @@ impl WatertightRay {
         (alpha.is_finite() && alpha > t_min && alpha < t_max).then_some(alpha)
     }
 
-    /// [`WatertightRay::alpha`] for N triangles at once, stored plane by
+    /// [`WatertightRay::hit`] for N triangles at once, stored plane by
     /// plane: `corners[c][k][i]` is coordinate k of corner t_c of triangle
-    /// i. The same operations lane by lane (so the same α, bit for bit,
-    /// which the compiler turns into SIMD); +∞ for a lane without a hit in
-    /// (t_min, t_max).
+    /// i. The same operations lane by lane (so the same α, β, γ, bit for
+    /// bit, which the compiler turns into SIMD); α is +∞ for a lane without
+    /// a hit in (t_min, t_max).
     #[inline(always)]
-    pub fn alpha_lanes<const N: usize>(
+    pub fn hit_lanes<const N: usize>(
         &self,
         corners: &[[[f32; N]; 3]; 3],
         t_min: f32,
         t_max: f32,
-    ) -> [f32; N] {
+    ) -> LaneHits<N> {
         let (kx, ky, kz) = (self.kx, self.ky, self.kz);
         let (sx, sy) = (self.sx, self.sy);
         let o = self.origin.to_array();
@@ -268,7 +291,12 @@ impl WatertightRay {
             }
         }
         let sz = self.sz;
-        let mut alphas = [f32::INFINITY; N];
+        let mut hits = LaneHits {
+            alpha: [f32::INFINITY; N],
+            v: ev,
+            w: ew,
+            det: [0.0; N],
+        };
         for i in 0..N {
             let (u, v, w) = (eu[i], ev[i], ew[i]);
             let outside = (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0);
@@ -277,9 +305,10 @@ impl WatertightRay {
             let alpha = t_scaled / det;
             let hit =
                 !outside & (det != 0.0) & alpha.is_finite() & (alpha > t_min) & (alpha < t_max);
-            alphas[i] = if hit { alpha } else { f32::INFINITY };
+            hits.alpha[i] = if hit { alpha } else { f32::INFINITY };
+            hits.det[i] = det;
         }
-        alphas
+        hits
     }
 
     /// The hit with triangle t0, t1, t2 inside `ray`'s interval, with its
@@ -412,7 +441,7 @@ mod tests {
 
     proptest! {
         #[test]
-        fn alpha_lanes_equals_alpha_bit_for_bit(
+        fn hit_lanes_equals_hit_bit_for_bit(
             tris in proptest::array::uniform4(lattice_triangle()),
             o in (-3i8..=3, -3i8..=3, -3i8..=3),
             d in (-2i8..=2, -2i8..=2, -2i8..=2),
@@ -425,10 +454,14 @@ mod tests {
             let w = WatertightRay::new(&ray);
             let corners: [[[f32; 4]; 3]; 3] =
                 std::array::from_fn(|c| std::array::from_fn(|k| std::array::from_fn(|i| tris[i][c][k])));
-            let lanes = w.alpha_lanes(&corners, t_min, t_max);
+            let lanes = w.hit_lanes(&corners, t_min, t_max);
             for (i, [t0, t1, t2]) in tris.iter().enumerate() {
                 let one = w.alpha(*t0, *t1, *t2, t_min, t_max).unwrap_or(f32::INFINITY);
-                prop_assert_eq!(lanes[i].to_bits(), one.to_bits(), "lane {}", i);
+                prop_assert_eq!(lanes.alpha[i].to_bits(), one.to_bits(), "lane {}", i);
+                if let Some(hit) = w.hit(&ray, *t0, *t1, *t2) {
+                    let (beta, gamma) = lanes.barycentrics(i);
+                    prop_assert_eq!((beta.to_bits(), gamma.to_bits()), (hit.beta.to_bits(), hit.gamma.to_bits()));
+                }
             }
         }
     }
