@@ -121,9 +121,9 @@ impl WideRay {
         let s = &self.slab;
         let [ox, oy, oz] = s.origin.to_array();
         let [ix, iy, iz] = s.inv_dir.to_array();
-        let [(nx, fx), (ny, fy), (nz, fz)] = self
-            .near_far
-            .map(|(n, f)| (&node.planes[n], &node.planes[f]));
+        let [(n0, f0), (n1, f1), (n2, f2)] = self.near_far;
+        let (nx, ny, nz) = (&node.planes[n0], &node.planes[n1], &node.planes[n2]);
+        let (fx, fy, fz) = (&node.planes[f0], &node.planes[f1], &node.planes[f2]);
         // max/min that ignore a NaN distance (0 · ∞ for a ray in a slab's
         // face): `acc` is kept unless the new value beats it.
         let max = |acc: f32, t: f32| if t > acc { t } else { acc };

@@ -253,37 +253,33 @@ impl WatertightRay {
         let planes = |c: usize| (&corners[c][kx], &corners[c][ky], &corners[c][kz]);
         let [(ax_, ay_, az_), (bx_, by_, bz_), (cx_, cy_, cz_)] = [planes(0), planes(1), planes(2)];
         // Sheared corners (x, y) relative to P0, their unsheared z, and the
-        // edge functions; one lane per triangle, everything in the loop
-        // body (the shape the compiler vectorises).
-        let mut sheared = [[0.0f32; N]; 6];
+        // edge functions; one lane per triangle, everything in one loop
+        // body writing whole arrays (the shape the compiler vectorises).
+        let (mut ax, mut ay) = ([0.0f32; N], [0.0f32; N]);
+        let (mut bx, mut by) = ([0.0f32; N], [0.0f32; N]);
+        let (mut cx, mut cy) = ([0.0f32; N], [0.0f32; N]);
         let (mut az, mut bz, mut cz) = ([0.0f32; N], [0.0f32; N], [0.0f32; N]);
-        let mut eu = [0.0f32; N];
-        let mut ev = [0.0f32; N];
-        let mut ew = [0.0f32; N];
+        let (mut eu, mut ev, mut ew) = ([0.0f32; N], [0.0f32; N], [0.0f32; N]);
         let mut zero = [false; N];
         for i in 0..N {
             az[i] = az_[i] - oz;
             bz[i] = bz_[i] - oz;
             cz[i] = cz_[i] - oz;
-            let ax = (ax_[i] - ox) - sx * az[i];
-            let ay = (ay_[i] - oy) - sy * az[i];
-            let bx = (bx_[i] - ox) - sx * bz[i];
-            let by = (by_[i] - oy) - sy * bz[i];
-            let cx = (cx_[i] - ox) - sx * cz[i];
-            let cy = (cy_[i] - oy) - sy * cz[i];
-            eu[i] = cx * by - cy * bx;
-            ev[i] = ax * cy - ay * cx;
-            ew[i] = bx * ay - by * ax;
+            ax[i] = (ax_[i] - ox) - sx * az[i];
+            ay[i] = (ay_[i] - oy) - sy * az[i];
+            bx[i] = (bx_[i] - ox) - sx * bz[i];
+            by[i] = (by_[i] - oy) - sy * bz[i];
+            cx[i] = (cx_[i] - ox) - sx * cz[i];
+            cy[i] = (cy_[i] - oy) - sy * cz[i];
+            eu[i] = cx[i] * by[i] - cy[i] * bx[i];
+            ev[i] = ax[i] * cy[i] - ay[i] * cx[i];
+            ew[i] = bx[i] * ay[i] - by[i] * ax[i];
             zero[i] = (eu[i] == 0.0) | (ev[i] == 0.0) | (ew[i] == 0.0);
-            for (k, v) in [ax, ay, bx, by, cx, cy].into_iter().enumerate() {
-                sheared[k][i] = v;
-            }
         }
         if zero.iter().any(|&z| z) {
             // Rare (the ray through an edge or vertex): exactly as `edges`.
             let f =
                 |p: f32, q: f32, r: f32, s: f32| (p as f64 * q as f64 - r as f64 * s as f64) as f32;
-            let [ax, ay, bx, by, cx, cy] = sheared;
             for i in (0..N).filter(|&i| zero[i]) {
                 eu[i] = f(cx[i], by[i], cy[i], bx[i]);
                 ev[i] = f(ax[i], cy[i], ay[i], cx[i]);
@@ -299,12 +295,14 @@ impl WatertightRay {
         };
         for i in 0..N {
             let (u, v, w) = (eu[i], ev[i], ew[i]);
-            let outside = (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0);
+            // `edges`'s tests, with `&` and `|` for `&&` and `||` (no
+            // branches, so this vectorises; the same truth values).
+            let outside = ((u < 0.0) | (v < 0.0) | (w < 0.0)) & ((u > 0.0) | (v > 0.0) | (w > 0.0));
             let det = u + v + w;
             let t_scaled = u * (sz * az[i]) + v * (sz * bz[i]) + w * (sz * cz[i]);
             let alpha = t_scaled / det;
-            let hit =
-                !outside & (det != 0.0) & alpha.is_finite() & (alpha > t_min) & (alpha < t_max);
+            let finite = alpha.abs() < f32::INFINITY;
+            let hit = !outside & (det != 0.0) & finite & (alpha > t_min) & (alpha < t_max);
             hits.alpha[i] = if hit { alpha } else { f32::INFINITY };
             hits.det[i] = det;
         }
