@@ -190,12 +190,11 @@ pub fn export(scene: &Scene, label: &str, dir: &Path) -> Result<Manifest> {
                     } else {
                         name.clone()
                     };
-                    let to_world = placed.instance.world_from_object;
                     let vertices = placed
                         .mesh
                         .positions
                         .iter()
-                        .map(|&p| to_world.transform_point3(p));
+                        .map(|&p| placed.instance.point_to_world(p));
                     soup.add(name, "mesh", vertices, &placed.mesh.triangles)?;
                 }
             }

@@ -221,8 +221,7 @@ pub fn scaling() -> Result<Vec<ScalingRow>> {
             let (build, triangles, bytes) = throughput::rebuild_mesh_bvhs(&world);
             let primary = throughput::primary_rays(&world);
             let p = throughput::median_of(RUNS, || throughput::cast_closest(&world, &primary));
-            let (lo, hi) = throughput::incoherent_origin_box(&world).unwrap_or_default();
-            let rays = throughput::incoherent_rays(lo, hi, primary.len(), INCOHERENT_SEED);
+            let (_, rays) = incoherent_rays(&world).unwrap_or_default();
             let i = throughput::median_of(RUNS, || throughput::cast_closest(&world, &rays));
             Ok(ScalingRow {
                 triangles,

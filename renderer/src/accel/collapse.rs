@@ -33,10 +33,9 @@ pub fn collapse(
     // The binary node of each leaf, in pack order.
     let mut leaves: Vec<u32> = Vec::with_capacity(bvh2.primitive_indices.len() / 2);
     let mut pack_count = 0usize;
-    let mut leaf = |c: usize| {
-        let packs = small_subtree(bvh2, c, usize::MAX)
-            .unwrap_or(0)
-            .div_ceil(PACK);
+    // The leaf of binary node `c`, which has `triangles` triangles.
+    let mut leaf = |c: usize, triangles: usize| {
+        let packs = triangles.div_ceil(PACK);
         leaves.push(c as u32);
         let child = ChildRef::leaf(pack_count, packs);
         pack_count += packs;
@@ -46,24 +45,25 @@ pub fn collapse(
         let b = bvh2.nodes[c].aabb();
         node.set_child(slot, child, b.min.into(), b.max.into());
     };
-    if is_leaf(bvh2, 0) {
+    if let Some(triangles) = leaf_triangles(bvh2, 0) {
         // A small mesh: one wide node with the whole tree as its one leaf.
-        let child = leaf(0);
+        let child = leaf(0, triangles);
         set(&mut nodes[0], 0, child, 0);
     } else {
         // (binary node whose children fill the wide node, wide node index)
         let mut todo = vec![(0usize, 0usize)];
         while let Some((binary, wide)) = todo.pop() {
-            let (slots, inner, len) = open(bvh2, binary);
+            let (slots, len) = open(bvh2, binary);
             let mut slot = 0;
             // Leaves first, then inner nodes, so the inner ones are adjacent.
-            for i in (0..len).filter(|&i| !inner[i]) {
-                let c = slots[i];
-                let child = leaf(c);
-                set(&mut nodes[wide], slot, child, c);
-                slot += 1;
+            for &(c, triangles) in &slots[..len] {
+                if let Some(triangles) = triangles {
+                    let child = leaf(c, triangles);
+                    set(&mut nodes[wide], slot, child, c);
+                    slot += 1;
+                }
             }
-            for &c in (0..len).filter(|&i| inner[i]).map(|i| &slots[i]) {
+            for &(c, _) in slots[..len].iter().filter(|(_, t)| t.is_none()) {
                 let index = nodes.len();
                 nodes.push(WideNode::EMPTY);
                 todo.push((c, index));
@@ -112,40 +112,40 @@ fn small_subtree(bvh2: &Bvh2, n: usize, limit: usize) -> Option<usize> {
     Some(total)
 }
 
-/// True when binary node `n` becomes a leaf of the wide BVH.
-fn is_leaf(bvh2: &Bvh2, n: usize) -> bool {
-    small_subtree(bvh2, n, LEAF_TRIANGLES).is_some()
+/// The triangle count of binary node `n` when it becomes a leaf of the
+/// wide BVH, `None` when it becomes an inner node.
+fn leaf_triangles(bvh2: &Bvh2, n: usize) -> Option<usize> {
+    small_subtree(bvh2, n, LEAF_TRIANGLES)
 }
 
 /// The up to eight binary nodes that become the children of the wide node
 /// made from binary node `n`: its two children, then repeatedly the
-/// largest-area inner one replaced by its own two; and which of them are
-/// inner nodes of the wide BVH (the others become leaves).
-fn open(bvh2: &Bvh2, n: usize) -> ([usize; WIDTH], [bool; WIDTH], usize) {
+/// largest-area inner one replaced by its own two; each with its
+/// [`leaf_triangles`].
+fn open(bvh2: &Bvh2, n: usize) -> ([(usize, Option<usize>); WIDTH], usize) {
+    let child = |c: usize| (c, leaf_triangles(bvh2, c));
     let first = bvh2.nodes[n].first_index as usize;
-    let mut slots = [0usize; WIDTH];
-    (slots[0], slots[1]) = (first, first + 1);
+    let mut slots = [(0usize, None); WIDTH];
+    (slots[0], slots[1]) = (child(first), child(first + 1));
     let mut len = 2;
-    // Whether each slot is an inner node (may still be opened), not a leaf.
-    let mut openable = [false; WIDTH];
-    openable[0] = !is_leaf(bvh2, first);
-    openable[1] = !is_leaf(bvh2, first + 1);
     while len < WIDTH {
         let mut widest: Option<(usize, f32)> = None;
-        for i in (0..len).filter(|&i| openable[i]) {
-            let area = bvh2.nodes[slots[i]].aabb().half_area();
+        for (i, &(c, _)) in slots[..len]
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| s.1.is_none())
+        {
+            let area = bvh2.nodes[c].aabb().half_area();
             if widest.is_none_or(|(_, a)| area > a) {
                 widest = Some((i, area));
             }
         }
         let Some((i, _)) = widest else { break };
-        let c = bvh2.nodes[slots[i]].first_index as usize;
-        (slots[i], slots[len]) = (c, c + 1);
-        openable[i] = !is_leaf(bvh2, c);
-        openable[len] = !is_leaf(bvh2, c + 1);
+        let c = bvh2.nodes[slots[i].0].first_index as usize;
+        (slots[i], slots[len]) = (child(c), child(c + 1));
         len += 1;
     }
-    (slots, openable, len)
+    (slots, len)
 }
 
 /// The packs of the leaf made from binary node `n`: its triangles, four

@@ -35,11 +35,15 @@ pub fn prefetch<T>(value: &T) {
     #[cfg(target_arch = "x86_64")]
     {
         use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+        const LINE: usize = 64;
         let start = (value as *const T).cast::<i8>();
-        for line in (0..std::mem::size_of::<T>()).step_by(64) {
-            // SAFETY: prefetching is a hint that never faults; the address
-            // lies within (or one line past the start of) `value`.
-            unsafe { _mm_prefetch::<_MM_HINT_T0>(start.wrapping_add(line)) };
+        // `value` need not start on a line, so it touches up to one line
+        // more than its size in lines; a fixed count keeps this branch-free
+        // (a line past its end, when there is one, is harmless).
+        for line in 0..=std::mem::size_of::<T>() / LINE {
+            // SAFETY: prefetching is a hint that never faults, whatever the
+            // address; these are `value`'s lines and at most one past them.
+            unsafe { _mm_prefetch::<_MM_HINT_T0>(start.wrapping_add(line * LINE)) };
         }
     }
     #[cfg(not(target_arch = "x86_64"))]

@@ -9,7 +9,7 @@
 //! traversal visits the nearest child first and skips, when it pops a
 //! child, one that starts beyond the closest hit found meanwhile.
 
-use super::slab::{FAR_SLACK, SlabRay};
+use super::slab::{SlabRay, max_ignoring_nan, min_ignoring_nan, widen_up};
 
 /// Children per node.
 pub const WIDTH: usize = 8;
@@ -124,10 +124,8 @@ impl WideRay {
         let [(n0, f0), (n1, f1), (n2, f2)] = self.near_far;
         let (nx, ny, nz) = (&node.planes[n0], &node.planes[n1], &node.planes[n2]);
         let (fx, fy, fz) = (&node.planes[f0], &node.planes[f1], &node.planes[f2]);
-        // max/min that ignore a NaN distance (0 · ∞ for a ray in a slab's
-        // face): `acc` is kept unless the new value beats it.
-        let max = |acc: f32, t: f32| if t > acc { t } else { acc };
-        let min = |acc: f32, t: f32| if t < acc { t } else { acc };
+        // A NaN distance (0 · ∞ for a ray in a slab's face) is ignored.
+        let (max, min) = (max_ignoring_nan, min_ignoring_nan);
         let mut t_near = [0.0f32; WIDTH];
         let mut hit = [false; WIDTH];
         // One lane per child, all three axes in the loop body: the shape the
@@ -144,7 +142,7 @@ impl WideRay {
                 (fz[i] - oz) * iz,
             );
             t_near[i] = near;
-            hit[i] = near <= far + far.abs() * FAR_SLACK;
+            hit[i] = near <= widen_up(far);
         }
         let mut mask = 0u32;
         for (i, &h) in hit.iter().enumerate() {
