@@ -1,11 +1,12 @@
 //! Running traversal code with the widest SIMD instructions the CPU has,
-//! chosen at run time: the node and triangle tests are written lane by lane
-//! over arrays (`[f32; 8]`), which the compiler vectorises for whatever
-//! instruction set the enclosing function is compiled for. A release build
-//! targets baseline x86-64 (SSE2, four lanes), so the same code is compiled
-//! a second time with AVX2 enabled (eight lanes) and picked when the CPU
-//! has it. The arithmetic is the same either way (no fused multiply–add),
-//! so both give the same hits bit for bit.
+//! chosen at run time. The node test is written lane by lane over arrays
+//! (`[f32; 8]`), which the compiler vectorises for whatever instruction set
+//! the enclosing function is compiled for; the triangle test uses `wide`'s
+//! four-lane vectors, which get the shorter AVX encodings there. A release
+//! build targets baseline x86-64 (SSE2, four lanes), so the same code is
+//! compiled a second time with AVX2 enabled (eight lanes) and picked when
+//! the CPU has it. The arithmetic is the same either way (no fused
+//! multiply–add), so both give the same hits bit for bit.
 //!
 //! This is the one place in the workspace with `unsafe`: calling a function
 //! compiled for AVX2 is only sound on a CPU that has it, which is checked

@@ -4,6 +4,7 @@
 
 use crate::shapes::WatertightRay;
 use glam::Vec3;
+use wide::f32x4;
 
 /// Triangles per pack.
 pub const PACK: usize = 4;
@@ -13,8 +14,8 @@ pub const PACK: usize = 4;
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(16))]
 pub struct TrianglePack {
-    /// corners[c][k][i]: coordinate k of corner t_c of triangle i.
-    corners: [[[f32; PACK]; 3]; 3],
+    /// corners[c][k]: coordinate k of corner t_c of the four triangles.
+    corners: [[f32x4; 3]; 3],
     /// The caller's index of each triangle.
     ids: [u32; PACK],
 }
@@ -26,7 +27,7 @@ impl TrianglePack {
         let lane = |i: usize| triangles[i.min(triangles.len() - 1)];
         TrianglePack {
             corners: std::array::from_fn(|c| {
-                std::array::from_fn(|k| std::array::from_fn(|i| lane(i).1[c][k]))
+                std::array::from_fn(|k| f32x4::new(std::array::from_fn(|i| lane(i).1[c][k])))
             }),
             ids: std::array::from_fn(|i| lane(i).0),
         }
@@ -42,11 +43,8 @@ impl TrianglePack {
     #[inline(always)]
     pub fn corners(&self, lane: usize) -> [Vec3; 3] {
         std::array::from_fn(|c| {
-            Vec3::new(
-                self.corners[c][0][lane],
-                self.corners[c][1][lane],
-                self.corners[c][2][lane],
-            )
+            let [x, y, z] = &self.corners[c];
+            Vec3::new(x.as_array()[lane], y.as_array()[lane], z.as_array()[lane])
         })
     }
 
@@ -55,18 +53,19 @@ impl TrianglePack {
     #[inline(always)]
     pub fn nearest(&self, ray: &WatertightRay, t_min: f32, t_max: f32) -> Option<PackHit> {
         let hits = ray.hit_lanes(&self.corners, t_min, t_max);
-        let mut best: Option<usize> = None;
-        for (lane, &alpha) in hits.alpha.iter().enumerate() {
-            if alpha < best.map_or(t_max, |b| hits.alpha[b]) {
-                best = Some(lane);
-            }
+        let [a, b, c, d] = hits.alpha.to_array();
+        let alpha = a.min(b).min(c.min(d));
+        if alpha == f32::INFINITY {
+            return None;
         }
-        best.map(|lane| PackHit {
+        // The lowest lane holding the smallest α.
+        let lane = hits.alpha.simd_eq(alpha).to_bitmask().trailing_zeros() as usize;
+        Some(PackHit {
             lane,
-            alpha: hits.alpha[lane],
-            v: hits.v[lane],
-            w: hits.w[lane],
-            det: hits.det[lane],
+            alpha,
+            v: hits.v.as_array()[lane],
+            w: hits.w.as_array()[lane],
+            det: hits.det.as_array()[lane],
         })
     }
 }

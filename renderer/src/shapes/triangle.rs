@@ -5,6 +5,7 @@ use super::{Method, Surface};
 use crate::ray::Ray;
 use glam::{DVec3, Vec3};
 use serde::Serialize;
+use wide::f32x4;
 
 /// The triangle T with vertices t0, t1, t2 (edges v1 = t1 − t0, v2 = t2 − t0).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -121,26 +122,31 @@ impl Triangle {
     }
 }
 
-/// What [`WatertightRay::hit_lanes`] finds for N triangles: per lane, α
+/// What [`WatertightRay::hit_lanes`] finds for four triangles: per lane, α
 /// (+∞ for no hit), and the edge functions V, W and the determinant that
 /// give β = V / det and γ = W / det.
 #[derive(Clone, Copy, Debug)]
-pub struct LaneHits<const N: usize> {
+pub struct LaneHits {
     /// α per lane, +∞ where the ray misses the triangle in its interval.
-    pub alpha: [f32; N],
+    pub alpha: f32x4,
     /// V per lane.
-    pub v: [f32; N],
+    pub v: f32x4,
     /// W per lane.
-    pub w: [f32; N],
+    pub w: f32x4,
     /// det = U + V + W per lane.
-    pub det: [f32; N],
+    pub det: f32x4,
 }
 
-impl<const N: usize> LaneHits<N> {
+impl LaneHits {
     /// β and γ of the hit in `lane`, as [`WatertightRay::hit`] computes them.
     #[inline(always)]
     pub fn barycentrics(&self, lane: usize) -> (f32, f32) {
-        (self.v[lane] / self.det[lane], self.w[lane] / self.det[lane])
+        let (v, w, det) = (
+            self.v.as_array()[lane],
+            self.w.as_array()[lane],
+            self.det.as_array()[lane],
+        );
+        (v / det, w / det)
     }
 }
 
@@ -234,79 +240,66 @@ impl WatertightRay {
         (alpha.is_finite() && alpha > t_min && alpha < t_max).then_some(alpha)
     }
 
-    /// [`WatertightRay::hit`] for N triangles at once, stored plane by
-    /// plane: `corners[c][k][i]` is coordinate k of corner t_c of triangle
-    /// i. The same operations lane by lane (so the same α, β, γ, bit for
-    /// bit, which the compiler turns into SIMD); α is +∞ for a lane without
+    /// [`WatertightRay::hit`] for four triangles at once, stored plane by
+    /// plane: `corners[c][k]` holds coordinate k of corner t_c of the four
+    /// triangles. The same operations as `edges`, lane by lane in SIMD
+    /// vectors, so the same α, β, γ bit for bit; α is +∞ for a lane without
     /// a hit in (t_min, t_max).
     #[inline(always)]
-    pub fn hit_lanes<const N: usize>(
-        &self,
-        corners: &[[[f32; N]; 3]; 3],
-        t_min: f32,
-        t_max: f32,
-    ) -> LaneHits<N> {
+    pub fn hit_lanes(&self, corners: &[[f32x4; 3]; 3], t_min: f32, t_max: f32) -> LaneHits {
         let (kx, ky, kz) = (self.kx, self.ky, self.kz);
-        let (sx, sy) = (self.sx, self.sy);
         let o = self.origin.to_array();
-        let (ox, oy, oz) = (o[kx], o[ky], o[kz]);
-        let planes = |c: usize| (&corners[c][kx], &corners[c][ky], &corners[c][kz]);
-        let [(ax_, ay_, az_), (bx_, by_, bz_), (cx_, cy_, cz_)] = [planes(0), planes(1), planes(2)];
-        // Sheared corners (x, y) relative to P0, their unsheared z, and the
-        // edge functions; one lane per triangle, everything in one loop
-        // body writing whole arrays (the shape the compiler vectorises).
-        let (mut ax, mut ay) = ([0.0f32; N], [0.0f32; N]);
-        let (mut bx, mut by) = ([0.0f32; N], [0.0f32; N]);
-        let (mut cx, mut cy) = ([0.0f32; N], [0.0f32; N]);
-        let (mut az, mut bz, mut cz) = ([0.0f32; N], [0.0f32; N], [0.0f32; N]);
-        let (mut eu, mut ev, mut ew) = ([0.0f32; N], [0.0f32; N], [0.0f32; N]);
-        let mut zero = [false; N];
-        for i in 0..N {
-            az[i] = az_[i] - oz;
-            bz[i] = bz_[i] - oz;
-            cz[i] = cz_[i] - oz;
-            ax[i] = (ax_[i] - ox) - sx * az[i];
-            ay[i] = (ay_[i] - oy) - sy * az[i];
-            bx[i] = (bx_[i] - ox) - sx * bz[i];
-            by[i] = (by_[i] - oy) - sy * bz[i];
-            cx[i] = (cx_[i] - ox) - sx * cz[i];
-            cy[i] = (cy_[i] - oy) - sy * cz[i];
-            eu[i] = cx[i] * by[i] - cy[i] * bx[i];
-            ev[i] = ax[i] * cy[i] - ay[i] * cx[i];
-            ew[i] = bx[i] * ay[i] - by[i] * ax[i];
-            zero[i] = (eu[i] == 0.0) | (ev[i] == 0.0) | (ew[i] == 0.0);
-        }
-        if zero.iter().any(|&z| z) {
+        let (ox, oy, oz) = (
+            f32x4::splat(o[kx]),
+            f32x4::splat(o[ky]),
+            f32x4::splat(o[kz]),
+        );
+        let (sx, sy) = (f32x4::splat(self.sx), f32x4::splat(self.sy));
+        // Corner c relative to P0, sheared: (x, y) and the unsheared z.
+        let shear = |c: usize| {
+            let p = &corners[c];
+            let z = p[kz] - oz;
+            ((p[kx] - ox) - sx * z, (p[ky] - oy) - sy * z, z)
+        };
+        let ((ax, ay, az), (bx, by, bz), (cx, cy, cz)) = (shear(0), shear(1), shear(2));
+        let mut eu = cx * by - cy * bx;
+        let mut ev = ax * cy - ay * cx;
+        let mut ew = bx * ay - by * ax;
+        let zero = f32x4::ZERO;
+        let exact_zero = eu.simd_eq(zero) | ev.simd_eq(zero) | ew.simd_eq(zero);
+        if exact_zero.any() {
             // Rare (the ray through an edge or vertex): exactly as `edges`.
             let f =
                 |p: f32, q: f32, r: f32, s: f32| (p as f64 * q as f64 - r as f64 * s as f64) as f32;
-            for i in (0..N).filter(|&i| zero[i]) {
-                eu[i] = f(cx[i], by[i], cy[i], bx[i]);
-                ev[i] = f(ax[i], cy[i], ay[i], cx[i]);
-                ew[i] = f(bx[i], ay[i], by[i], ax[i]);
+            let [ax, ay, bx, by, cx, cy] = [ax, ay, bx, by, cx, cy].map(f32x4::to_array);
+            let (mut u, mut v, mut w) = (eu.to_array(), ev.to_array(), ew.to_array());
+            let lanes = exact_zero.to_bitmask();
+            for i in (0..4).filter(|i| lanes & (1 << i) != 0) {
+                u[i] = f(cx[i], by[i], cy[i], bx[i]);
+                v[i] = f(ax[i], cy[i], ay[i], cx[i]);
+                w[i] = f(bx[i], ay[i], by[i], ax[i]);
             }
+            (eu, ev, ew) = (u.into(), v.into(), w.into());
         }
-        let sz = self.sz;
-        let mut hits = LaneHits {
-            alpha: [f32::INFINITY; N],
+        // `edges`'s tests on all lanes at once (the same truth values).
+        let negative = eu.simd_lt(zero) | ev.simd_lt(zero) | ew.simd_lt(zero);
+        let positive = eu.simd_gt(zero) | ev.simd_gt(zero) | ew.simd_gt(zero);
+        let det = eu + ev + ew;
+        let sz = f32x4::splat(self.sz);
+        let t_scaled = eu * (sz * az) + ev * (sz * bz) + ew * (sz * cz);
+        let alpha = t_scaled / det;
+        let finite = alpha.abs().simd_lt(f32x4::INFINITY);
+        let hit = !(negative & positive)
+            & det.simd_ne(zero)
+            & finite
+            & alpha.simd_gt(f32x4::splat(t_min))
+            & alpha.simd_lt(f32x4::splat(t_max));
+        LaneHits {
+            alpha: hit.select(alpha, f32x4::INFINITY),
             v: ev,
             w: ew,
-            det: [0.0; N],
-        };
-        for i in 0..N {
-            let (u, v, w) = (eu[i], ev[i], ew[i]);
-            // `edges`'s tests, with `&` and `|` for `&&` and `||` (no
-            // branches, so this vectorises; the same truth values).
-            let outside = ((u < 0.0) | (v < 0.0) | (w < 0.0)) & ((u > 0.0) | (v > 0.0) | (w > 0.0));
-            let det = u + v + w;
-            let t_scaled = u * (sz * az[i]) + v * (sz * bz[i]) + w * (sz * cz[i]);
-            let alpha = t_scaled / det;
-            let finite = alpha.abs() < f32::INFINITY;
-            let hit = !outside & (det != 0.0) & finite & (alpha > t_min) & (alpha < t_max);
-            hits.alpha[i] = if hit { alpha } else { f32::INFINITY };
-            hits.det[i] = det;
+            det,
         }
-        hits
     }
 
     /// The hit with triangle t0, t1, t2 inside `ray`'s interval, with its
@@ -450,12 +443,13 @@ mod tests {
             prop_assume!(dir != Vec3::ZERO);
             let ray = Ray { origin: Vec3::new(o.0 as f32, o.1 as f32, o.2 as f32), dir, t_min, t_max };
             let w = WatertightRay::new(&ray);
-            let corners: [[[f32; 4]; 3]; 3] =
-                std::array::from_fn(|c| std::array::from_fn(|k| std::array::from_fn(|i| tris[i][c][k])));
+            let corners: [[f32x4; 3]; 3] = std::array::from_fn(|c| {
+                std::array::from_fn(|k| f32x4::new(std::array::from_fn(|i| tris[i][c][k])))
+            });
             let lanes = w.hit_lanes(&corners, t_min, t_max);
             for (i, [t0, t1, t2]) in tris.iter().enumerate() {
                 let one = w.alpha(*t0, *t1, *t2, t_min, t_max).unwrap_or(f32::INFINITY);
-                prop_assert_eq!(lanes.alpha[i].to_bits(), one.to_bits(), "lane {}", i);
+                prop_assert_eq!(lanes.alpha.as_array()[i].to_bits(), one.to_bits(), "lane {}", i);
                 if let Some(hit) = w.hit(&ray, *t0, *t1, *t2) {
                     let (beta, gamma) = lanes.barycentrics(i);
                     prop_assert_eq!((beta.to_bits(), gamma.to_bits()), (hit.beta.to_bits(), hit.gamma.to_bits()));
