@@ -130,6 +130,33 @@ fn trace(pool: &rayon::ThreadPool, bvh: &MeshBvh, rays: &[Ray], repeats: usize) 
     (rays.len() as f64 / median(times) / 1e6, hits)
 }
 
+/// [`trace`] with [`MeshBvh::closest_hits`]: each chunk of 1024 rays traced
+/// `renderer::accel::mesh::INTERLEAVED` at a time.
+fn trace_batched(
+    pool: &rayon::ThreadPool,
+    bvh: &MeshBvh,
+    rays: &[Ray],
+    repeats: usize,
+) -> (f64, usize) {
+    let mut hits = 0;
+    let times = (0..repeats)
+        .map(|_| {
+            let t = Instant::now();
+            hits = pool.install(|| {
+                rays.par_chunks(1024)
+                    .map(|c| {
+                        let mut out = [None; 1024];
+                        bvh.closest_hits(c, &mut out[..c.len()]);
+                        out.iter().filter(|h| h.is_some()).count()
+                    })
+                    .sum()
+            });
+            t.elapsed().as_secs_f64()
+        })
+        .collect();
+    (rays.len() as f64 / median(times) / 1e6, hits)
+}
+
 fn obvhs_ray(r: &Ray) -> obvhs::ray::Ray {
     obvhs::ray::Ray::new(Vec3A::from(r.origin), Vec3A::from(r.dir), r.t_min, r.t_max)
 }
@@ -274,7 +301,10 @@ fn main() {
         let bvh = MeshBvh::build(&mesh.positions, &mesh.triangles);
         let (p, hits) = trace(&one, &bvh, &tiled, 1);
         let (i, _) = trace(&one, &bvh, &incoherent, 1);
-        println!("profile run: primary {p:.2} Mrays/s ({hits} hits), incoherent {i:.2}");
+        let (ib, _) = trace_batched(&one, &bvh, &incoherent, 1);
+        println!(
+            "profile run: primary {p:.2} Mrays/s ({hits} hits), incoherent {i:.2}, incoherent interleaved {ib:.2}"
+        );
         return;
     }
     let qualities: &[BuildQuality] = if a.qualities {
@@ -315,6 +345,15 @@ fn main() {
             format!("{q:?}"),
             bvh.bytes() as f64 / n as f64,
             100.0 * hits as f64 / primary.len() as f64
+        );
+        let (p1, batch_hits) = trace_batched(&one, &bvh, &primary, a.repeats);
+        assert_eq!(batch_hits, hits, "closest_hits and closest_hit disagree");
+        let (pa, _) = trace_batched(&many, &bvh, &primary, a.repeats);
+        let (i1, _) = trace_batched(&one, &bvh, &incoherent, a.repeats);
+        let (ia, _) = trace_batched(&many, &bvh, &incoherent, a.repeats);
+        println!(
+            "{:<10} {:>8} {:>8} {:>7} | {p1:>9.2} {pa:>9.2} | {:>9} {:>9} | {i1:>9.2} {ia:>9.2} |",
+            "  batched", "", "", "", "", ""
         );
     }
 

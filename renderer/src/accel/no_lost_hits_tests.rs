@@ -17,16 +17,27 @@ use rayon::prelude::*;
 
 type Mesh = (Vec<Vec3>, Vec<[u32; 3]>);
 
-/// Checks every ray against brute force; panics listing the first
+/// Checks every ray against brute force (closest hit one ray at a time and
+/// in interleaved batches, and any hit); panics listing the first
 /// disagreements. Returns how many rays hit.
 fn assert_equals_brute_force(mesh: &Mesh, rays: &[Ray], what: &str) -> usize {
     let (p, t) = mesh;
     let bvh = MeshBvh::build(p, t);
+    let mut batched = vec![None; rays.len()];
+    rays.par_chunks(1000)
+        .zip(batched.par_chunks_mut(1000))
+        .for_each(|(r, h)| bvh.closest_hits(r, h));
     let outcomes: Vec<Result<bool, String>> = rays
         .par_iter()
-        .map(|ray| {
+        .zip(&batched)
+        .map(|(ray, batched)| {
             let want = reference::closest_hit(p, t, ray);
             let got = bvh.closest_hit(ray);
+            if *batched != got {
+                return Err(format!(
+                    "{ray:?}: closest_hits {batched:?}, closest_hit {got:?}"
+                ));
+            }
             match (want, got) {
                 (None, None) => {}
                 (Some(w), Some(g)) => {

@@ -24,6 +24,13 @@ impl<T: Copy + Default, const INLINE: usize> Stack<T, INLINE> {
         }
     }
 
+    /// Empties the stack (keeps its storage, so no entry is written).
+    #[inline(always)]
+    pub(crate) fn clear(&mut self) {
+        self.len = 0;
+        self.spill.clear();
+    }
+
     /// Pushes `v` on top.
     #[inline(always)]
     pub(crate) fn push(&mut self, v: T) {
