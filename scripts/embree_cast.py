@@ -172,6 +172,14 @@ def cmd_report(args):
         rows.append((f"{cast} Mrays/s, {threads} threads", median(map(ray(cast, "all"), raylab)),
                      median(map(emb(cast), every)), True))
 
+    # raylab's interleaved batches of the same incoherent rays (World::intersect_batch),
+    # against Embree's one-ray-at-a-time casts above.
+    if raylab[0].get("incoherent_batched"):
+        rows.append(("incoherent batched, 1 thread", median(map(ray("incoherent_batched", "one"), raylab)),
+                     median(map(emb("incoherent"), one)), True))
+        rows.append((f"incoherent batched, {threads} thr", median(map(ray("incoherent_batched", "all"), raylab)),
+                     median(map(emb("incoherent"), every)), True))
+
     def ratio(a, b):
         return a / b if a is not None and b else None
 

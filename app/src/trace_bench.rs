@@ -48,6 +48,9 @@ pub struct SceneFigures {
     pub primary: PerThreads<CastFigures>,
     /// Closest-hit rays from random points in the scene's box, uniform directions.
     pub incoherent: Option<PerThreads<CastFigures>>,
+    /// The same incoherent rays in batches (`World::intersect_batch`: several
+    /// rays traced interleaved); the integrators still trace one ray at a time.
+    pub incoherent_batched: Option<PerThreads<CastFigures>>,
     /// One Whitted pass of one sample per pixel, seconds.
     pub whitted_frame_seconds: PerThreads<f64>,
 }
@@ -92,16 +95,21 @@ pub fn measure(
         start.elapsed().as_secs_f64()
     });
     let primary_rays = throughput::primary_rays(&world);
-    let cast = |rays: &[Ray]| PerThreads {
-        one: throughput::on_threads(1, || {
-            throughput::median_of(RUNS, || throughput::cast_closest(&world, rays))
-        })
-        .into(),
-        all: throughput::median_of(RUNS, || throughput::cast_closest(&world, rays)).into(),
+    let cast_with = |cast: fn(&World, &[Ray]) -> throughput::Cast, rays: &[Ray]| PerThreads {
+        one: throughput::on_threads(1, || throughput::median_of(RUNS, || cast(&world, rays)))
+            .into(),
+        all: throughput::median_of(RUNS, || cast(&world, rays)).into(),
     };
-    let primary = cast(&primary_rays);
+    let primary = cast_with(throughput::cast_closest, &primary_rays);
     drop(primary_rays);
-    let incoherent = incoherent_rays(&world).map(|(_, rays)| cast(&rays));
+    let incoherent_set = incoherent_rays(&world).map(|(_, rays)| rays);
+    let incoherent = incoherent_set
+        .as_ref()
+        .map(|rays| cast_with(throughput::cast_closest, rays));
+    let incoherent_batched = incoherent_set
+        .as_ref()
+        .map(|rays| cast_with(throughput::cast_closest_batched, rays));
+    drop(incoherent_set);
     let options = RenderOptions::default();
     let frame = || {
         median_seconds(|| {
@@ -126,6 +134,7 @@ pub fn measure(
         bytes_per_triangle: (triangles > 0).then(|| bytes as f64 / triangles as f64),
         primary,
         incoherent,
+        incoherent_batched,
         whitted_frame_seconds,
     })
 }
@@ -188,6 +197,9 @@ pub fn print_table(f: &SceneFigures) {
     row("primary closest-hit", &f.primary);
     if let Some(inc) = &f.incoherent {
         row("incoherent closest-hit", inc);
+    }
+    if let Some(inc) = &f.incoherent_batched {
+        row("  the same, batched", inc);
     }
     println!(
         "  Whitted frame, 1 spp      {:>9.1} ms on 1 thread, {:>7.1} ms on {}",

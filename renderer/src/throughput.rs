@@ -73,6 +73,25 @@ pub fn cast_closest(world: &World, rays: &[Ray]) -> Cast {
     }
 }
 
+/// [`cast_closest`] with [`World::intersect_batch`] on chunks of rays (the
+/// interleaved traversal that hides memory latency on incoherent rays).
+pub fn cast_closest_batched(world: &World, rays: &[Ray]) -> Cast {
+    let start = Instant::now();
+    let hits: usize = rays
+        .par_chunks(4096)
+        .map(|chunk| {
+            let mut hits = vec![None; chunk.len()];
+            world.intersect_batch(chunk, Method::Robust, &mut hits);
+            hits.iter().filter(|h| h.is_some()).count()
+        })
+        .sum();
+    Cast {
+        rays: rays.len(),
+        hits,
+        seconds: start.elapsed().as_secs_f64(),
+    }
+}
+
 /// The median of `runs` repeats of `measure` (by time); the machine is
 /// shared, so one run says little.
 pub fn median_of(runs: usize, mut measure: impl FnMut() -> Cast) -> Cast {

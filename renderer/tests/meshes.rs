@@ -222,3 +222,32 @@ fn a_model_is_drawn_in_its_files_material_colour_unless_overridden() {
     let world = World::from_scene(&painted).expect("valid");
     assert_eq!(world.object_color(0), Vec3::new(0.1, 0.2, 0.3));
 }
+
+#[test]
+fn a_batch_of_rays_finds_the_same_hits_as_ray_by_ray() {
+    // Two mesh instances (knot, floor square), 40 spheres and an infinite
+    // floor plane lying exactly in the floor square (a tie the square wins).
+    let mut scene = scene::generate::knot_scene(3000);
+    scene
+        .objects
+        .extend(scene::generate::spheres_scene(40).objects);
+    (scene.camera.width, scene.camera.height) = (64, 36);
+    let world = World::from_scene(&scene).expect("world");
+    let mut rays = renderer::throughput::primary_rays(&world);
+    rays.extend(renderer::throughput::incoherent_rays(
+        Vec3::splat(-4.0),
+        Vec3::splat(4.0),
+        3000,
+        7,
+    ));
+    let mut hits = vec![None; rays.len()];
+    world.intersect_batch(&rays, Method::Robust, &mut hits);
+    let objects: std::collections::HashSet<u32> = hits.iter().flatten().map(|h| h.object).collect();
+    assert!(
+        objects.len() > 20,
+        "the rays should meet many objects: {objects:?}"
+    );
+    for (ray, hit) in rays.iter().zip(&hits) {
+        assert_eq!(*hit, world.intersect(ray, Method::Robust), "{ray:?}");
+    }
+}
