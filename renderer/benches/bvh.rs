@@ -16,14 +16,17 @@
 //! [--repeats R] [--width W --height H] [--qualities] [--lost]`. Embree on
 //! the same triangles and rays: `scripts/bench-vs-embree.sh`.
 //!
-//! Measured 2026-11-23 on the shared 2-vCPU machine (quiet: load ≈ 0.9), one
-//! run, medians of 3, fast build: 8-wide nodes with leaves of up to 8
-//! triangles: build 0.68 s on 1 thread, 0.39 s on 2; 61.5 B/triangle;
-//! primary 7.1 / 13.5 Mrays/s (1 / 2 threads), 16×16-tiled 7.2 / 13.4,
-//! incoherent 1.45 / 3.2. (The CWBVH-based tree this replaced, same day:
-//! primary 6.2 / 12.2, incoherent 0.70 / 1.5, build 0.53 / 0.41 s.) Embree
-//! side by side: `scripts/bench-vs-embree.sh` (raylab ≈ 0.5× Embree's
-//! Mrays/s on this scene, see the commit log).
+//! Measured 2026-11-23 on the shared 2-vCPU machine, one run, medians of 3,
+//! fast build, 8-wide nodes, leaves of up to 8 triangles in packs of 4
+//! tested with `wide::f32x4`: build 0.52 s on 1 thread, 0.38 s on 2;
+//! 61.5 B/triangle; primary 8.9 / 17.0 Mrays/s (1 / 2 threads), 16×16-tiled
+//! 9.2 / 16.8, incoherent 1.58 / 3.40. Batched (`MeshBvh::closest_hits`, 8
+//! rays interleaved): incoherent 2.48 / 5.01, primary 7.9 / 13.4 (coherent
+//! rays gain nothing from it). Earlier the same day: before the explicit SIMD
+//! pack test, primary 7.1 / 13.5, incoherent 1.45 / 3.2; the CWBVH-based tree
+//! before that, primary 6.2 / 12.2, incoherent 0.70 / 1.5. Embree side by
+//! side: `scripts/bench-vs-embree.sh` (ratios in the commit log and the
+//! issue notes).
 //!
 //! `--lost` (same day): closest α differing from ours (ours equals brute
 //! force) with obvhs 0.4's own traversal and our triangle test, fast_build:
