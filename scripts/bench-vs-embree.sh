@@ -12,10 +12,10 @@
 # so that a busy neighbour slows both alike, and prints the medians over the
 # rounds (each round's figure is itself a median of 5 casts): BVH build seconds,
 # primary and incoherent closest-hit Mrays/s on 1 thread and on all threads,
-# both hit fractions (they must agree) and the ratios raylab/Embree, plus raylab's
-# incoherent rays in interleaved batches (World::intersect_batch) against
-# Embree's one-at-a-time casts. The JSON
-# goes to FILE (default: out/bench-vs-embree.json). See scripts/embree_cast.py
+# both hit fractions (they must agree) and the ratios raylab/Embree, plus
+# raylab's incoherent rays in interleaved batches (World::intersect_batch)
+# against Embree's one-at-a-time casts. The JSON goes to FILE (default:
+# out/bench-vs-embree.json). See scripts/embree_cast.py
 # for how Embree's thread count is controlled. Embree runs with
 # RTC_SCENE_FLAG_ROBUST (embreex's default; raylab never loses a hit either)
 # unless --no-robust.

@@ -116,48 +116,45 @@ fn build_seconds(pool: &rayon::ThreadPool, mesh: &Mesh, q: BuildQuality, repeats
     )
 }
 
-/// Closest-hit Mrays/s over `rays` on `pool` (median of `repeats`) and the hit count.
-fn trace(pool: &rayon::ThreadPool, bvh: &MeshBvh, rays: &[Ray], repeats: usize) -> (f64, usize) {
+/// Closest-hit Mrays/s over `rays` on `pool` (median of `repeats`) and the
+/// hit count; `hits_in(chunk)` casts a chunk of up to 1024 rays and counts
+/// its hits.
+fn trace(
+    pool: &rayon::ThreadPool,
+    rays: &[Ray],
+    repeats: usize,
+    hits_in: impl Fn(&[Ray]) -> usize + Sync,
+) -> (f64, usize) {
     let mut hits = 0;
     let times = (0..repeats)
         .map(|_| {
             let t = Instant::now();
-            hits = pool.install(|| {
-                rays.par_chunks(1024)
-                    .map(|c| c.iter().filter(|r| bvh.closest_hit(r).is_some()).count())
-                    .sum()
-            });
+            hits = pool.install(|| rays.par_chunks(1024).map(&hits_in).sum());
             t.elapsed().as_secs_f64()
         })
         .collect();
     (rays.len() as f64 / median(times) / 1e6, hits)
 }
 
-/// [`trace`] with [`MeshBvh::closest_hits`]: each chunk of 1024 rays traced
+/// Hits of `chunk` with [`MeshBvh::closest_hit`], one ray at a time.
+fn one_by_one(bvh: &MeshBvh) -> impl Fn(&[Ray]) -> usize + Sync + '_ {
+    |chunk| {
+        chunk
+            .iter()
+            .filter(|r| bvh.closest_hit(r).is_some())
+            .count()
+    }
+}
+
+/// Hits of `chunk` (≤ 1024 rays) with [`MeshBvh::closest_hits`], traced
 /// `renderer::accel::mesh::INTERLEAVED` at a time.
-fn trace_batched(
-    pool: &rayon::ThreadPool,
-    bvh: &MeshBvh,
-    rays: &[Ray],
-    repeats: usize,
-) -> (f64, usize) {
-    let mut hits = 0;
-    let times = (0..repeats)
-        .map(|_| {
-            let t = Instant::now();
-            hits = pool.install(|| {
-                rays.par_chunks(1024)
-                    .map(|c| {
-                        let mut out = [None; 1024];
-                        bvh.closest_hits(c, &mut out[..c.len()]);
-                        out.iter().filter(|h| h.is_some()).count()
-                    })
-                    .sum()
-            });
-            t.elapsed().as_secs_f64()
-        })
-        .collect();
-    (rays.len() as f64 / median(times) / 1e6, hits)
+fn batched(bvh: &MeshBvh) -> impl Fn(&[Ray]) -> usize + Sync + '_ {
+    |chunk| {
+        let mut out = [None; 1024];
+        let out = &mut out[..chunk.len()];
+        bvh.closest_hits(chunk, out);
+        out.iter().filter(|h| h.is_some()).count()
+    }
 }
 
 fn obvhs_ray(r: &Ray) -> obvhs::ray::Ray {
@@ -302,9 +299,9 @@ fn main() {
     }
     if a.profile {
         let bvh = MeshBvh::build(&mesh.positions, &mesh.triangles);
-        let (p, hits) = trace(&one, &bvh, &tiled, 1);
-        let (i, _) = trace(&one, &bvh, &incoherent, 1);
-        let (ib, _) = trace_batched(&one, &bvh, &incoherent, 1);
+        let (p, hits) = trace(&one, &tiled, 1, one_by_one(&bvh));
+        let (i, _) = trace(&one, &incoherent, 1, one_by_one(&bvh));
+        let (ib, _) = trace(&one, &incoherent, 1, batched(&bvh));
         println!(
             "profile run: primary {p:.2} Mrays/s ({hits} hits), incoherent {i:.2}, incoherent interleaved {ib:.2}"
         );
@@ -337,23 +334,23 @@ fn main() {
         let b1 = build_seconds(&one, &mesh, q, a.repeats.min(3));
         let ba = build_seconds(&many, &mesh, q, a.repeats);
         let bvh = many.install(|| MeshBvh::build_with(&mesh.positions, &mesh.triangles, q));
-        let (p1, hits) = trace(&one, &bvh, &primary, a.repeats);
-        let (pa, _) = trace(&many, &bvh, &primary, a.repeats);
-        let (t1, _) = trace(&one, &bvh, &tiled, a.repeats);
-        let (ta, _) = trace(&many, &bvh, &tiled, a.repeats);
-        let (i1, _) = trace(&one, &bvh, &incoherent, a.repeats);
-        let (ia, _) = trace(&many, &bvh, &incoherent, a.repeats);
+        let (p1, hits) = trace(&one, &primary, a.repeats, one_by_one(&bvh));
+        let (pa, _) = trace(&many, &primary, a.repeats, one_by_one(&bvh));
+        let (t1, _) = trace(&one, &tiled, a.repeats, one_by_one(&bvh));
+        let (ta, _) = trace(&many, &tiled, a.repeats, one_by_one(&bvh));
+        let (i1, _) = trace(&one, &incoherent, a.repeats, one_by_one(&bvh));
+        let (ia, _) = trace(&many, &incoherent, a.repeats, one_by_one(&bvh));
         println!(
             "{:<10} {b1:>8.3} {ba:>8.3} {:>7.1} | {p1:>9.2} {pa:>9.2} | {t1:>9.2} {ta:>9.2} | {i1:>9.2} {ia:>9.2} | {:.1}",
             format!("{q:?}"),
             bvh.bytes() as f64 / n as f64,
             100.0 * hits as f64 / primary.len() as f64
         );
-        let (p1, batch_hits) = trace_batched(&one, &bvh, &primary, a.repeats);
+        let (p1, batch_hits) = trace(&one, &primary, a.repeats, batched(&bvh));
         assert_eq!(batch_hits, hits, "closest_hits and closest_hit disagree");
-        let (pa, _) = trace_batched(&many, &bvh, &primary, a.repeats);
-        let (i1, _) = trace_batched(&one, &bvh, &incoherent, a.repeats);
-        let (ia, _) = trace_batched(&many, &bvh, &incoherent, a.repeats);
+        let (pa, _) = trace(&many, &primary, a.repeats, batched(&bvh));
+        let (i1, _) = trace(&one, &incoherent, a.repeats, batched(&bvh));
+        let (ia, _) = trace(&many, &incoherent, a.repeats, batched(&bvh));
         println!(
             "{:<10} {:>8} {:>8} {:>7} | {p1:>9.2} {pa:>9.2} | {:>9} {:>9} | {i1:>9.2} {ia:>9.2} |",
             "  batched", "", "", "", "", ""

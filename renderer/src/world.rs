@@ -211,7 +211,7 @@ impl World {
                     Some(hit.alpha)
                 }
             });
-        let mut nearest = found.map(|(item, alpha)| Hit {
+        let nearest = found.map(|(item, alpha)| Hit {
             object: match self.items[item as usize] {
                 Item::Shape(id) => id,
                 Item::Mesh(instance) => self.meshes[instance as usize].object,
@@ -219,20 +219,7 @@ impl World {
             alpha,
             triangle: last_triangle,
         });
-        // Infinite planes last: a bounded surface lying exactly in a plane
-        // (a cone's base on the floor) wins the tie.
-        let mut search = nearest.map_or(*ray, |h| ray.with_t_max(h.alpha));
-        for &id in &self.unbounded {
-            tests += 1;
-            if let Some(alpha) = self.analytic(id).intersect(&search, method) {
-                search.t_max = alpha;
-                nearest = Some(Hit {
-                    object: id,
-                    alpha,
-                    triangle: None,
-                });
-            }
-        }
+        let nearest = self.planes_last(ray, nearest, method, &mut tests);
         crate::shape_tests::count_shape_tests(tests);
         nearest
     }
@@ -286,8 +273,8 @@ impl World {
         for (ray, hit) in rays.iter().zip(hits.iter_mut()) {
             crate::ray_count::count_ray();
             tests += self.meshes.len();
-            let mut search = hit.map_or(*ray, |h| ray.with_t_max(h.alpha));
             if has_shapes {
+                let search = hit.map_or(*ray, |h| ray.with_t_max(h.alpha));
                 let shape =
                     self.top
                         .closest(&search, |item, ray| match self.items[item as usize] {
@@ -306,23 +293,37 @@ impl World {
                         alpha,
                         triangle: None,
                     });
-                    search.t_max = alpha;
                 }
             }
-            // Infinite planes last, as in `intersect`.
-            for &id in &self.unbounded {
-                tests += 1;
-                if let Some(alpha) = self.analytic(id).intersect(&search, method) {
-                    search.t_max = alpha;
-                    *hit = Some(Hit {
-                        object: id,
-                        alpha,
-                        triangle: None,
-                    });
-                }
-            }
+            *hit = self.planes_last(ray, *hit, method, &mut tests);
         }
         crate::shape_tests::count_shape_tests(tests);
+    }
+
+    /// `nearest` (the nearest bounded hit of `ray`, if any) or a nearer hit
+    /// with an infinite plane. Planes go last so that a bounded surface lying
+    /// exactly in a plane (a cone's base on the floor) wins the tie: a plane
+    /// must be strictly nearer. Counts the plane tests in `tests`.
+    fn planes_last(
+        &self,
+        ray: &Ray,
+        mut nearest: Option<Hit>,
+        method: Method,
+        tests: &mut usize,
+    ) -> Option<Hit> {
+        let mut search = nearest.map_or(*ray, |h| ray.with_t_max(h.alpha));
+        for &id in &self.unbounded {
+            *tests += 1;
+            if let Some(alpha) = self.analytic(id).intersect(&search, method) {
+                search.t_max = alpha;
+                nearest = Some(Hit {
+                    object: id,
+                    alpha,
+                    triangle: None,
+                });
+            }
+        }
+        nearest
     }
 
     /// True when anything lies on the ray inside its interval (shadow rays).

@@ -39,8 +39,9 @@ impl TrianglePack {
         self.ids[lane]
     }
 
-    /// t0, t1, t2 of the triangle in `lane`.
-    #[inline(always)]
+    /// t0, t1, t2 of the triangle in `lane` (for tests: traversal reads the
+    /// planes directly).
+    #[cfg(test)]
     pub fn corners(&self, lane: usize) -> [Vec3; 3] {
         std::array::from_fn(|c| {
             let [x, y, z] = &self.corners[c];
