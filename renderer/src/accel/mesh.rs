@@ -6,11 +6,13 @@
 //! arithmetic as [`crate::shapes::Triangle`] ([`WatertightRay`]), so
 //! closest hits equal brute force exactly.
 
+mod packet;
+
 use super::collapse::collapse;
 use super::scene::Aabb;
 use super::simd::{prefetch, with_widest_simd};
 use super::stack::Stack;
-use super::triangle_pack::{PackHit, TrianglePack};
+use super::triangle_pack::TrianglePack;
 use super::wide::{ChildRef, WIDTH, WideNode, WideRay};
 use crate::ray::Ray;
 use crate::shapes::WatertightRay;
@@ -18,6 +20,7 @@ use glam::{Vec3, Vec3A};
 use obvhs::BvhBuildParams;
 use obvhs::bvh2::reinsertion::ReinsertionOptimizer;
 use obvhs::ploc::PlocBuilder;
+use packet::{LANES, LaneBest, Packet};
 
 /// The closest hit of a ray with a mesh: P0 + α v = (1 − β − γ) t0 + β t1 + γ t2.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -174,11 +177,15 @@ impl MeshBvh {
     }
 
     /// [`MeshBvh::closest_hit`] of every ray in `rays`, written to `hits`
-    /// (same length). The rays are traced [`INTERLEAVED`] at a time, one
-    /// node or leaf of each in turn, so that while one ray waits for its
-    /// next node to arrive from memory (it was prefetched) the others
-    /// compute: incoherent rays in a large mesh spend most of their time
-    /// waiting otherwise. The hits are exactly [`MeshBvh::closest_hit`]'s.
+    /// (same length): the same α; on an exact tie between two triangles
+    /// either may be reported. Each run of [`LANES`] consecutive rays that
+    /// are coherent (camera rays through neighbouring pixels: one octant,
+    /// close directions and origins) is traced as a packet, each node
+    /// loaded once for all its rays ([`packet`]). The other rays are traced
+    /// [`INTERLEAVED`] at a time, one node or leaf of each in turn, so that
+    /// while one ray waits for its next node to arrive from memory (it was
+    /// prefetched) the others compute: incoherent rays in a large mesh
+    /// spend most of their time waiting otherwise.
     pub fn closest_hits(&self, rays: &[Ray], hits: &mut [Option<MeshHit>]) {
         assert_eq!(rays.len(), hits.len(), "one hit slot per ray");
         with_widest_simd(
@@ -206,11 +213,37 @@ impl MeshBvh {
     /// [`MeshBvh::closest_hits`], compiled into its caller.
     #[inline(always)]
     fn closest_hits_inline(&self, rays: &[Ray], hits: &mut [Option<MeshHit>]) {
+        let size = (self.bounds.max - self.bounds.min).length();
+        // Rays not coherent enough for a packet, traced interleaved.
+        let mut alone = Vec::new();
+        let mut packet = Packet::new();
+        for (k, chunk) in rays.chunks(LANES).enumerate() {
+            let first = k * LANES;
+            if packet.load(chunk, size) {
+                let mut best = [None; LANES];
+                self.trace_packet(&mut packet, &mut best);
+                for (hit, best) in hits[first..first + chunk.len()].iter_mut().zip(best) {
+                    *hit = mesh_hit(best);
+                }
+            } else {
+                alone.extend(first..first + chunk.len());
+            }
+        }
+        self.interleaved(alone.into_iter().map(|i| (i, &rays[i])), hits);
+    }
+
+    /// The closest hit of each ray `waiting` yields (its index in `hits`
+    /// and the ray), [`INTERLEAVED`] rays at a time, one step of each in turn.
+    #[inline(always)]
+    fn interleaved<'r>(
+        &self,
+        mut waiting: impl Iterator<Item = (usize, &'r Ray)>,
+        hits: &mut [Option<MeshHit>],
+    ) {
         // Each slot: the ray it traces (its index) and its walk; the walks
         // are reused so their stacks are not initialised again per ray.
         let mut slots: [(usize, Walk); INTERLEAVED] =
             std::array::from_fn(|_| (usize::MAX, Walk::new(&Ray::new(Vec3::ZERO, Vec3::X), None)));
-        let mut waiting = rays.iter().enumerate();
         let mut active = 0;
         for (index, walk) in &mut slots {
             if let Some((i, ray)) = waiting.next() {
@@ -331,7 +364,7 @@ struct Walk<'a> {
     /// The node or leaf to visit next; `None` when done.
     next: Option<ChildRef>,
     /// The closest hit so far (its pack and lane).
-    best: Option<(&'a TrianglePack, PackHit)>,
+    best: LaneBest<'a>,
 }
 
 impl<'a> Walk<'a> {
@@ -361,15 +394,21 @@ impl<'a> Walk<'a> {
     /// The closest hit found.
     #[inline(always)]
     fn closest(&self) -> Option<MeshHit> {
-        let (pack, hit) = self.best?;
-        let (beta, gamma) = hit.barycentrics();
-        Some(MeshHit {
-            triangle: pack.id(hit.lane),
-            alpha: hit.alpha,
-            beta,
-            gamma,
-        })
+        mesh_hit(self.best)
     }
+}
+
+/// The hit of a traversal's best (pack, hit in it), if any.
+#[inline(always)]
+fn mesh_hit(best: LaneBest) -> Option<MeshHit> {
+    let (pack, hit) = best?;
+    let (beta, gamma) = hit.barycentrics();
+    Some(MeshHit {
+        triangle: pack.id(hit.lane),
+        alpha: hit.alpha,
+        beta,
+        gamma,
+    })
 }
 
 #[cfg(test)]

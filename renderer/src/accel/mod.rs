@@ -5,9 +5,9 @@
 //! - [`MeshBvh`]: the bottom level, one per triangle mesh (obvhs's binary
 //!   PLOC tree collapsed to 8-wide nodes, triangles copied into packs of
 //!   four in leaf order). One ray at a time ([`MeshBvh::closest_hit`]), or
-//!   a batch traced several rays at a time, interleaved, to hide memory
-//!   latency on incoherent rays ([`MeshBvh::closest_hits`]; the integrators
-//!   do not batch their rays yet).
+//!   a batch ([`MeshBvh::closest_hits`]): coherent rays in packets of eight
+//!   that share each node's loads, incoherent ones several at a time,
+//!   interleaved, to hide memory latency.
 //! - [`SceneBvh`]: the top level over items known only by their boxes (mesh
 //!   instances, analytic shapes); the caller intersects each item.
 //! - [`Instance`]: an affine placement of a mesh, mapping rays into the mesh's

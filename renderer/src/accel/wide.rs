@@ -79,6 +79,13 @@ impl WideNode {
         children: [ChildRef::EMPTY; WIDTH],
     };
 
+    /// Plane `p` of child `slot`: the min (p = 2k) or max (p = 2k + 1) of
+    /// its box along axis k.
+    #[inline(always)]
+    pub fn plane(&self, p: usize, slot: usize) -> f32 {
+        self.planes[p][slot]
+    }
+
     /// Puts `child` with the box [min, max] in slot `slot`.
     pub fn set_child(&mut self, slot: usize, child: ChildRef, min: [f32; 3], max: [f32; 3]) {
         for k in 0..3 {
