@@ -13,8 +13,9 @@
 # rounds (each round's figure is itself a median of 5 casts): BVH build seconds,
 # primary and incoherent closest-hit Mrays/s on 1 thread and on all threads,
 # both hit fractions (they must agree) and the ratios raylab/Embree, plus
-# raylab's incoherent rays in interleaved batches (World::intersect_batch)
-# against Embree's one-at-a-time casts. The JSON goes to FILE (default:
+# raylab's batches of the same rays (World::intersect_batch: primary rays in
+# packets of eight, incoherent rays interleaved) against Embree's
+# one-at-a-time casts. The JSON goes to FILE (default:
 # out/bench-vs-embree.json). See scripts/embree_cast.py
 # for how Embree's thread count is controlled. Embree runs with
 # RTC_SCENE_FLAG_ROBUST (embreex's default; raylab never loses a hit either)
@@ -34,7 +35,7 @@ while [ $# -gt 0 ]; do
     --rounds) rounds=$2; shift 2 ;;
     --out) out=$2; [[ $out = /* ]] || out=$here/$out; shift 2 ;;
     --no-robust) embree+=(--no-robust); shift ;;
-    -h | --help) sed -n '2,21p' "$0"; exit 0 ;;
+    -h | --help) sed -n '2,22p' "$0"; exit 0 ;;
     -*) echo "bench-vs-embree: unknown option $1" >&2; exit 2 ;;
     *) scene=$1; shift ;;
   esac

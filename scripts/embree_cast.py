@@ -172,13 +172,15 @@ def cmd_report(args):
         rows.append((f"{cast} Mrays/s, {threads} threads", median(map(ray(cast, "all"), raylab)),
                      median(map(emb(cast), every)), True))
 
-    # raylab's interleaved batches of the same incoherent rays (World::intersect_batch),
+    # raylab's batches of the same rays (World::intersect_batch: packets of eight
+    # for the coherent primary rays, interleaved rays for the incoherent ones),
     # against Embree's one-ray-at-a-time casts above.
-    if raylab[0].get("incoherent_batched"):
-        rows.append(("incoherent batched, 1 thread", median(map(ray("incoherent_batched", "one"), raylab)),
-                     median(map(emb("incoherent"), one)), True))
-        rows.append((f"incoherent batched, {threads} thr", median(map(ray("incoherent_batched", "all"), raylab)),
-                     median(map(emb("incoherent"), every)), True))
+    for cast in ("primary", "incoherent"):
+        if raylab[0].get(f"{cast}_batched"):
+            rows.append((f"{cast} batched, 1 thread", median(map(ray(f"{cast}_batched", "one"), raylab)),
+                         median(map(emb(cast), one)), True))
+            rows.append((f"{cast} batched, {threads} thr", median(map(ray(f"{cast}_batched", "all"), raylab)),
+                         median(map(emb(cast), every)), True))
 
     def ratio(a, b):
         return a / b if a is not None and b else None

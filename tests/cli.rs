@@ -475,6 +475,13 @@ fn bench_on_a_generated_mesh_reports_build_throughput_memory_and_frame_time_as_j
             let hit = c["hit_fraction"].as_f64().expect("hit fraction");
             assert!(hit > 0.05 && hit < 1.0, "{cast} {threads}: {hit}");
             assert!(c["mrays_per_second"].as_f64().expect("rate") > 0.0);
+            // Batches (packets, interleaved rays) hit exactly the same rays.
+            let batched = &f[format!("{cast}_batched")][threads];
+            assert_eq!(
+                batched["hit_fraction"], c["hit_fraction"],
+                "{cast} {threads}"
+            );
+            assert!(batched["mrays_per_second"].as_f64().expect("rate") > 0.0);
         }
     }
     assert!(f["bytes_per_triangle"].as_f64().expect("bytes") >= 36.0);

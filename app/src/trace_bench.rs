@@ -46,10 +46,15 @@ pub struct SceneFigures {
     pub bytes_per_triangle: Option<f64>,
     /// One closest-hit ray per pixel centre P_ij.
     pub primary: PerThreads<CastFigures>,
+    /// The same primary rays in batches (`World::intersect_batch`: runs of
+    /// eight neighbouring pixels' rays traced as one packet); the
+    /// integrators still trace one ray at a time.
+    pub primary_batched: PerThreads<CastFigures>,
     /// Closest-hit rays from random points in the scene's box, uniform directions.
     pub incoherent: Option<PerThreads<CastFigures>>,
     /// The same incoherent rays in batches (`World::intersect_batch`: several
-    /// rays traced interleaved); the integrators still trace one ray at a time.
+    /// rays traced interleaved, as they form no packets); the integrators
+    /// still trace one ray at a time.
     pub incoherent_batched: Option<PerThreads<CastFigures>>,
     /// One Whitted pass of one sample per pixel, seconds.
     pub whitted_frame_seconds: PerThreads<f64>,
@@ -101,6 +106,7 @@ pub fn measure(
         all: throughput::median_of(RUNS, || cast(&world, rays)).into(),
     };
     let primary = cast_with(throughput::cast_closest, &primary_rays);
+    let primary_batched = cast_with(throughput::cast_closest_batched, &primary_rays);
     drop(primary_rays);
     let incoherent_set = incoherent_rays(&world).map(|(_, rays)| rays);
     let incoherent = incoherent_set
@@ -133,6 +139,7 @@ pub fn measure(
         edit_rebuild_seconds: edit,
         bytes_per_triangle: (triangles > 0).then(|| bytes as f64 / triangles as f64),
         primary,
+        primary_batched,
         incoherent,
         incoherent_batched,
         whitted_frame_seconds,
@@ -195,6 +202,7 @@ pub fn print_table(f: &SceneFigures) {
         );
     };
     row("primary closest-hit", &f.primary);
+    row("  the same, batched", &f.primary_batched);
     if let Some(inc) = &f.incoherent {
         row("incoherent closest-hit", inc);
     }
