@@ -55,7 +55,10 @@ impl TrianglePack {
     pub fn nearest(&self, ray: &WatertightRay, t_min: f32, t_max: f32) -> Option<PackHit> {
         let hits = ray.hit_lanes(&self.corners, t_min, t_max);
         let [a, b, c, d] = hits.alpha.to_array();
-        let alpha = a.min(b).min(c.min(d));
+        // α is never NaN (a lane without a hit holds +∞), so the plain
+        // comparison is the minimum.
+        let min = |x: f32, y: f32| if x < y { x } else { y };
+        let alpha = min(min(a, b), min(c, d));
         if alpha == f32::INFINITY {
             return None;
         }

@@ -121,10 +121,10 @@ impl Packet {
         true
     }
 
-    /// The lanes among `lanes` that enter child `slot` of `node` within
-    /// their intervals, and the smallest of their entry distances.
+    /// The lanes among the `active` ones that enter child `slot` of `node`
+    /// within their intervals, and the smallest of their entry distances.
     #[inline(always)]
-    fn child_lanes(&self, node: &WideNode, slot: usize, lanes: u32) -> (u32, f32) {
+    fn child_lanes(&self, node: &WideNode, slot: usize, active: &[bool; LANES]) -> (u32, f32) {
         let [(n0, f0), (n1, f1), (n2, f2)] = self.near_far;
         let plane = |p: usize| node.plane(p, slot);
         let (nx, ny, nz) = (plane(n0), plane(n1), plane(n2));
@@ -133,34 +133,26 @@ impl Packet {
         let [ix, iy, iz] = &self.inv_dir;
         let (max, min) = (max_ignoring_nan, min_ignoring_nan);
         let mut entry = [f32::INFINITY; LANES];
-        let mut hit = [false; LANES];
+        // Bit i when lane i enters the box (a lane's bit in its own place, so
+        // that the mask is an OR across lanes, which vectorises).
+        let mut bits = [0u32; LANES];
         // One lane per ray: the same arithmetic as `WideRay::child_hits`.
         for i in 0..LANES {
             let near = max(
-                max(
-                    max(self.t_min[i], (nx - ox[i]) * ix[i]),
-                    (ny - oy[i]) * iy[i],
-                ),
+                max(max(self.t_min[i], (nx - ox[i]) * ix[i]), (ny - oy[i]) * iy[i]),
                 (nz - oz[i]) * iz[i],
             );
             let far = min(
-                min(
-                    min(self.t_max[i], (fx - ox[i]) * ix[i]),
-                    (fy - oy[i]) * iy[i],
-                ),
+                min(min(self.t_max[i], (fx - ox[i]) * ix[i]), (fy - oy[i]) * iy[i]),
                 (fz - oz[i]) * iz[i],
             );
-            hit[i] = near <= widen_up(far) && (lanes >> i) & 1 != 0;
-            entry[i] = if hit[i] { near } else { f32::INFINITY };
+            let hit = near <= widen_up(far) && active[i];
+            bits[i] = (hit as u32) << i;
+            entry[i] = if hit { near } else { f32::INFINITY };
         }
-        let mut mask = 0u32;
-        for (i, &h) in hit.iter().enumerate() {
-            mask |= (h as u32) << i;
-        }
+        let mask = bits.iter().fold(0, |m, b| m | b);
         // Entry distances are never NaN (they start from t_min).
-        let nearest = entry
-            .iter()
-            .fold(f32::INFINITY, |m, &e| if e < m { e } else { m });
+        let nearest = entry.iter().fold(f32::INFINITY, |m, &e| if e < m { e } else { m });
         (mask, nearest)
     }
 
@@ -211,6 +203,7 @@ impl MeshBvh {
                 }
             } else {
                 let node = &self.nodes[current.0 as usize];
+                let active: [bool; LANES] = std::array::from_fn(|i| lanes & (1 << i) != 0);
                 // The entered children and their lanes, nearest last.
                 let mut hits = [(ChildRef::EMPTY, 0u32, 0.0f32); WIDTH];
                 let mut n = 0;
@@ -219,7 +212,7 @@ impl MeshBvh {
                     if child == ChildRef::EMPTY {
                         break;
                     }
-                    let (mask, entry) = packet.child_lanes(node, slot, lanes);
+                    let (mask, entry) = packet.child_lanes(node, slot, &active);
                     if mask == 0 {
                         continue;
                     }
