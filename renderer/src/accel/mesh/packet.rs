@@ -139,11 +139,17 @@ impl Packet {
         // One lane per ray: the same arithmetic as `WideRay::child_hits`.
         for i in 0..LANES {
             let near = max(
-                max(max(self.t_min[i], (nx - ox[i]) * ix[i]), (ny - oy[i]) * iy[i]),
+                max(
+                    max(self.t_min[i], (nx - ox[i]) * ix[i]),
+                    (ny - oy[i]) * iy[i],
+                ),
                 (nz - oz[i]) * iz[i],
             );
             let far = min(
-                min(min(self.t_max[i], (fx - ox[i]) * ix[i]), (fy - oy[i]) * iy[i]),
+                min(
+                    min(self.t_max[i], (fx - ox[i]) * ix[i]),
+                    (fy - oy[i]) * iy[i],
+                ),
                 (fz - oz[i]) * iz[i],
             );
             let hit = near <= widen_up(far) && active[i];
@@ -152,7 +158,9 @@ impl Packet {
         }
         let mask = bits.iter().fold(0, |m, b| m | b);
         // Entry distances are never NaN (they start from t_min).
-        let nearest = entry.iter().fold(f32::INFINITY, |m, &e| if e < m { e } else { m });
+        let nearest = entry
+            .iter()
+            .fold(f32::INFINITY, |m, &e| if e < m { e } else { m });
         (mask, nearest)
     }
 
