@@ -181,7 +181,7 @@ impl MeshBvh {
     /// either may be reported. Each run of [`LANES`] consecutive rays that
     /// are coherent (camera rays through neighbouring pixels: one octant,
     /// close directions and origins) is traced as a packet, each node
-    /// loaded once for all its rays ([`packet`]). The other rays are traced
+    /// loaded once for all its rays. The other rays are traced
     /// [`INTERLEAVED`] at a time, one node or leaf of each in turn, so that
     /// while one ray waits for its next node to arrive from memory (it was
     /// prefetched) the others compute: incoherent rays in a large mesh
