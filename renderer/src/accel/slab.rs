@@ -37,6 +37,30 @@ pub fn widen_up(x: f32) -> f32 {
     x + x.abs() * FAR_SLACK
 }
 
+/// Ize's test of one box for one ray, in the form the eight-lane loops of
+/// the wide node tests vectorise: the entry distance max(t_min, slab
+/// entries), and whether the box is entered, that is entry ≤ the widened
+/// min(t_max, slab exits). `near` and `far` are the box's near and far
+/// planes per axis (chosen by the sign bits of 1/v); a NaN distance (0 · ∞,
+/// a ray in a slab's face) is ignored.
+#[inline(always)]
+pub fn box_entry(
+    origin: [f32; 3],
+    inv_dir: [f32; 3],
+    near: [f32; 3],
+    far: [f32; 3],
+    t_min: f32,
+    t_max: f32,
+) -> (f32, bool) {
+    let (max, min) = (max_ignoring_nan, min_ignoring_nan);
+    let at = |plane: [f32; 3], k: usize| (plane[k] - origin[k]) * inv_dir[k];
+    let entry = max(max(max(t_min, at(near, 0)), at(near, 1)), at(near, 2));
+    // Starting the exit at t_max folds its test into the widened exit
+    // (widening is monotonic, so this only adds slack).
+    let exit = min(min(min(t_max, at(far, 0)), at(far, 1)), at(far, 2));
+    (entry, entry <= widen_up(exit))
+}
+
 /// A ray prepared for many box tests: origin, reciprocal direction, which
 /// corner is near on each axis, and its interval.
 #[derive(Clone, Copy, Debug)]

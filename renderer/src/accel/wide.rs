@@ -9,7 +9,7 @@
 //! traversal visits the nearest child first and skips, when it pops a
 //! child, one that starts beyond the closest hit found meanwhile.
 
-use super::slab::{SlabRay, max_ignoring_nan, min_ignoring_nan, widen_up};
+use super::slab::{SlabRay, box_entry};
 
 /// Children per node.
 pub const WIDTH: usize = 8;
@@ -126,35 +126,29 @@ impl WideRay {
     #[inline(always)]
     pub fn child_hits(&self, node: &WideNode) -> (u32, [f32; WIDTH]) {
         let s = &self.slab;
-        let [ox, oy, oz] = s.origin.to_array();
-        let [ix, iy, iz] = s.inv_dir.to_array();
+        let (origin, inv_dir) = (s.origin.to_array(), s.inv_dir.to_array());
         let [(n0, f0), (n1, f1), (n2, f2)] = self.near_far;
         let (nx, ny, nz) = (&node.planes[n0], &node.planes[n1], &node.planes[n2]);
         let (fx, fy, fz) = (&node.planes[f0], &node.planes[f1], &node.planes[f2]);
-        // A NaN distance (0 · ∞ for a ray in a slab's face) is ignored.
-        let (max, min) = (max_ignoring_nan, min_ignoring_nan);
         let mut t_near = [0.0f32; WIDTH];
-        let mut hit = [false; WIDTH];
-        // One lane per child, all three axes in the loop body: the shape the
-        // compiler vectorises into whole-register operations.
+        // Bit i when child i is entered (each in its own place, so that the
+        // mask is an OR across lanes, which vectorises).
+        let mut bits = [0u32; WIDTH];
+        // One lane per child: the shape the compiler vectorises into
+        // whole-register operations.
         for i in 0..WIDTH {
-            let near = max(
-                max(max(s.t_min, (nx[i] - ox) * ix), (ny[i] - oy) * iy),
-                (nz[i] - oz) * iz,
-            );
-            // Starting the exit at t_max folds its test into the widened
-            // exit (widening is monotonic, so this only adds slack).
-            let far = min(
-                min(min(s.t_max, (fx[i] - ox) * ix), (fy[i] - oy) * iy),
-                (fz[i] - oz) * iz,
+            let (near, hit) = box_entry(
+                origin,
+                inv_dir,
+                [nx[i], ny[i], nz[i]],
+                [fx[i], fy[i], fz[i]],
+                s.t_min,
+                s.t_max,
             );
             t_near[i] = near;
-            hit[i] = near <= widen_up(far);
+            bits[i] = (hit as u32) << i;
         }
-        let mut mask = 0u32;
-        for (i, &h) in hit.iter().enumerate() {
-            mask |= (h as u32) << i;
-        }
+        let mask = bits.iter().fold(0, |m, b| m | b);
         (mask, t_near)
     }
 }
