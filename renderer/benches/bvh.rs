@@ -309,6 +309,7 @@ fn main() {
     }
     let qualities: &[BuildQuality] = if a.qualities {
         &[
+            BuildQuality::BinnedSah,
             BuildQuality::Fastest,
             BuildQuality::VeryFast,
             BuildQuality::Fast,

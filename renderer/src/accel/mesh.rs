@@ -1,6 +1,7 @@
-//! The bottom level: a BVH over one triangle mesh, built with obvhs (PLOC,
-//! then reinsertion) as a binary tree, collapsed to our 8-wide nodes with
-//! exact boxes ([`super::collapse`]) and traversed by our conservative code
+//! The bottom level: a BVH over one triangle mesh, built as 8-wide nodes
+//! with exact boxes by our binned-SAH builder ([`super::wide_build`]; or,
+//! for comparison, by obvhs's PLOC as a binary tree collapsed to the same
+//! nodes, [`super::collapse`]) and traversed by our conservative code
 //! ([`super::wide`]), nearest child first. Leaf triangles are copied into
 //! packs of four ([`TrianglePack`]) tested with the same watertight
 //! arithmetic as [`crate::shapes::Triangle`] ([`WatertightRay`]), so
@@ -14,6 +15,7 @@ use super::simd::{prefetch, with_widest_simd};
 use super::stack::Stack;
 use super::triangle_pack::TrianglePack;
 use super::wide::{ChildRef, WIDTH, WideNode, WideRay};
+use super::wide_build::build_wide;
 use crate::ray::Ray;
 use crate::shapes::WatertightRay;
 use glam::{Vec3, Vec3A};
@@ -36,32 +38,35 @@ pub struct MeshHit {
     pub gamma: f32,
 }
 
-/// How much effort the builder spends on tree quality (obvhs's presets,
-/// always without spatial splits so each triangle is in exactly one leaf).
+/// Which builder makes the tree, and with how much effort. Without spatial
+/// splits in every case, so each triangle is in exactly one leaf.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum BuildQuality {
-    /// obvhs `fastest_build`: PLOC with the smallest search, no reinsertion.
-    Fastest,
-    /// obvhs `very_fast_build`.
-    VeryFast,
-    /// obvhs `fast_build`.
+    /// Our binned-SAH builder of 8-wide nodes ([`super::wide_build`]).
     #[default]
+    BinnedSah,
+    /// obvhs PLOC `fastest_build` (smallest search, no reinsertion), collapsed.
+    Fastest,
+    /// obvhs PLOC `very_fast_build`, collapsed.
+    VeryFast,
+    /// obvhs PLOC `fast_build`, collapsed.
     Fast,
-    /// obvhs `medium_build`.
+    /// obvhs PLOC `medium_build`, collapsed.
     Medium,
 }
 
 impl BuildQuality {
-    /// obvhs's parameters for this quality.
-    fn params(self) -> BvhBuildParams {
+    /// obvhs's parameters for this quality (`None` for our own builder).
+    fn params(self) -> Option<BvhBuildParams> {
         let mut p = match self {
+            BuildQuality::BinnedSah => return None,
             BuildQuality::Fastest => BvhBuildParams::fastest_build(),
             BuildQuality::VeryFast => BvhBuildParams::very_fast_build(),
             BuildQuality::Fast => BvhBuildParams::fast_build(),
             BuildQuality::Medium => BvhBuildParams::medium_build(),
         };
         p.pre_split = false;
-        p
+        Some(p)
     }
 }
 
@@ -92,41 +97,10 @@ impl MeshBvh {
         triangles: &[[u32; 3]],
         quality: BuildQuality,
     ) -> MeshBvh {
-        use rayon::prelude::*;
-        let corners = |t: &[u32; 3]| t.map(|i| positions[i as usize]);
-        let boxes: Vec<obvhs::aabb::Aabb> = triangles
-            .par_iter()
-            .map(|t| {
-                let [a, b, c] = corners(t);
-                obvhs::aabb::Aabb::new(Vec3A::from(a.min(b).min(c)), Vec3A::from(a.max(b).max(c)))
-            })
-            .collect();
-        let bounds = boxes
-            .par_iter()
-            .map(|b| Aabb {
-                min: b.min.into(),
-                max: b.max.into(),
-            })
-            .reduce(|| Aabb::EMPTY, Aabb::union);
-        if triangles.is_empty() {
-            return MeshBvh {
-                nodes: Vec::new(),
-                packs: Vec::new(),
-                triangle_count: 0,
-                bounds,
-            };
-        }
-        let params = quality.params();
-        let mut bvh2 = PlocBuilder::with_capacity(boxes.len()).build(
-            params.ploc_search_distance,
-            &boxes,
-            (0..triangles.len() as u32).collect(),
-            params.sort_precision,
-            params.search_depth_threshold,
-        );
-        drop(boxes);
-        ReinsertionOptimizer::default().run(&mut bvh2, params.reinsertion_batch_ratio, None);
-        let (nodes, packs) = collapse(&bvh2, |i| corners(&triangles[i as usize]));
+        let (nodes, packs, bounds) = match quality.params() {
+            None => build_wide(positions, triangles),
+            Some(params) => build_ploc(positions, triangles, params),
+        };
         MeshBvh {
             nodes,
             packs,
@@ -409,6 +383,45 @@ fn mesh_hit(best: LaneBest) -> Option<MeshHit> {
         beta,
         gamma,
     })
+}
+
+/// The tree of obvhs's PLOC builder with `params`, collapsed to our nodes:
+/// (nodes, packs, the box around every triangle).
+fn build_ploc(
+    positions: &[Vec3],
+    triangles: &[[u32; 3]],
+    params: BvhBuildParams,
+) -> (Vec<WideNode>, Vec<TrianglePack>, Aabb) {
+    use rayon::prelude::*;
+    let corners = |t: &[u32; 3]| t.map(|i| positions[i as usize]);
+    let boxes: Vec<obvhs::aabb::Aabb> = triangles
+        .par_iter()
+        .map(|t| {
+            let [a, b, c] = corners(t);
+            obvhs::aabb::Aabb::new(Vec3A::from(a.min(b).min(c)), Vec3A::from(a.max(b).max(c)))
+        })
+        .collect();
+    let bounds = boxes
+        .par_iter()
+        .map(|b| Aabb {
+            min: b.min.into(),
+            max: b.max.into(),
+        })
+        .reduce(|| Aabb::EMPTY, Aabb::union);
+    if triangles.is_empty() {
+        return (Vec::new(), Vec::new(), bounds);
+    }
+    let mut bvh2 = PlocBuilder::with_capacity(boxes.len()).build(
+        params.ploc_search_distance,
+        &boxes,
+        (0..triangles.len() as u32).collect(),
+        params.sort_precision,
+        params.search_depth_threshold,
+    );
+    drop(boxes);
+    ReinsertionOptimizer::default().run(&mut bvh2, params.reinsertion_batch_ratio, None);
+    let (nodes, packs) = collapse(&bvh2, |i| corners(&triangles[i as usize]));
+    (nodes, packs, bounds)
 }
 
 #[cfg(test)]

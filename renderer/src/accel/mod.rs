@@ -1,15 +1,17 @@
-//! Ray-tracing acceleration: a two-level bounding-volume hierarchy built with
-//! `obvhs` and traversed by our own conservative code, which never loses a hit
-//! that a brute-force watertight test over every triangle would find.
+//! Ray-tracing acceleration: a two-level bounding-volume hierarchy traversed
+//! by our own conservative code, which never loses a hit that a brute-force
+//! watertight test over every triangle would find.
 //!
-//! - [`MeshBvh`]: the bottom level, one per triangle mesh (obvhs's binary
-//!   PLOC tree collapsed to 8-wide nodes, triangles copied into packs of
-//!   four in leaf order). One ray at a time ([`MeshBvh::closest_hit`]), or
+//! - [`MeshBvh`]: the bottom level, one per triangle mesh (8-wide nodes built
+//!   top down by a binned SAH, triangles copied into packs of four in leaf
+//!   order; obvhs's PLOC tree collapsed to the same nodes for comparison:
+//!   it builds slower and traces slower). One ray at a time ([`MeshBvh::closest_hit`]), or
 //!   a batch ([`MeshBvh::closest_hits`]): coherent rays in packets of eight
 //!   that share each node's loads, incoherent ones several at a time,
 //!   interleaved, to hide memory latency.
 //! - [`SceneBvh`]: the top level over items known only by their boxes (mesh
-//!   instances, analytic shapes); the caller intersects each item.
+//!   instances, analytic shapes), built with obvhs's PLOC; the caller
+//!   intersects each item.
 //! - [`Instance`]: an affine placement of a mesh, mapping rays into the mesh's
 //!   space so that α is unchanged.
 //! - [`reference`]: brute force over every triangle, the oracle of the tests.
@@ -21,6 +23,7 @@
 //! `cargo bench -p raylab-renderer --bench bvh -- --lost`). Our node tests are in [`slab`] and [`wide`]; [`simd`] compiles
 //! them for the widest SIMD the CPU has.
 
+mod binned_sah;
 mod collapse;
 pub mod instance;
 pub mod mesh;
@@ -31,6 +34,7 @@ pub mod slab;
 mod stack;
 pub mod triangle_pack;
 pub mod wide;
+mod wide_build;
 
 #[cfg(test)]
 mod no_lost_hits_tests;

@@ -1,0 +1,487 @@
+//! One binary split of a set of primitive boxes by the binned surface area
+//! heuristic (Wald, "On fast construction of SAH-based bounding volume
+//! hierarchies", 2007): centroids are sorted into [`BINS`] equal slices of
+//! their bounds along each axis, every slice boundary is priced as
+//! area(left) · blocks(left) + area(right) · blocks(right), where a block is
+//! a leaf pack of four triangles, and the cheapest boundary partitions the
+//! primitives in place. The boxes of both sides come out exact (unions of
+//! the primitives' boxes), as conservative traversal needs.
+
+use glam::{Vec3A, Vec4};
+use rayon::prelude::*;
+use wide::f32x4;
+
+/// Slices per axis.
+pub const BINS: usize = 32;
+
+/// Primitives at or above which a set is binned by several threads.
+const PARALLEL_BINNING: usize = 1 << 16;
+
+/// A primitive as the builder sees it: its box and the caller's index, in
+/// two aligned SIMD registers' worth (the index is spread over the spare
+/// fourth lanes as the mantissas of two numbers in [1, 2), so that no
+/// arithmetic on those lanes ever meets a denormal or NaN).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PrimRef {
+    lo: Vec4,
+    hi: Vec4,
+}
+
+/// The mantissa bits of an f32.
+const MANTISSA: u32 = (1 << 23) - 1;
+/// The bits of 1.0f32.
+const ONE: u32 = 0x3F80_0000;
+
+impl PrimRef {
+    /// The primitive `id` with the box `lo`..`hi`.
+    pub fn new(id: u32, lo: Vec3A, hi: Vec3A) -> PrimRef {
+        PrimRef {
+            lo: lo.extend(f32::from_bits(ONE | (id & MANTISSA))),
+            hi: hi.extend(f32::from_bits(ONE | (id >> 23))),
+        }
+    }
+
+    /// The caller's index of the primitive.
+    pub fn id(&self) -> u32 {
+        (self.lo.w.to_bits() & MANTISSA) | ((self.hi.w.to_bits() & MANTISSA) << 23)
+    }
+
+    /// The box's lower corner.
+    #[inline(always)]
+    pub fn lo(&self) -> Vec3A {
+        Vec3A::from_vec4(self.lo)
+    }
+
+    /// The box's upper corner.
+    #[inline(always)]
+    pub fn hi(&self) -> Vec3A {
+        Vec3A::from_vec4(self.hi)
+    }
+
+    /// Twice the box's centre (the factor never matters to binning).
+    #[inline(always)]
+    fn centroid(&self) -> Vec3A {
+        self.lo() + self.hi()
+    }
+}
+
+/// An axis-aligned box as two corners (empty: +∞ / −∞).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bounds {
+    /// Lower corner.
+    pub lo: Vec3A,
+    /// Upper corner.
+    pub hi: Vec3A,
+}
+
+impl Bounds {
+    /// The box holding nothing.
+    pub const EMPTY: Bounds = Bounds {
+        lo: Vec3A::INFINITY,
+        hi: Vec3A::NEG_INFINITY,
+    };
+
+    /// Grows the box to hold `lo`..`hi`.
+    #[inline(always)]
+    fn grow(&mut self, lo: Vec3A, hi: Vec3A) {
+        self.lo = self.lo.min(lo);
+        self.hi = self.hi.max(hi);
+    }
+
+    /// Grows the box to hold the point `p`.
+    #[inline(always)]
+    fn grow_point(&mut self, p: Vec3A) {
+        self.grow(p, p);
+    }
+
+    /// The smallest box holding both.
+    #[inline(always)]
+    fn union(mut self, other: Bounds) -> Bounds {
+        self.grow(other.lo, other.hi);
+        self
+    }
+
+    /// Half the surface area (only meaningful for a non-empty box).
+    #[inline(always)]
+    pub fn half_area(&self) -> f32 {
+        let d = self.hi - self.lo;
+        d.x * d.y + d.y * d.z + d.z * d.x
+    }
+}
+
+/// A contiguous run of the builder's primitives with its boxes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Span {
+    /// Index of the first primitive in the builder's array.
+    pub begin: usize,
+    /// One past the last.
+    pub end: usize,
+    /// The union of the primitives' boxes.
+    pub bounds: Bounds,
+    /// The box around the primitives' (doubled) centroids.
+    pub centroids: Bounds,
+}
+
+impl Span {
+    /// The span of all of `refs`, whose first element has index `begin`.
+    pub fn around(refs: &[PrimRef], begin: usize) -> Span {
+        let (bounds, centroids) = refs
+            .par_iter()
+            .fold(
+                || (Bounds::EMPTY, Bounds::EMPTY),
+                |(mut b, mut c), r| {
+                    b.grow(r.lo(), r.hi());
+                    c.grow_point(r.centroid());
+                    (b, c)
+                },
+            )
+            .reduce(
+                || (Bounds::EMPTY, Bounds::EMPTY),
+                |a, b| (a.0.union(b.0), a.1.union(b.1)),
+            );
+        Span {
+            begin,
+            end: begin + refs.len(),
+            bounds,
+            centroids,
+        }
+    }
+
+    /// Number of primitives.
+    pub fn len(&self) -> usize {
+        self.end - self.begin
+    }
+}
+
+/// How centroids map to bins: bin = ⌊(c − origin) · scale⌋ per axis,
+/// clamped to the bins in use.
+#[derive(Clone, Copy, Debug)]
+struct Mapping {
+    origin: Vec3A,
+    /// 0 on an axis where all centroids coincide (not binned).
+    scale: Vec3A,
+    /// Bins in use: fewer for small sets, whose bins would mostly be empty.
+    bins: usize,
+}
+
+impl Mapping {
+    fn new(centroids: &Bounds, primitives: usize) -> Mapping {
+        let bins = primitives.clamp(4, BINS);
+        let extent = centroids.hi - centroids.lo;
+        // Slightly fewer slices than bins so the largest centroid lands in
+        // the last bin rather than one past it (the clamp catches rounding).
+        let scale = Vec3A::select(
+            extent.cmpgt(Vec3A::ZERO),
+            Vec3A::splat(bins as f32 * (1.0 - 1e-5)) / extent,
+            Vec3A::ZERO,
+        );
+        let scale = Vec3A::select(scale.is_finite_mask(), scale, Vec3A::ZERO);
+        Mapping {
+            origin: centroids.lo,
+            scale,
+            bins,
+        }
+    }
+
+    /// The bin of centroid `c` on each axis (then a spare lane).
+    #[inline(always)]
+    fn bins(&self, c: Vec3A) -> [i32; 4] {
+        // Clamped in floating point (NaN becomes 0), then truncated four
+        // lanes at once.
+        let b = ((c - self.origin) * self.scale)
+            .max(Vec3A::ZERO)
+            .min(Vec3A::splat((self.bins - 1) as f32));
+        f32x4::from(b.extend(0.0).to_array())
+            .fast_trunc_int()
+            .to_array()
+    }
+
+    fn axis_binned(&self, axis: usize) -> bool {
+        self.scale[axis] > 0.0
+    }
+}
+
+/// Per axis and bin: the union of the boxes and their number.
+#[derive(Clone, Debug)]
+struct Bins {
+    bounds: [[Bounds; BINS]; 3],
+    counts: [[u32; BINS]; 3],
+}
+
+impl Bins {
+    const EMPTY: Bins = Bins {
+        bounds: [[Bounds::EMPTY; BINS]; 3],
+        counts: [[0; BINS]; 3],
+    };
+
+    fn add(&mut self, refs: &[PrimRef], mapping: &Mapping) {
+        for r in refs {
+            let (lo, hi) = (r.lo(), r.hi());
+            let bins = mapping.bins(lo + hi);
+            for ((bounds, counts), &bin) in self.bounds.iter_mut().zip(&mut self.counts).zip(&bins)
+            {
+                bounds[bin as usize].grow(lo, hi);
+                counts[bin as usize] += 1;
+            }
+        }
+    }
+
+    fn merge(mut self, other: Bins) -> Bins {
+        for axis in 0..3 {
+            for bin in 0..BINS {
+                self.bounds[axis][bin] = self.bounds[axis][bin].union(other.bounds[axis][bin]);
+                self.counts[axis][bin] += other.counts[axis][bin];
+            }
+        }
+        self
+    }
+
+    fn of(refs: &[PrimRef], mapping: &Mapping) -> Bins {
+        if refs.len() >= PARALLEL_BINNING {
+            refs.par_chunks(PARALLEL_BINNING / 4)
+                .map(|chunk| {
+                    let mut bins = Bins::EMPTY;
+                    bins.add(chunk, mapping);
+                    bins
+                })
+                .reduce(|| Bins::EMPTY, Bins::merge)
+        } else {
+            let mut bins = Bins::EMPTY;
+            bins.add(refs, mapping);
+            bins
+        }
+    }
+}
+
+/// Leaf packs needed for `n` triangles: the SAH's unit of cost.
+#[inline(always)]
+fn blocks(n: u32) -> f32 {
+    n.div_ceil(4) as f32
+}
+
+/// The cheapest boundary: (axis, last bin on the left, left box, right box).
+fn cheapest(bins: &Bins, mapping: &Mapping) -> Option<(usize, usize, Bounds, Bounds)> {
+    let mut best: Option<(f32, usize, usize)> = None;
+    for axis in (0..3).filter(|&a| mapping.axis_binned(a)) {
+        let used = mapping.bins;
+        let (bounds, counts) = (&bins.bounds[axis][..used], &bins.counts[axis][..used]);
+        // right_cost[i]: area · blocks of bins i.. (0 when they are empty).
+        let mut right_cost = [0.0f32; BINS];
+        let (mut acc, mut n) = (Bounds::EMPTY, 0u32);
+        for i in (1..used).rev() {
+            acc = acc.union(bounds[i]);
+            n += counts[i];
+            right_cost[i] = if n > 0 {
+                acc.half_area() * blocks(n)
+            } else {
+                0.0
+            };
+        }
+        let (mut acc, mut left_n) = (Bounds::EMPTY, 0u32);
+        let total: u32 = counts.iter().sum();
+        for i in 0..used - 1 {
+            acc = acc.union(bounds[i]);
+            left_n += counts[i];
+            if left_n == 0 || left_n == total {
+                continue;
+            }
+            let cost = acc.half_area() * blocks(left_n) + right_cost[i + 1];
+            if best.is_none_or(|(c, _, _)| cost < c) {
+                best = Some((cost, axis, i));
+            }
+        }
+    }
+    let (_, axis, last) = best?;
+    let side = |bins_range: std::ops::Range<usize>| {
+        bins.bounds[axis][bins_range]
+            .iter()
+            .fold(Bounds::EMPTY, |a, &b| a.union(b))
+    };
+    Some((axis, last, side(0..last + 1), side(last + 1..mapping.bins)))
+}
+
+/// Splits `span` (whose primitives are `refs`, all of them) in two by the
+/// binned SAH, reordering `refs` so the left side comes first. Both sides
+/// are non-empty; primitives whose centroids all coincide are halved by
+/// count. `span` must have at least two primitives.
+pub fn split(refs: &mut [PrimRef], span: &Span) -> (Span, Span) {
+    debug_assert_eq!(refs.len(), span.len());
+    debug_assert!(refs.len() >= 2);
+    let mapping = Mapping::new(&span.centroids, refs.len());
+    let bins = Bins::of(refs, &mapping);
+    let Some((axis, last, left_bounds, right_bounds)) = cheapest(&bins, &mapping) else {
+        return halve(refs, span);
+    };
+    let goes_left = |r: &PrimRef| mapping.bins(r.centroid())[axis] as usize <= last;
+    let (i, left_c, right_c) = partition(refs, goes_left);
+    debug_assert_eq!(
+        i as u32,
+        bins.counts[axis][..=last].iter().sum::<u32>(),
+        "the partition must agree with the bins"
+    );
+    let mid = span.begin + i;
+    (
+        Span {
+            begin: span.begin,
+            end: mid,
+            bounds: left_bounds,
+            centroids: left_c,
+        },
+        Span {
+            begin: mid,
+            end: span.end,
+            bounds: right_bounds,
+            centroids: right_c,
+        },
+    )
+}
+
+/// Reorders `refs` so those that `goes_left` come first: (how many, the box
+/// of their centroids, the box of the others' centroids).
+fn partition(
+    refs: &mut [PrimRef],
+    goes_left: impl Fn(&PrimRef) -> bool,
+) -> (usize, Bounds, Bounds) {
+    let (mut left_c, mut right_c) = (Bounds::EMPTY, Bounds::EMPTY);
+    // Hoare partition; an element may be looked at twice, which the
+    // centroid boxes (unions) do not mind.
+    let mut side = |r: &PrimRef| {
+        let left = goes_left(r);
+        if left {
+            left_c.grow_point(r.centroid());
+        } else {
+            right_c.grow_point(r.centroid());
+        }
+        left
+    };
+    let (mut i, mut j) = (0usize, refs.len());
+    loop {
+        while i < j && side(&refs[i]) {
+            i += 1;
+        }
+        while i < j && !side(&refs[j - 1]) {
+            j -= 1;
+        }
+        if i >= j {
+            break;
+        }
+        refs.swap(i, j - 1);
+        i += 1;
+        j -= 1;
+    }
+    (i, left_c, right_c)
+}
+
+/// Halves `span` by count (its centroids all coincide, so no plane
+/// separates them).
+fn halve(refs: &[PrimRef], span: &Span) -> (Span, Span) {
+    let mid = refs.len() / 2;
+    let side = |part: &[PrimRef], begin: usize| {
+        let mut s = Span::around(part, begin);
+        s.end = begin + part.len();
+        s
+    };
+    (
+        side(&refs[..mid], span.begin),
+        side(&refs[mid..], span.begin + mid),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn boxes_span(refs: &[PrimRef], begin: usize) -> Span {
+        Span::around(refs, begin)
+    }
+
+    fn refs_from(boxes: &[([f32; 3], [f32; 3])]) -> Vec<PrimRef> {
+        boxes
+            .iter()
+            .enumerate()
+            .map(|(i, (a, b))| {
+                let (a, b) = (Vec3A::from(*a), Vec3A::from(*b));
+                PrimRef::new(i as u32, a.min(b), a.max(b))
+            })
+            .collect()
+    }
+
+    #[test]
+    fn prim_refs_keep_every_index_and_their_box() {
+        for id in [0, 1, 12345, (1 << 23) - 1, 1 << 23, u32::MAX] {
+            let r = PrimRef::new(id, Vec3A::new(-1.0, 2.0, 3.0), Vec3A::new(4.0, 5.0, 6.5));
+            assert_eq!(r.id(), id);
+            assert_eq!(
+                (r.lo(), r.hi()),
+                (Vec3A::new(-1.0, 2.0, 3.0), Vec3A::new(4.0, 5.0, 6.5))
+            );
+            assert!(r.centroid().extend(0.0).is_finite());
+        }
+    }
+
+    #[test]
+    fn two_far_apart_clusters_are_split_between_them() {
+        let mut boxes = Vec::new();
+        for k in 0..10 {
+            let x = k as f32 * 0.01;
+            boxes.push(([x, 0.0, 0.0], [x + 0.1, 0.1, 0.1]));
+            boxes.push(([100.0 + x, 0.0, 0.0], [100.1 + x, 0.1, 0.1]));
+        }
+        let mut refs = refs_from(&boxes);
+        let span = boxes_span(&refs, 0);
+        let (left, right) = split(&mut refs, &span);
+        assert_eq!((left.len(), right.len()), (10, 10));
+        assert!(refs[..10].iter().all(|r| r.lo().x < 50.0));
+        assert!(refs[10..].iter().all(|r| r.lo().x > 50.0));
+    }
+
+    #[test]
+    fn coinciding_centroids_are_halved_by_count() {
+        let mut refs = refs_from(&[([0.0; 3], [1.0; 3]); 9]);
+        let span = boxes_span(&refs, 5);
+        let (left, right) = split(&mut refs, &span);
+        assert_eq!(
+            (left.begin, left.end, right.begin, right.end),
+            (5, 9, 9, 14)
+        );
+        assert_eq!(left.bounds, span.bounds);
+        assert_eq!(right.bounds, span.bounds);
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(200))]
+        /// Both sides are non-empty, together they hold every primitive
+        /// once, and their boxes are exactly the unions of their primitives'
+        /// boxes and centroids.
+        #[test]
+        fn split_sides_are_nonempty_complete_and_their_boxes_exact(
+            boxes in prop::collection::vec(
+                (prop::array::uniform3(-1e3f32..1e3), prop::array::uniform3(-1e3f32..1e3)),
+                2..300,
+            ),
+            clustered in any::<bool>(),
+        ) {
+            let boxes: Vec<_> = if clustered {
+                // Many equal boxes: coinciding centroids on some axes.
+                boxes.iter().map(|(a, b)| ([a[0].round(), 0.0, a[2]], [a[0].round() + 1.0, 0.0, b[2]])).collect()
+            } else {
+                boxes
+            };
+            let mut refs = refs_from(&boxes);
+            let span = boxes_span(&refs, 3);
+            let (left, right) = split(&mut refs, &span);
+            prop_assert!(left.len() > 0 && right.len() > 0);
+            prop_assert_eq!((left.begin, left.end, right.end), (3, right.begin, span.end));
+            let mut ids: Vec<u32> = refs.iter().map(PrimRef::id).collect();
+            ids.sort();
+            prop_assert!(ids.iter().copied().eq(0..boxes.len() as u32));
+            let (l, r) = refs.split_at(left.len());
+            for (side, part) in [(left, l), (right, r)] {
+                let exact = boxes_span(part, side.begin);
+                prop_assert_eq!(side.bounds, exact.bounds);
+                prop_assert_eq!(side.centroids, exact.centroids);
+            }
+        }
+    }
+}
