@@ -196,6 +196,21 @@ impl Mapping {
             .to_array()
     }
 
+    /// Whether a primitive's bin on `axis` is `last` or lower: the same
+    /// arithmetic as [`Mapping::bins`] on that one axis, so the partition
+    /// agrees with the bins exactly. Below the clamp to the last bin,
+    /// truncation gives at most `last` exactly when the scaled offset is
+    /// below `last + 1`; an offset clamped to 0 (negative or NaN) is left.
+    #[inline(always)]
+    fn left_of(&self, axis: usize, last: usize) -> impl Fn(&PrimRef) -> bool {
+        debug_assert!(last + 1 < self.bins);
+        let (origin, scale, bound) = (self.origin[axis], self.scale[axis], (last + 1) as f32);
+        move |r: &PrimRef| {
+            let offset = (r.lo()[axis] + r.hi()[axis] - origin) * scale;
+            offset < bound || offset.is_nan()
+        }
+    }
+
     fn axis_binned(&self, axis: usize) -> bool {
         self.scale[axis] > 0.0
     }
@@ -312,7 +327,7 @@ pub fn split(refs: &mut [PrimRef], span: &Span) -> (Span, Span) {
     let Some((axis, last, left_bounds, right_bounds)) = cheapest(&bins, &mapping) else {
         return halve(refs, span);
     };
-    let goes_left = |r: &PrimRef| mapping.bins(r.centroid())[axis] as usize <= last;
+    let goes_left = mapping.left_of(axis, last);
     let (i, left_c, right_c) = partition(refs, goes_left);
     debug_assert_eq!(
         i as u32,
