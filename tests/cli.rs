@@ -486,6 +486,12 @@ fn bench_on_a_generated_mesh_reports_build_throughput_memory_and_frame_time_as_j
     }
     assert!(f["bytes_per_triangle"].as_f64().expect("bytes") >= 36.0);
     assert!(f["mesh_bvh_build_seconds"].as_f64().expect("build") > 0.0);
+    assert!(
+        f["mesh_bvh_build_seconds_one_thread"]
+            .as_f64()
+            .expect("build on 1 thread")
+            > 0.0
+    );
     assert!(f["whitted_frame_seconds"]["one"].as_f64().expect("frame") > 0.0);
 }
 

@@ -16,17 +16,15 @@
 //! [--repeats R] [--width W --height H] [--qualities] [--lost]`. Embree on
 //! the same triangles and rays: `scripts/bench-vs-embree.sh`.
 //!
-//! Measured 2026-11-23 on the shared 2-vCPU machine, one run, medians of 3,
-//! fast build, 8-wide nodes, leaves of up to 8 triangles in packs of 4
-//! tested with `wide::f32x4`: build 0.52 s on 1 thread, 0.38 s on 2;
-//! 61.5 B/triangle; primary 8.9 / 17.0 Mrays/s (1 / 2 threads), 16×16-tiled
-//! 9.2 / 16.8, incoherent 1.58 / 3.40. Batched (`MeshBvh::closest_hits`, 8
-//! rays interleaved): incoherent 2.48 / 5.01, primary 7.9 / 13.4 (coherent
-//! rays gain nothing from it). Earlier the same day: before the explicit SIMD
-//! pack test, primary 7.1 / 13.5, incoherent 1.45 / 3.2; the CWBVH-based tree
-//! before that, primary 6.2 / 12.2, incoherent 0.70 / 1.5. Embree side by
-//! side: `scripts/bench-vs-embree.sh` (ratios in the commit log and the
-//! issue notes).
+//! Measured 2026-11-23 (`--repeats 3 --qualities`, one run, shared 2-vCPU
+//! machine): our binned-SAH builder (the default) against obvhs's PLOC
+//! `fast_build` collapsed to the same nodes: build 0.456 / 0.228 s (1 / 2
+//! threads) against 0.528 / 0.346; 51.2 against 61.5 B/triangle; primary
+//! 10.94 / 19.31 Mrays/s against 10.37 / 19.02; incoherent 2.09 / 4.41
+//! against 1.85 / 4.00; batched incoherent 2.94 / 5.90 against 2.68 / 5.44.
+//! PLOC's faster presets build in 0.26 s on 2 threads and trace 10-15%
+//! slower. Embree side by side: `scripts/bench-vs-embree.sh` (ratios in
+//! the commit log and the issue notes).
 //!
 //! `--lost` (same day): closest α differing from ours (ours equals brute
 //! force) with obvhs 0.4's own traversal and our triangle test, fast_build:
