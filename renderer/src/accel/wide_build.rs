@@ -5,10 +5,12 @@
 //! of at most [`LEAF_TRIANGLES`] triangles becomes a leaf. Child boxes are
 //! exact unions of the triangles' boxes.
 //!
-//! Parallelism: the nodes near the root are built on one thread (binning
-//! large sets on all of them); the subtrees below, each a contiguous run
-//! of triangles, are then built independently in parallel and appended.
-//! The leaves' triangles are copied into packs in a last parallel pass.
+//! Parallelism: a large subtree builds its top levels on one thread
+//! (binning large sets on all of them), down to children of an eighth of
+//! its size or less; those, each a contiguous run of triangles, are built
+//! in parallel the same way and appended (each node is copied once per
+//! level of this nesting). The leaves' triangles are copied into packs in
+//! a last parallel pass.
 
 use super::binned_sah::{PrimRef, Span, split};
 use super::collapse::LEAF_TRIANGLES;
