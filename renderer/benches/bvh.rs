@@ -205,48 +205,6 @@ fn obvhs_lost(mesh: &Mesh, rays: &[Ray]) -> (usize, usize, usize) {
         .reduce(|| (0, 0, 0), |a, b| (a.0 + b.0, a.1 + b.1, a.2 + b.2))
 }
 
-/// Seconds of each phase of the mesh build (the same calls as `MeshBvh::build`).
-fn build_phases(mesh: &Mesh, name: &str) {
-    use obvhs::bvh2::reinsertion::ReinsertionOptimizer;
-    use obvhs::ploc::PlocBuilder;
-    for (q, params) in [
-        ("fastest", obvhs::BvhBuildParams::fastest_build()),
-        ("fast", obvhs::BvhBuildParams::fast_build()),
-    ] {
-        let t = Instant::now();
-        let boxes: Vec<obvhs::aabb::Aabb> = mesh
-            .triangles
-            .iter()
-            .map(|t| {
-                let [a, b, c] = t.map(|k| mesh.positions[k as usize]);
-                obvhs::aabb::Aabb::new(a.min(b).min(c).into(), a.max(b).max(c).into())
-            })
-            .collect();
-        let t_boxes = t.elapsed().as_secs_f64();
-        let t = Instant::now();
-        let mut bvh2 = PlocBuilder::with_capacity(boxes.len()).build(
-            params.ploc_search_distance,
-            &boxes,
-            (0..boxes.len() as u32).collect(),
-            params.sort_precision,
-            params.search_depth_threshold,
-        );
-        let t_ploc = t.elapsed().as_secs_f64();
-        let t = Instant::now();
-        ReinsertionOptimizer::default().run(&mut bvh2, params.reinsertion_batch_ratio, None);
-        let t_reins = t.elapsed().as_secs_f64();
-        drop(bvh2);
-        let t = Instant::now();
-        let bvh = MeshBvh::build(&mesh.positions, &mesh.triangles);
-        let t_all = t.elapsed().as_secs_f64();
-        println!(
-            "{name} {q}: boxes {t_boxes:.3} s, PLOC {t_ploc:.3} s, reinsertion {t_reins:.3} s; \
-             MeshBvh::build (fast, all of it incl. collapse to 8-wide and packing) {t_all:.3} s, {} triangles",
-            bvh.len()
-        );
-    }
-}
-
 /// The knot scene at `width` × `height` as one world-space mesh, its
 /// primary rays, the same rays in 16 × 16 tiles, and as many incoherent rays.
 fn knot_and_rays(triangles: usize, width: u32, height: u32) -> (Mesh, [Vec<Ray>; 3]) {
@@ -289,12 +247,6 @@ fn main() {
         a.repeats
     );
 
-    if std::env::args().any(|s| s == "--profile-build") {
-        for (name, p) in [("1 thread", &one), ("all threads", &many)] {
-            p.install(|| build_phases(&mesh, name));
-        }
-        return;
-    }
     if a.profile {
         let bvh = MeshBvh::build(&mesh.positions, &mesh.triangles);
         let (p, hits) = trace(&one, &tiled, 1, one_by_one(&bvh));

@@ -275,7 +275,8 @@ fn blocks(n: u32) -> f32 {
 }
 
 /// The cheapest boundary: (axis, last bin on the left, left box, right box).
-fn cheapest(bins: &Bins, mapping: &Mapping) -> Option<(usize, usize, Bounds, Bounds)> {
+/// `total` is the number of primitives binned.
+fn cheapest(bins: &Bins, mapping: &Mapping, total: u32) -> Option<(usize, usize, Bounds, Bounds)> {
     let mut best: Option<(f32, usize, usize)> = None;
     for axis in (0..3).filter(|&a| mapping.axis_binned(a)) {
         let used = mapping.bins;
@@ -293,7 +294,6 @@ fn cheapest(bins: &Bins, mapping: &Mapping) -> Option<(usize, usize, Bounds, Bou
             };
         }
         let (mut acc, mut left_n) = (Bounds::EMPTY, 0u32);
-        let total: u32 = counts.iter().sum();
         for i in 0..used - 1 {
             acc = acc.union(bounds[i]);
             left_n += counts[i];
@@ -324,7 +324,9 @@ pub fn split(refs: &mut [PrimRef], span: &Span) -> (Span, Span) {
     debug_assert!(refs.len() >= 2);
     let mapping = Mapping::new(&span.centroids, refs.len());
     let bins = Bins::of(refs, &mapping);
-    let Some((axis, last, left_bounds, right_bounds)) = cheapest(&bins, &mapping) else {
+    let Some((axis, last, left_bounds, right_bounds)) =
+        cheapest(&bins, &mapping, refs.len() as u32)
+    else {
         return halve(refs, span);
     };
     let goes_left = mapping.left_of(axis, last);
@@ -391,14 +393,9 @@ fn partition(
 /// separates them).
 fn halve(refs: &[PrimRef], span: &Span) -> (Span, Span) {
     let mid = refs.len() / 2;
-    let side = |part: &[PrimRef], begin: usize| {
-        let mut s = Span::around(part, begin);
-        s.end = begin + part.len();
-        s
-    };
     (
-        side(&refs[..mid], span.begin),
-        side(&refs[mid..], span.begin + mid),
+        Span::around(&refs[..mid], span.begin),
+        Span::around(&refs[mid..], span.begin + mid),
     )
 }
 
@@ -406,10 +403,6 @@ fn halve(refs: &[PrimRef], span: &Span) -> (Span, Span) {
 mod tests {
     use super::*;
     use proptest::prelude::*;
-
-    fn boxes_span(refs: &[PrimRef], begin: usize) -> Span {
-        Span::around(refs, begin)
-    }
 
     fn refs_from(boxes: &[([f32; 3], [f32; 3])]) -> Vec<PrimRef> {
         boxes
@@ -444,7 +437,7 @@ mod tests {
             boxes.push(([100.0 + x, 0.0, 0.0], [100.1 + x, 0.1, 0.1]));
         }
         let mut refs = refs_from(&boxes);
-        let span = boxes_span(&refs, 0);
+        let span = Span::around(&refs, 0);
         let (left, right) = split(&mut refs, &span);
         assert_eq!((left.len(), right.len()), (10, 10));
         assert!(refs[..10].iter().all(|r| r.lo().x < 50.0));
@@ -454,7 +447,7 @@ mod tests {
     #[test]
     fn coinciding_centroids_are_halved_by_count() {
         let mut refs = refs_from(&[([0.0; 3], [1.0; 3]); 9]);
-        let span = boxes_span(&refs, 5);
+        let span = Span::around(&refs, 5);
         let (left, right) = split(&mut refs, &span);
         assert_eq!(
             (left.begin, left.end, right.begin, right.end),
@@ -484,7 +477,7 @@ mod tests {
                 boxes
             };
             let mut refs = refs_from(&boxes);
-            let span = boxes_span(&refs, 3);
+            let span = Span::around(&refs, 3);
             let (left, right) = split(&mut refs, &span);
             prop_assert!(left.len() > 0 && right.len() > 0);
             prop_assert_eq!((left.begin, left.end, right.end), (3, right.begin, span.end));
@@ -493,7 +486,7 @@ mod tests {
             prop_assert!(ids.iter().copied().eq(0..boxes.len() as u32));
             let (l, r) = refs.split_at(left.len());
             for (side, part) in [(left, l), (right, r)] {
-                let exact = boxes_span(part, side.begin);
+                let exact = Span::around(part, side.begin);
                 prop_assert_eq!(side.bounds, exact.bounds);
                 prop_assert_eq!(side.centroids, exact.centroids);
             }

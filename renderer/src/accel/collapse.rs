@@ -8,15 +8,10 @@
 //! packs in parallel.
 
 use super::triangle_pack::{PACK, TrianglePack};
-use super::wide::{ChildRef, WIDTH, WideNode};
+use super::wide::{ChildRef, LEAF_TRIANGLES, WIDTH, WideNode};
 use glam::Vec3;
 use obvhs::bvh2::Bvh2;
 use rayon::prelude::*;
-
-/// A subtree with at most this many triangles becomes one leaf (two packs;
-/// measured on the million-triangle knot against one pack of four: a
-/// fifth less memory, traversal the same or slightly faster).
-pub const LEAF_TRIANGLES: usize = 2 * PACK;
 
 /// The wide nodes (node 0 the root) and leaf packs of `bvh2`, whose
 /// primitives are triangles with corners `corners(primitive)`. An empty

@@ -10,9 +10,15 @@
 //! child, one that starts beyond the closest hit found meanwhile.
 
 use super::slab::{SlabRay, box_entry};
+use super::triangle_pack::PACK;
 
 /// Children per node.
 pub const WIDTH: usize = 8;
+
+/// A set of at most this many triangles becomes one leaf (two packs;
+/// measured on the million-triangle knot against one pack of four: a
+/// fifth less memory, traversal the same or slightly faster).
+pub const LEAF_TRIANGLES: usize = 2 * PACK;
 
 /// A reference to a child: an inner node, a leaf (a run of triangle packs)
 /// or nothing.

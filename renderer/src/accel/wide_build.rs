@@ -13,10 +13,9 @@
 //! a last parallel pass.
 
 use super::binned_sah::{PrimRef, Span, split};
-use super::collapse::LEAF_TRIANGLES;
 use super::scene::Aabb;
 use super::triangle_pack::{PACK, TrianglePack};
-use super::wide::{ChildRef, WIDTH, WideNode};
+use super::wide::{ChildRef, LEAF_TRIANGLES, WIDTH, WideNode};
 use glam::{Vec3, Vec3A};
 use rayon::prelude::*;
 
@@ -51,8 +50,7 @@ pub fn build_wide(
     };
     let (nodes, pack_runs) = if root.len() <= LEAF_TRIANGLES {
         // A small mesh: one wide node with all of it as its one leaf.
-        let mut b = Builder::default();
-        b.nodes.push(WideNode::EMPTY);
+        let mut b = Builder::with_root();
         let child = b.leaf(&root);
         set(&mut b.nodes[0], 0, child, &root);
         (b.nodes, b.packs)
@@ -77,8 +75,7 @@ pub fn build_wide(
 /// The nodes (its root first) and pack runs of the subtree over `span`,
 /// which has more than [`LEAF_TRIANGLES`] triangles, all of them `refs`.
 fn subtree(refs: &mut [PrimRef], span: Span) -> Builder {
-    let mut top = Builder::default();
-    top.nodes.push(WideNode::EMPTY);
+    let mut top = Builder::with_root();
     if span.len() <= PARALLEL_SUBTREE {
         top.fill_all(refs, span.begin, span, 0);
         return top;
@@ -131,6 +128,14 @@ fn set(node: &mut WideNode, slot: usize, child: ChildRef, span: &Span) {
 }
 
 impl Builder {
+    /// A builder holding only its (empty) root node.
+    fn with_root() -> Builder {
+        Builder {
+            nodes: vec![WideNode::EMPTY],
+            ..Builder::default()
+        }
+    }
+
     /// The leaf of `span`: its triangles, four to a pack.
     fn leaf(&mut self, span: &Span) -> ChildRef {
         let first = self.packs.len();
@@ -151,7 +156,8 @@ impl Builder {
             let run = &mut refs[span.begin - base..span.end - base];
             let (children, len) = open(run, &span);
             let mut slot = 0;
-            // Leaves first, then inner nodes (adjacent in memory), then tasks.
+            // Leaves first, then inner nodes and tasks (the inner nodes
+            // adjacent in memory).
             for c in children[..len].iter().filter(|c| c.len() <= LEAF_TRIANGLES) {
                 let child = self.leaf(c);
                 set(&mut self.nodes[node], slot, child, c);
