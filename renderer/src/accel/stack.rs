@@ -2,55 +2,48 @@
 //! heap only for pathologically deep trees, so traversal never allocates in
 //! practice and never overflows.
 
-/// A LIFO stack of `T` with `INLINE` entries in place (each traversal
-/// initialises them, so keep `INLINE` near the trees' depth).
-pub(crate) struct Stack<T: Copy + Default, const INLINE: usize> {
-    /// The first `INLINE` entries.
-    inline: [T; INLINE],
-    /// How many of `inline` are in use.
-    len: usize,
+use arrayvec::ArrayVec;
+
+/// A LIFO stack of `T` with `INLINE` entries in place. The inline entries
+/// are not initialised up front ([`ArrayVec`]), so starting a traversal
+/// costs nothing however large `INLINE` is.
+pub(crate) struct Stack<T: Copy, const INLINE: usize> {
+    /// The bottom `INLINE` entries.
+    inline: ArrayVec<T, INLINE>,
     /// Entries pushed while `inline` was full (they are the top of the stack).
     spill: Vec<T>,
 }
 
-impl<T: Copy + Default, const INLINE: usize> Stack<T, INLINE> {
+impl<T: Copy, const INLINE: usize> Stack<T, INLINE> {
     /// An empty stack (no allocation).
     #[inline(always)]
     pub(crate) fn new() -> Self {
         Self {
-            inline: [T::default(); INLINE],
-            len: 0,
+            inline: ArrayVec::new(),
             spill: Vec::new(),
         }
     }
 
-    /// Empties the stack (keeps its storage, so no entry is written).
+    /// Empties the stack (keeps its storage).
     #[inline(always)]
     pub(crate) fn clear(&mut self) {
-        self.len = 0;
+        self.inline.clear();
         self.spill.clear();
     }
 
     /// Pushes `v` on top.
     #[inline(always)]
     pub(crate) fn push(&mut self, v: T) {
-        if self.len < INLINE {
-            self.inline[self.len] = v;
-            self.len += 1;
-        } else {
-            self.spill.push(v);
+        if let Err(full) = self.inline.try_push(v) {
+            self.spill.push(full.element());
         }
     }
 
     /// Removes and returns the top entry.
     #[inline(always)]
     pub(crate) fn pop(&mut self) -> Option<T> {
-        if self.len < INLINE || self.spill.is_empty() {
-            if self.len == 0 {
-                return None;
-            }
-            self.len -= 1;
-            Some(self.inline[self.len])
+        if self.spill.is_empty() {
+            self.inline.pop()
         } else {
             self.spill.pop()
         }
