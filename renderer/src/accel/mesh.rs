@@ -245,9 +245,16 @@ impl MeshBvh {
         }
     }
 
-    /// Where every walk starts: the root node, if any.
+    /// Where every walk starts: the root node, if any; or, for a mesh that
+    /// is one leaf (at most [`super::wide::LEAF_TRIANGLES`] triangles), that
+    /// leaf, whose exact triangle tests make the root's box test redundant.
+    #[inline(always)]
     fn root(&self) -> Option<ChildRef> {
-        (!self.nodes.is_empty()).then_some(ChildRef::node(0))
+        let root = self.nodes.first()?;
+        match root.children {
+            [only, ChildRef::EMPTY, ..] if only.packs().is_some() => Some(only),
+            _ => Some(ChildRef::node(0)),
+        }
     }
 
     /// One step of `walk`: tests its next node or leaf and picks what comes
@@ -429,6 +436,7 @@ mod tests {
     use super::*;
     use crate::accel::reference;
     use crate::accel::test_meshes::grid;
+    use crate::accel::wide::LEAF_TRIANGLES;
 
     #[test]
     fn empty_mesh_has_no_hits_and_empty_bounds() {
@@ -469,6 +477,40 @@ mod tests {
         let want = reference::closest_hit(&p, &t, &ray).expect("brute-force hit");
         let got = bvh.closest_hit(&ray).expect("bvh hit");
         assert_eq!(got, want);
+    }
+
+    #[test]
+    fn a_mesh_of_one_leaf_is_walked_from_its_leaf_and_matches_brute_force() {
+        let mut rng = crate::sampler::Sampler::for_sample(5, 0, 0, 0);
+        for n in 1..=10usize {
+            let (p, mut t) = grid(5, 1, 0.0);
+            t.truncate(n);
+            let bvh = MeshBvh::build(&p, &t);
+            let root = bvh.root().expect("a root");
+            assert_eq!(root.packs().is_some(), n <= LEAF_TRIANGLES, "{n} triangles");
+            for _ in 0..2000 {
+                // From above or below, aimed anywhere near the strip, some
+                // rays ending (t_max) or starting (t_min) short of it.
+                let target =
+                    Vec3::new(6.0 * rng.next_f32() - 0.5, 1.5 * rng.next_f32() - 0.25, 0.0);
+                let origin = target + 3.0 * rng.next_direction();
+                let mut ray = Ray::new(origin, target - origin);
+                ray.t_max = 2.0 * rng.next_f32();
+                ray.t_min = 0.5 * rng.next_f32();
+                let want = reference::closest_hit(&p, &t, &ray);
+                let got = bvh.closest_hit(&ray);
+                assert_eq!(
+                    got.map(|h| h.alpha),
+                    want.map(|h| h.alpha),
+                    "{n} triangles, {ray:?}"
+                );
+                if let Some(h) = got {
+                    let alpha = reference::triangle_alpha(&p, t[h.triangle as usize], &ray);
+                    assert_eq!(alpha, Some(h.alpha), "{ray:?}");
+                }
+                assert_eq!(bvh.any_hit(&ray), want.is_some(), "{n} triangles, {ray:?}");
+            }
+        }
     }
 
     #[test]
