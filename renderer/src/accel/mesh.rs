@@ -488,6 +488,7 @@ mod tests {
             let bvh = MeshBvh::build(&p, &t);
             let root = bvh.root().expect("a root");
             assert_eq!(root.packs().is_some(), n <= LEAF_TRIANGLES, "{n} triangles");
+            let mut rays = Vec::new();
             for _ in 0..2000 {
                 // From above or below, aimed anywhere near the strip, some
                 // rays ending (t_max) or starting (t_min) short of it.
@@ -509,6 +510,18 @@ mod tests {
                     assert_eq!(alpha, Some(h.alpha), "{ray:?}");
                 }
                 assert_eq!(bvh.any_hit(&ray), want.is_some(), "{n} triangles, {ray:?}");
+                rays.push(ray);
+            }
+            // The batched paths (packets and interleaved walks) start there too.
+            let mut hits = vec![None; rays.len()];
+            bvh.closest_hits(&rays, &mut hits);
+            for (ray, hit) in rays.iter().zip(hits) {
+                let want = reference::closest_hit(&p, &t, ray).map(|h| h.alpha);
+                assert_eq!(
+                    hit.map(|h| h.alpha),
+                    want,
+                    "batched, {n} triangles, {ray:?}"
+                );
             }
         }
     }
