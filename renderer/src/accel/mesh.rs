@@ -512,7 +512,12 @@ mod tests {
                 assert_eq!(bvh.any_hit(&ray), want.is_some(), "{n} triangles, {ray:?}");
                 rays.push(ray);
             }
-            // The batched paths (packets and interleaved walks) start there too.
+            // The batched paths start there too: interleaved walks for the
+            // random rays above, packets for parallel rays in runs of LANES.
+            for k in 0..256 {
+                let at = Vec3::new(0.02 * k as f32, 0.3 + 0.001 * k as f32, 2.0);
+                rays.push(Ray::new(at, Vec3::new(0.01, 0.0, -1.0)));
+            }
             let mut hits = vec![None; rays.len()];
             bvh.closest_hits(&rays, &mut hits);
             for (ray, hit) in rays.iter().zip(hits) {
