@@ -81,6 +81,8 @@ pub struct MeshBvh {
     triangle_count: usize,
     /// The box around every triangle.
     bounds: Aabb,
+    /// Where every walk starts ([`start_of`]).
+    start: Option<ChildRef>,
 }
 
 impl MeshBvh {
@@ -102,6 +104,7 @@ impl MeshBvh {
             Some(params) => build_ploc(positions, triangles, params),
         };
         MeshBvh {
+            start: start_of(&nodes),
             nodes,
             packs,
             triangle_count: triangles.len(),
@@ -245,16 +248,10 @@ impl MeshBvh {
         }
     }
 
-    /// Where every walk starts: the root node, if any; or, for a mesh that
-    /// is one leaf (at most [`super::wide::LEAF_TRIANGLES`] triangles), that
-    /// leaf, whose exact triangle tests make the root's box test redundant.
+    /// Where every walk starts (decided at build: [`start_of`]).
     #[inline(always)]
     fn root(&self) -> Option<ChildRef> {
-        let root = self.nodes.first()?;
-        match root.children {
-            [only, ChildRef::EMPTY, ..] if only.packs().is_some() => Some(only),
-            _ => Some(ChildRef::node(0)),
-        }
+        self.start
     }
 
     /// One step of `walk`: tests its next node or leaf and picks what comes
@@ -376,6 +373,17 @@ impl<'a> Walk<'a> {
     #[inline(always)]
     fn closest(&self) -> Option<MeshHit> {
         mesh_hit(self.best)
+    }
+}
+
+/// Where every walk of the tree `nodes` starts: the root node, if any; or,
+/// for a mesh that is one leaf (at most [`super::wide::LEAF_TRIANGLES`]
+/// triangles), that leaf, whose exact triangle tests make the root's box
+/// test redundant (and the walk never loads the node).
+fn start_of(nodes: &[WideNode]) -> Option<ChildRef> {
+    match nodes.first()?.children {
+        [only, ChildRef::EMPTY, ..] if only.packs().is_some() => Some(only),
+        _ => Some(ChildRef::node(0)),
     }
 }
 
@@ -513,10 +521,20 @@ mod tests {
                 rays.push(ray);
             }
             // The batched paths start there too: interleaved walks for the
-            // random rays above, packets for parallel rays in runs of LANES.
-            for k in 0..256 {
-                let at = Vec3::new(0.02 * k as f32, 0.3 + 0.001 * k as f32, 2.0);
-                rays.push(Ray::new(at, Vec3::new(0.01, 0.0, -1.0)));
+            // random rays above, packets for runs of LANES parallel rays
+            // close enough together to load as one.
+            let size = (bvh.bounds.max - bvh.bounds.min).length();
+            assert_eq!(rays.len() % LANES, 0, "each run below is one chunk");
+            for run in 0..32 {
+                let base = Vec3::new(0.16 * run as f32, 0.02 * run as f32, 2.0);
+                let packet: Vec<Ray> = (0..LANES)
+                    .map(|k| Ray::new(base + Vec3::X * 1e-3 * k as f32, Vec3::new(0.01, 0.0, -1.0)))
+                    .collect();
+                assert!(
+                    Packet::new().load(&packet, size),
+                    "run {run} forms a packet"
+                );
+                rays.extend(packet);
             }
             let mut hits = vec![None; rays.len()];
             bvh.closest_hits(&rays, &mut hits);
