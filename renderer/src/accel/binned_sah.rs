@@ -7,7 +7,7 @@
 //! primitives in place. The boxes of both sides come out exact (unions of
 //! the primitives' boxes), as conservative traversal needs.
 
-use glam::{Vec3A, Vec4};
+use glam::{BVec3, BVec3A, Mat3A, UVec3, Vec3A, Vec4};
 use rayon::prelude::*;
 use wide::f32x4;
 
@@ -216,36 +216,36 @@ impl Mapping {
     }
 }
 
-/// Per axis and bin: the union of the boxes and their number.
+/// Per bin and axis: the union of the boxes and their number (bin-major, so
+/// that the sweep of [`cheapest`] prices the three axes at once).
 #[derive(Clone, Debug)]
 struct Bins {
-    bounds: [[Bounds; BINS]; 3],
-    counts: [[u32; BINS]; 3],
+    bounds: [[Bounds; 3]; BINS],
+    counts: [[u32; 3]; BINS],
 }
 
 impl Bins {
     const EMPTY: Bins = Bins {
-        bounds: [[Bounds::EMPTY; BINS]; 3],
-        counts: [[0; BINS]; 3],
+        bounds: [[Bounds::EMPTY; 3]; BINS],
+        counts: [[0; 3]; BINS],
     };
 
     fn add(&mut self, refs: &[PrimRef], mapping: &Mapping) {
         for r in refs {
             let (lo, hi) = (r.lo(), r.hi());
             let bins = mapping.bins(lo + hi);
-            for ((bounds, counts), &bin) in self.bounds.iter_mut().zip(&mut self.counts).zip(&bins)
-            {
-                bounds[bin as usize].grow(lo, hi);
-                counts[bin as usize] += 1;
+            for (axis, &bin) in bins[..3].iter().enumerate() {
+                self.bounds[bin as usize][axis].grow(lo, hi);
+                self.counts[bin as usize][axis] += 1;
             }
         }
     }
 
     fn merge(mut self, other: Bins) -> Bins {
-        for axis in 0..3 {
-            for bin in 0..BINS {
-                self.bounds[axis][bin] = self.bounds[axis][bin].union(other.bounds[axis][bin]);
-                self.counts[axis][bin] += other.counts[axis][bin];
+        for bin in 0..BINS {
+            for axis in 0..3 {
+                self.bounds[bin][axis] = self.bounds[bin][axis].union(other.bounds[bin][axis]);
+                self.counts[bin][axis] += other.counts[bin][axis];
             }
         }
         self
@@ -266,51 +266,82 @@ impl Bins {
             bins
         }
     }
+
+    /// The number of primitives in `bin` along each axis.
+    #[inline(always)]
+    fn count(&self, bin: usize) -> UVec3 {
+        UVec3::from_array(self.counts[bin])
+    }
 }
 
-/// Leaf packs needed for `n` triangles: the SAH's unit of cost.
+/// Leaf packs needed for `n` triangles on each axis: the SAH's unit of cost.
 #[inline(always)]
-fn blocks(n: u32) -> f32 {
-    n.div_ceil(4) as f32
+fn blocks(n: UVec3) -> Vec3A {
+    ((n + UVec3::splat(3)) / 4).as_vec3a()
+}
+
+/// Half the surface areas of three boxes, one per lane (each lane the same
+/// arithmetic as [`Bounds::half_area`]).
+#[inline(always)]
+fn half_areas(boxes: &[Bounds; 3]) -> Vec3A {
+    let [x, y, z] = boxes.map(|b| b.hi - b.lo);
+    let d = Mat3A::from_cols(x, y, z).transpose();
+    d.x_axis * d.y_axis + d.y_axis * d.z_axis + d.z_axis * d.x_axis
+}
+
+/// Lane-wise `a > 0`.
+#[inline(always)]
+fn positive(n: UVec3) -> BVec3A {
+    let m = n.cmpgt(UVec3::ZERO);
+    BVec3A::new(m.x, m.y, m.z)
 }
 
 /// The cheapest boundary: (axis, last bin on the left, left box, right box).
-/// `total` is the number of primitives binned.
+/// `total` is the number of primitives binned. The three axes are swept
+/// together, one per lane; the first cheapest boundary wins (lowest axis,
+/// then lowest bin).
 fn cheapest(bins: &Bins, mapping: &Mapping, total: u32) -> Option<(usize, usize, Bounds, Bounds)> {
-    let mut best: Option<(f32, usize, usize)> = None;
-    for axis in (0..3).filter(|&a| mapping.axis_binned(a)) {
-        let used = mapping.bins;
-        let (bounds, counts) = (&bins.bounds[axis][..used], &bins.counts[axis][..used]);
-        // right_cost[i]: area · blocks of bins i.. (0 when they are empty).
-        let mut right_cost = [0.0f32; BINS];
-        let (mut acc, mut n) = (Bounds::EMPTY, 0u32);
-        for i in (1..used).rev() {
-            acc = acc.union(bounds[i]);
-            n += counts[i];
-            right_cost[i] = if n > 0 {
-                acc.half_area() * blocks(n)
-            } else {
-                0.0
-            };
+    let used = mapping.bins;
+    // right_cost[i]: area · blocks of bins i.. (0 when they are empty).
+    let mut right_cost = [Vec3A::ZERO; BINS];
+    let (mut acc, mut n) = ([Bounds::EMPTY; 3], UVec3::ZERO);
+    for i in (1..used).rev() {
+        for (a, b) in acc.iter_mut().zip(&bins.bounds[i]) {
+            *a = a.union(*b);
         }
-        let (mut acc, mut left_n) = (Bounds::EMPTY, 0u32);
-        for i in 0..used - 1 {
-            acc = acc.union(bounds[i]);
-            left_n += counts[i];
-            if left_n == 0 || left_n == total {
-                continue;
-            }
-            let cost = acc.half_area() * blocks(left_n) + right_cost[i + 1];
-            if best.is_none_or(|(c, _, _)| cost < c) {
-                best = Some((cost, axis, i));
-            }
+        n += bins.count(i);
+        right_cost[i] = Vec3A::select(positive(n), half_areas(&acc) * blocks(n), Vec3A::ZERO);
+    }
+    let (mut acc, mut left_n) = ([Bounds::EMPTY; 3], UVec3::ZERO);
+    let (mut best, mut best_bin, mut found) = (Vec3A::ZERO, UVec3::ZERO, BVec3A::FALSE);
+    for i in 0..used - 1 {
+        for (a, b) in acc.iter_mut().zip(&bins.bounds[i]) {
+            *a = a.union(*b);
+        }
+        left_n += bins.count(i);
+        let valid = positive(left_n) & positive(UVec3::splat(total) - left_n);
+        let cost = half_areas(&acc) * blocks(left_n) + right_cost[i + 1];
+        let better = valid & (!found | cost.cmplt(best));
+        best = Vec3A::select(better, cost, best);
+        best_bin = UVec3::select(
+            BVec3::new(better.test(0), better.test(1), better.test(2)),
+            UVec3::splat(i as u32),
+            best_bin,
+        );
+        found |= valid;
+    }
+    let mut choice: Option<(f32, usize)> = None;
+    for axis in (0..3).filter(|&a| mapping.axis_binned(a) && found.test(a)) {
+        if choice.is_none_or(|(c, _)| best[axis] < c) {
+            choice = Some((best[axis], axis));
         }
     }
-    let (_, axis, last) = best?;
+    let (_, axis) = choice?;
+    let last = best_bin[axis] as usize;
     let side = |bins_range: std::ops::Range<usize>| {
-        bins.bounds[axis][bins_range]
+        bins.bounds[bins_range]
             .iter()
-            .fold(Bounds::EMPTY, |a, &b| a.union(b))
+            .fold(Bounds::EMPTY, |a, b| a.union(b[axis]))
     };
     Some((axis, last, side(0..last + 1), side(last + 1..mapping.bins)))
 }
@@ -333,7 +364,7 @@ pub fn split(refs: &mut [PrimRef], span: &Span) -> (Span, Span) {
     let (i, left_c, right_c) = partition(refs, goes_left);
     debug_assert_eq!(
         i as u32,
-        bins.counts[axis][..=last].iter().sum::<u32>(),
+        bins.counts[..=last].iter().map(|c| c[axis]).sum::<u32>(),
         "the partition must agree with the bins"
     );
     let mid = span.begin + i;
@@ -457,6 +488,50 @@ mod tests {
         assert_eq!(right.bounds, span.bounds);
     }
 
+    /// The sweep [`cheapest`] replaced: one axis after the other, one bin at
+    /// a time, in scalar arithmetic.
+    fn cheapest_axis_by_axis(
+        bins: &Bins,
+        mapping: &Mapping,
+        total: u32,
+    ) -> Option<(usize, usize, Bounds, Bounds)> {
+        let blocks = |n: u32| n.div_ceil(4) as f32;
+        let mut best: Option<(f32, usize, usize)> = None;
+        for axis in (0..3).filter(|&a| mapping.axis_binned(a)) {
+            let used = mapping.bins;
+            let mut right_cost = [0.0f32; BINS];
+            let (mut acc, mut n) = (Bounds::EMPTY, 0u32);
+            for i in (1..used).rev() {
+                acc = acc.union(bins.bounds[i][axis]);
+                n += bins.counts[i][axis];
+                right_cost[i] = if n > 0 {
+                    acc.half_area() * blocks(n)
+                } else {
+                    0.0
+                };
+            }
+            let (mut acc, mut left_n) = (Bounds::EMPTY, 0u32);
+            for i in 0..used - 1 {
+                acc = acc.union(bins.bounds[i][axis]);
+                left_n += bins.counts[i][axis];
+                if left_n == 0 || left_n == total {
+                    continue;
+                }
+                let cost = acc.half_area() * blocks(left_n) + right_cost[i + 1];
+                if best.is_none_or(|(c, _, _)| cost < c) {
+                    best = Some((cost, axis, i));
+                }
+            }
+        }
+        let (_, axis, last) = best?;
+        let side = |r: std::ops::Range<usize>| {
+            bins.bounds[r]
+                .iter()
+                .fold(Bounds::EMPTY, |a, b| a.union(b[axis]))
+        };
+        Some((axis, last, side(0..last + 1), side(last + 1..mapping.bins)))
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(200))]
         /// Both sides are non-empty, together they hold every primitive
@@ -490,6 +565,44 @@ mod tests {
                 prop_assert_eq!(side.bounds, exact.bounds);
                 prop_assert_eq!(side.centroids, exact.centroids);
             }
+        }
+
+        /// Sweeping the three axes together, lane by lane, picks exactly the
+        /// boundary (and boxes) that sweeping them one after the other does.
+        #[test]
+        fn all_axes_sweep_picks_the_same_boundary_as_axis_by_axis(
+            boxes in prop::collection::vec(
+                (prop::array::uniform3(-1e3f32..1e3), prop::array::uniform3(0.0f32..50.0)),
+                2..400,
+            ),
+            flat in 0usize..4,
+            snap in any::<bool>(),
+        ) {
+            // Flatten one axis (or none), and optionally snap the others to
+            // a coarse grid so equal costs and empty bins occur.
+            let boxes: Vec<_> = boxes
+                .iter()
+                .map(|(c, e)| {
+                    let mut lo = *c;
+                    if snap {
+                        lo = lo.map(|v| (v / 100.0).round() * 100.0);
+                    }
+                    let mut hi = [lo[0] + e[0], lo[1] + e[1], lo[2] + e[2]];
+                    if flat < 3 {
+                        (lo[flat], hi[flat]) = (1.0, 1.0);
+                    }
+                    (lo, hi)
+                })
+                .collect();
+            let refs = refs_from(&boxes);
+            let span = Span::around(&refs, 0);
+            let mapping = Mapping::new(&span.centroids, refs.len());
+            let bins = Bins::of(&refs, &mapping);
+            let total = refs.len() as u32;
+            prop_assert_eq!(
+                cheapest(&bins, &mapping, total),
+                cheapest_axis_by_axis(&bins, &mapping, total)
+            );
         }
     }
 }
