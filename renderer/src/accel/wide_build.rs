@@ -5,12 +5,13 @@
 //! of at most [`LEAF_TRIANGLES`] triangles becomes a leaf. Child boxes are
 //! exact unions of the triangles' boxes.
 //!
-//! Parallelism: a large subtree builds its top levels on one thread
-//! (binning large sets on all of them), down to children of an eighth of
-//! its size or less; those, each a contiguous run of triangles, are built
-//! in parallel the same way and appended (each node is copied once per
-//! level of this nesting). The leaves' triangles are copied into packs in
-//! a last parallel pass.
+//! Parallelism: a large subtree opens only its root node on one thread
+//! (binning large sets on all of them); the root's inner children, each a
+//! contiguous run of triangles, are built in parallel the same way and
+//! appended (each node is copied once per level of this nesting). Opening
+//! more levels before going parallel left the second thread idle: on a
+//! million-triangle mesh, two threads built in 0.163 s instead of 0.155.
+//! The leaves' triangles are copied into packs in a last parallel pass.
 
 use super::binned_sah::{PrimRef, Span, split};
 use super::scene::Aabb;
@@ -19,10 +20,9 @@ use super::wide::{ChildRef, LEAF_TRIANGLES, WIDTH, WideNode};
 use glam::{Vec3, Vec3A};
 use rayon::prelude::*;
 
-/// A subtree of more triangles than this is built in parallel: its top
-/// levels on one thread (binning large sets on all of them), down to
-/// children of an eighth of its size or less, which are then built in
-/// parallel the same way, and appended.
+/// A subtree of more triangles than this is built in parallel: its root
+/// node on one thread (binning large sets on all of them), then the root's
+/// inner children in parallel the same way, appended.
 const PARALLEL_SUBTREE: usize = 4096;
 
 /// The wide nodes (node 0 the root) and leaf packs of the triangles
@@ -80,7 +80,8 @@ fn subtree(refs: &mut [PrimRef], span: Span) -> Builder {
         top.fill_all(refs, span.begin, span, 0);
         return top;
     }
-    top.fill_all(refs, span.begin, span, span.len() / 8);
+    // Every inner child of the root (all smaller than the span) is a task.
+    top.fill_all(refs, span.begin, span, span.len());
     // The subtrees left for tasks, built in parallel over disjoint runs.
     let mut tasks = std::mem::take(&mut top.tasks);
     tasks.sort_unstable_by_key(|t| t.span.begin);
