@@ -25,6 +25,7 @@
 
 mod binned_sah;
 mod collapse;
+mod huge_pages;
 pub mod instance;
 pub mod mesh;
 pub mod reference;

@@ -14,6 +14,7 @@
 //! The leaves' triangles are copied into packs in a last parallel pass.
 
 use super::binned_sah::{PrimRef, Span, split};
+use super::huge_pages;
 use super::scene::Aabb;
 use super::triangle_pack::{PACK, TrianglePack};
 use super::wide::{ChildRef, LEAF_TRIANGLES, WIDTH, WideNode};
@@ -33,13 +34,14 @@ pub fn build_wide(
     triangles: &[[u32; 3]],
 ) -> (Vec<WideNode>, Vec<TrianglePack>, Aabb) {
     let corners = |id: u32| triangles[id as usize].map(|i| positions[i as usize]);
-    let mut refs: Vec<PrimRef> = (0..triangles.len() as u32)
+    let mut refs: Vec<PrimRef> = huge_pages::with_capacity(triangles.len());
+    (0..triangles.len() as u32)
         .into_par_iter()
         .map(|id| {
             let [a, b, c] = corners(id).map(Vec3A::from);
             PrimRef::new(id, a.min(b).min(c), a.max(b).max(c))
         })
-        .collect();
+        .collect_into_vec(&mut refs);
     if refs.is_empty() {
         return (Vec::new(), Vec::new(), Aabb::EMPTY);
     }
@@ -58,7 +60,8 @@ pub fn build_wide(
         let b = subtree(&mut refs, root);
         (b.nodes, b.packs)
     };
-    let packs = pack_runs
+    let mut packs = huge_pages::with_capacity(pack_runs.len());
+    pack_runs
         .par_iter()
         .map(|&(begin, len)| {
             let mut triangles = [(0u32, [Vec3::ZERO; 3]); PACK];
@@ -68,7 +71,7 @@ pub fn build_wide(
             }
             TrianglePack::new(&triangles[..run.len()])
         })
-        .collect();
+        .collect_into_vec(&mut packs);
     (nodes, packs, bounds)
 }
 
@@ -189,7 +192,9 @@ impl Builder {
     fn append(mut self, tasks: &[Task], built: Vec<Builder>) -> Builder {
         let nodes_total = self.nodes.len() + built.iter().map(|b| b.nodes.len()).sum::<usize>();
         let packs_total = self.packs.len() + built.iter().map(|b| b.packs.len()).sum::<usize>();
-        self.nodes.reserve_exact(nodes_total - self.nodes.len());
+        let mut nodes = huge_pages::with_capacity(nodes_total);
+        nodes.append(&mut self.nodes);
+        self.nodes = nodes;
         self.packs.reserve_exact(packs_total - self.packs.len());
         for (task, b) in tasks.iter().zip(built) {
             let (node_offset, pack_offset) = (self.nodes.len(), self.packs.len());

@@ -1,0 +1,75 @@
+//! Large arrays of the acceleration structure on 2 MiB pages where the
+//! system grants them (Linux transparent huge pages, which this machine and
+//! Debian's default kernels give only to memory that asks, `madvise` mode).
+//! Embree asks the same for its BVH memory. Measured on the
+//! million-triangle knot (throw-away timer, one run): BVH build on 2 threads
+//! about 5% faster (fewer page faults while the arrays are first written);
+//! incoherent closest hits on 1 thread 2.0 -> 2.1-2.2 Mrays/s (fewer TLB
+//! misses); primary rays +1-2%.
+#![allow(unsafe_code)]
+
+/// Bytes of one huge page.
+const HUGE_PAGE: usize = 2 << 20;
+
+/// An empty vector with room for `capacity` items, whose storage the kernel
+/// is asked to back with huge pages (only the whole 2 MiB pages inside it:
+/// a small vector is left as it is).
+pub fn with_capacity<T>(capacity: usize) -> Vec<T> {
+    let v = Vec::with_capacity(capacity);
+    if let Some((start, len)) = whole_huge_pages(v.as_ptr() as usize, v.capacity() * size_of::<T>())
+    {
+        advise(start, len);
+    }
+    v
+}
+
+/// The whole huge pages inside the bytes [start, start + len): (first
+/// byte, length), or `None` when there is none.
+fn whole_huge_pages(start: usize, len: usize) -> Option<(usize, usize)> {
+    let first = start.checked_next_multiple_of(HUGE_PAGE)?;
+    let end = start.checked_add(len)? / HUGE_PAGE * HUGE_PAGE;
+    (end > first).then(|| (first, end - first))
+}
+
+/// Asks for huge pages over [start, start + len) (a hint: the kernel may
+/// refuse it, which changes nothing but speed).
+#[cfg(target_os = "linux")]
+fn advise(start: usize, len: usize) {
+    // SAFETY: the range lies inside a live allocation of the caller's
+    // vector; MADV_HUGEPAGE changes how its memory is backed, never what
+    // it holds, and needs no particular state of it.
+    unsafe {
+        libc::madvise(start as *mut libc::c_void, len, libc::MADV_HUGEPAGE);
+    }
+}
+
+#[cfg(not(target_os = "linux"))]
+fn advise(_start: usize, _len: usize) {}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_whole_huge_pages_inside_the_range_are_advised() {
+        const P: usize = HUGE_PAGE;
+        // Aligned at both ends: all of it.
+        assert_eq!(whole_huge_pages(4 * P, 3 * P), Some((4 * P, 3 * P)));
+        // Unaligned: the interior pages only.
+        assert_eq!(whole_huge_pages(4 * P + 8, 3 * P), Some((5 * P, 2 * P)));
+        // Smaller than a page, or straddling one boundary: nothing.
+        assert_eq!(whole_huge_pages(4 * P + 8, P / 2), None);
+        assert_eq!(whole_huge_pages(5 * P - 8, P), None);
+        // At the top of the address space: no overflow.
+        assert_eq!(whole_huge_pages(usize::MAX - 8, 4), None);
+        assert_eq!(whole_huge_pages(usize::MAX - P, 2 * P), None);
+    }
+
+    #[test]
+    fn the_vector_is_empty_with_the_capacity_asked_for() {
+        let v: Vec<[f32; 8]> = with_capacity(1 << 20);
+        assert!(v.is_empty() && v.capacity() >= 1 << 20);
+        let small: Vec<u8> = with_capacity(10);
+        assert!(small.is_empty() && small.capacity() >= 10);
+    }
+}
