@@ -1,7 +1,7 @@
 //! Large arrays of the acceleration structure on 2 MiB pages where the
-//! system grants them (Linux transparent huge pages, which this machine and
-//! Debian's default kernels give only to memory that asks, `madvise` mode).
-//! Embree asks the same for its BVH memory. Measured on the
+//! system grants them (Linux transparent huge pages; in `madvise` mode, as
+//! on the machines we measure on, only memory that asks gets them). Embree
+//! asks the same for its BVH memory. Measured on the
 //! million-triangle knot (throw-away timer, one run): BVH build on 2 threads
 //! about 5% faster (fewer page faults while the arrays are first written);
 //! incoherent closest hits on 1 thread 2.0 -> 2.1-2.2 Mrays/s (fewer TLB
