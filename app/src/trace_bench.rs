@@ -95,8 +95,8 @@ pub fn measure(
     let resolved = scene::resolve(&scene)?;
     let world = World::new(&resolved)?;
     let threads = rayon::current_num_threads();
-    let (_, triangles, bytes) = throughput::rebuild_mesh_bvhs(&world);
-    let build = || median_seconds(|| throughput::rebuild_mesh_bvhs(&world).0.as_secs_f64());
+    let (triangles, bytes) = throughput::mesh_bvh_footprint(&world);
+    let build = || median_seconds(|| throughput::rebuild_mesh_bvhs(&world).as_secs_f64());
     let (build_all, build_one) = (build(), throughput::on_threads(1, build));
     let edit = median_seconds(|| {
         let start = Instant::now();
@@ -245,8 +245,8 @@ pub fn scaling() -> Result<Vec<ScalingRow>> {
         .into_iter()
         .map(|n| {
             let world = World::from_scene(&scene::generate::knot_scene(n))?;
-            let (_, triangles, bytes) = throughput::rebuild_mesh_bvhs(&world);
-            let build = median_seconds(|| throughput::rebuild_mesh_bvhs(&world).0.as_secs_f64());
+            let (triangles, bytes) = throughput::mesh_bvh_footprint(&world);
+            let build = median_seconds(|| throughput::rebuild_mesh_bvhs(&world).as_secs_f64());
             let primary = throughput::primary_rays(&world);
             let p = throughput::median_of(RUNS, || throughput::cast_closest(&world, &primary));
             let (_, rays) = incoherent_rays(&world).unwrap_or_default();

@@ -2,11 +2,14 @@
 //! closest-hit queries on a fixed set of rays, on one thread and on all.
 
 use crate::World;
+use crate::accel::MeshBvh;
+use crate::placed_mesh::PlacedMesh;
 use crate::ray::Ray;
 use crate::sampler::Sampler;
 use crate::shapes::Method;
 use glam::Vec3;
 use rayon::prelude::*;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 /// One ray per pixel centre P_ij, row by row from the top (coherent).
@@ -115,28 +118,38 @@ pub fn timed<T>(f: impl FnOnce() -> T) -> (T, Duration) {
     (value, start.elapsed())
 }
 
-/// The bottom-level BVH of every distinct mesh of `world`, built again
-/// from scratch in parallel (as a first load builds them): how long that
-/// took, the triangles and the bytes of those BVHs.
-pub fn rebuild_mesh_bvhs(world: &World) -> (Duration, usize, usize) {
-    let mut distinct: Vec<&std::sync::Arc<scene::TriangleMesh>> = Vec::new();
+/// Every distinct mesh of `world` with its bottom-level BVH (instances of
+/// one mesh share both, so each is listed once).
+fn distinct_meshes(world: &World) -> Vec<&PlacedMesh> {
+    let mut distinct: Vec<&PlacedMesh> = Vec::new();
     for placed in &world.meshes {
-        if !distinct
-            .iter()
-            .any(|m| std::sync::Arc::ptr_eq(m, &placed.mesh))
-        {
-            distinct.push(&placed.mesh);
+        if !distinct.iter().any(|d| Arc::ptr_eq(&d.mesh, &placed.mesh)) {
+            distinct.push(placed);
         }
     }
-    let (bvhs, took) = timed(|| {
+    distinct
+}
+
+/// The triangles of `world`'s distinct meshes and the bytes of their BVHs.
+pub fn mesh_bvh_footprint(world: &World) -> (usize, usize) {
+    distinct_meshes(world).iter().fold((0, 0), |(t, b), m| {
+        (t + m.mesh.triangles.len(), b + m.bvh.bytes())
+    })
+}
+
+/// How long building the bottom-level BVH of every distinct mesh of
+/// `world` again from scratch takes, in parallel (as a first load builds
+/// them).
+pub fn rebuild_mesh_bvhs(world: &World) -> Duration {
+    let distinct = distinct_meshes(world);
+    // The BVHs are dropped after the clock stops.
+    timed(|| {
         distinct
             .par_iter()
-            .map(|m| crate::accel::MeshBvh::build(&m.positions, &m.triangles))
+            .map(|m| MeshBvh::build(&m.mesh.positions, &m.mesh.triangles))
             .collect::<Vec<_>>()
-    });
-    let triangles = distinct.iter().map(|m| m.triangles.len()).sum();
-    let bytes = bvhs.iter().map(|b| b.bytes()).sum();
-    (took, triangles, bytes)
+    })
+    .1
 }
 
 /// Where incoherent rays start: the box of the mesh instance with the most

