@@ -16,7 +16,7 @@
 //! [--repeats R] [--width W --height H] [--qualities] [--lost]`. Embree on
 //! the same triangles and rays: `scripts/bench-vs-embree.sh`.
 //!
-//! Measured 2026-11-23 (`--repeats 3 --qualities`, one run, shared 2-vCPU
+//! Measured at commit 9dcca3a (`--repeats 3 --qualities`, one run, shared 2-vCPU
 //! machine): our binned-SAH builder (the default) against obvhs's PLOC
 //! `fast_build` collapsed to the same nodes: build 0.456 / 0.228 s (1 / 2
 //! threads) against 0.528 / 0.346; 51.2 against 61.5 B/triangle; primary
