@@ -9,13 +9,15 @@ use crate::model_file::ModelFile;
 use glam::Vec3;
 use std::sync::Arc;
 
-/// A whole scene: camera, lights, named materials and objects, in document order.
+/// A whole scene: camera, lights, sky, named materials and objects, in document order.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Scene {
     /// The lecture's camera (P0, t, u, θ, d, w, h).
     pub camera: Camera,
-    /// Light sources; none (and nothing emissive) means default lighting.
+    /// Light sources; none (and nothing emissive, and no sky) means default lighting.
     pub lights: Vec<Light>,
+    /// `<sky color=…>`: constant radiance (linear RGB) arriving from every direction no object blocks; `None` is a black background.
+    pub sky: Option<Vec3>,
     /// `<material name=… base=…>` definitions, in document order.
     pub materials: Vec<MaterialDef>,
     /// The objects to render, in document order.

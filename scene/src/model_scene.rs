@@ -57,6 +57,7 @@ pub fn read_model_scene(path: &Path) -> Result<Scene, SceneError> {
     Ok(Scene {
         camera,
         lights,
+        sky: None,
         materials: Vec::new(),
         objects: vec![Object {
             name,

@@ -10,7 +10,8 @@ use glam::Vec3;
 /// The scene with every default decided:
 /// - objects without a position rest on the floor side by side ([`layout::place`]);
 /// - no eye or toward → a camera that frames all finite objects from the front, slightly above;
-/// - no light and nothing emissive → a key light plus soft ambient light.
+/// - no light, nothing emissive and no sky → a key light plus soft ambient light;
+/// - no sky → a black background (`sky` zero).
 pub fn resolve(scene: &Scene) -> Result<ResolvedScene, InvalidScene> {
     let floor_y = scene
         .objects
@@ -60,7 +61,7 @@ pub fn resolve(scene: &Scene) -> Result<ResolvedScene, InvalidScene> {
     let emissive = objects
         .iter()
         .any(|o| o.material.emission.max_element() > 0.0);
-    let lights = if scene.lights.is_empty() && !emissive {
+    let lights = if scene.lights.is_empty() && !emissive && scene.sky.is_none() {
         default_lights(&focus)
     } else {
         scene.lights.clone()
@@ -68,6 +69,7 @@ pub fn resolve(scene: &Scene) -> Result<ResolvedScene, InvalidScene> {
     Ok(ResolvedScene {
         camera,
         lights,
+        sky: scene.sky.unwrap_or(Vec3::ZERO),
         objects,
     })
 }
@@ -209,5 +211,24 @@ mod tests {
         })
         .expect("resolves");
         assert!(r.lights.is_empty());
+    }
+
+    #[test]
+    fn a_sky_switches_default_lights_off() {
+        let sky = Vec3::new(0.5, 0.7, 1.0);
+        let r = resolve(&Scene {
+            sky: Some(sky),
+            objects: vec![object("sphere")],
+            ..Default::default()
+        })
+        .expect("resolves");
+        assert!(r.lights.is_empty());
+        assert_eq!(r.sky, sky);
+    }
+
+    #[test]
+    fn no_sky_resolves_to_a_black_background() {
+        let r = resolve(&Scene::default()).expect("resolves");
+        assert_eq!(r.sky, Vec3::ZERO);
     }
 }

@@ -12,6 +12,8 @@ pub struct ResolvedScene {
     pub camera: ResolvedCamera,
     /// The lights to shade with (the scene's own, or the default key + ambient).
     pub lights: Vec<Light>,
+    /// Radiance of the constant environment; zero = black background.
+    pub sky: Vec3,
     /// The objects in document order; an object's index is its object id.
     pub objects: Vec<ResolvedObject>,
 }

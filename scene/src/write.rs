@@ -8,8 +8,8 @@ use glam::Vec3;
 use std::fmt::Display;
 
 /// Writes a scene as XML, only non-default values, in a stable order: the
-/// camera (if not the default), then lights, materials and objects in model
-/// order. Reading the result gives back an equal [`Scene`].
+/// camera (if not the default), then lights, the sky (if any), materials and
+/// objects in model order. Reading the result gives back an equal [`Scene`].
 pub fn write_string(scene: &Scene) -> String {
     let mut out = String::from("<scene>\n");
     if scene.camera != Camera::default() {
@@ -17,6 +17,11 @@ pub fn write_string(scene: &Scene) -> String {
     }
     for l in &scene.lights {
         light(&mut out, l);
+    }
+    if let Some(color) = scene.sky {
+        Tag::new(&mut out, "sky")
+            .attr("color", format_color(color))
+            .close();
     }
     for m in &scene.materials {
         material(&mut out, m);

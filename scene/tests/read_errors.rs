@@ -64,7 +64,7 @@ fn unknown_element_points_at_its_tag_and_suggests_the_nearest() {
         &in_scene("  <wibble/>"),
         2,
         3,
-        "expected one of: camera, light, material",
+        "expected one of: camera, light, sky, material",
     );
     assert_error(
         &in_scene("  <sphere/></spere>"),
@@ -99,6 +99,34 @@ fn a_second_camera_is_an_error_at_its_tag() {
         4,
         3,
         "at most one <camera>; the first is at line 2, column 3",
+    );
+}
+
+#[test]
+fn a_second_sky_is_an_error_at_its_tag() {
+    let text =
+        "<scene>\n  <sky color=\"0.5 0.7 1\"/>\n  <sphere/>\n  <sky color=\"black\"/>\n</scene>";
+    assert_error(
+        text,
+        4,
+        3,
+        "at most one <sky>; the first is at line 2, column 3",
+    );
+}
+
+#[test]
+fn a_misspelt_sky_suggests_sky() {
+    assert_error(
+        &in_scene(r#"  <skye color="1 1 1"/>"#),
+        2,
+        3,
+        "unknown element <skye>; did you mean <sky>?",
+    );
+    assert_error(
+        &in_scene(r#"  <sky color="1 1 1"></skye>"#),
+        2,
+        22,
+        "unexpected end tag </skye>; did you mean </sky>?",
     );
 }
 

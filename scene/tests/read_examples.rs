@@ -270,3 +270,21 @@ fn empty_scene_and_byte_order_mark_load_as_the_default() {
         assert_eq!(read(text), Scene::default(), "{text:?}");
     }
 }
+
+#[test]
+fn a_sky_loads_as_linear_radiance_in_any_colour_syntax() {
+    assert_eq!(read("<scene/>").sky, None);
+    let sky = |text: &str| read(text).sky;
+    assert_eq!(
+        sky(r#"<scene><sky color="0.5, 0.7 1"/></scene>"#),
+        Some(Vec3::new(0.5, 0.7, 1.0))
+    );
+    assert_eq!(
+        sky(r##"<scene><sky color="#87CEEB"></sky></scene>"##),
+        Some(hex(0x87, 0xce, 0xeb))
+    );
+    // Unclosed, as the lecture writes elements; the sphere after it still loads.
+    let scene = read(r#"<scene> <sky color="skyblue"> <sphere> </scene>"#);
+    assert_eq!(scene.sky, Some(hex(0x87, 0xce, 0xeb)));
+    assert_eq!(scene.objects.len(), 1);
+}

@@ -213,45 +213,49 @@ fn scene() -> impl Strategy<Value = Scene> {
         0..8,
     );
     let lights = prop::collection::vec(light(), 0..4);
-    (camera(), lights, materials, objects).prop_map(|(camera, lights, materials, objects)| {
-        let builtins: Vec<String> = BaseMaterial::ALL
-            .iter()
-            .map(|m| m.name().to_owned())
-            .collect();
-        let mut defs: Vec<MaterialDef> = Vec::new();
-        for (i, (prefix, base, params)) in materials.into_iter().enumerate() {
-            let choices: Vec<&String> = builtins
+    let sky = prop::option::of(color());
+    (camera(), lights, sky, materials, objects).prop_map(
+        |(camera, lights, sky, materials, objects)| {
+            let builtins: Vec<String> = BaseMaterial::ALL
+                .iter()
+                .map(|m| m.name().to_owned())
+                .collect();
+            let mut defs: Vec<MaterialDef> = Vec::new();
+            for (i, (prefix, base, params)) in materials.into_iter().enumerate() {
+                let choices: Vec<&String> = builtins
+                    .iter()
+                    .chain(defs.iter().map(|d| &d.name))
+                    .collect();
+                let base = (*base.get(&choices)).clone();
+                defs.push(MaterialDef {
+                    name: format!("{prefix}-{i}"),
+                    base,
+                    params,
+                });
+            }
+            let all: Vec<String> = builtins
                 .iter()
                 .chain(defs.iter().map(|d| &d.name))
+                .cloned()
                 .collect();
-            let base = (*base.get(&choices)).clone();
-            defs.push(MaterialDef {
-                name: format!("{prefix}-{i}"),
-                base,
-                params,
-            });
-        }
-        let all: Vec<String> = builtins
-            .iter()
-            .chain(defs.iter().map(|d| &d.name))
-            .cloned()
-            .collect();
-        let objects = objects
-            .into_iter()
-            .map(|(shape, name, material, params)| Object {
-                name,
-                shape,
-                material: material.map(|m| m.get(&all).clone()),
-                params,
-            })
-            .collect();
-        Scene {
-            camera,
-            lights,
-            materials: defs,
-            objects,
-        }
-    })
+            let objects = objects
+                .into_iter()
+                .map(|(shape, name, material, params)| Object {
+                    name,
+                    shape,
+                    material: material.map(|m| m.get(&all).clone()),
+                    params,
+                })
+                .collect();
+            Scene {
+                camera,
+                lights,
+                sky,
+                materials: defs,
+                objects,
+            }
+        },
+    )
 }
 
 proptest! {
@@ -279,6 +283,7 @@ fn writer_omits_defaults_and_orders_elements_and_attributes() {
   <material base="metal" name="m"/>
   <light intensity="60" type="point"/>
   <light type="directional" intensity="2" color="0.5 0.25 1"/>
+  <sky color="skyblue"/>
   <camera width="640" theta="25" up="0 1 0" eye="0 1 5"/>
 </scene>"##;
     let scene = read_str(text, "t.xml").unwrap_or_else(|e| panic!("{e}"));
@@ -286,10 +291,34 @@ fn writer_omits_defaults_and_orders_elements_and_attributes() {
   <camera eye="0 1 5" width="640"/>
   <light/>
   <light type="directional" color="0.5 0.25 1"/>
+  <sky color="#87ceeb"/>
   <material name="m" base="metal"/>
   <sphere radius="2" material="glass" color="#ff0000"/>
   <floor/>
 </scene>
 "##;
     assert_eq!(write_string(&scene), expected);
+}
+
+#[test]
+fn sky_round_trips() {
+    for color in [
+        Vec3::new(0.5, 0.7, 1.0),
+        Vec3::ZERO,
+        Vec3::ONE,
+        Vec3::new(srgb_to_linear(0x87 as f32 / 255.0), 0.1, 1e-30),
+    ] {
+        let s = Scene {
+            sky: Some(color),
+            ..Scene::default()
+        };
+        let text = write_string(&s);
+        assert!(text.contains("  <sky color=\""), "{text}");
+        assert_eq!(read_str(&text, "sky.xml"), Ok(s), "{text}");
+    }
+    let text = write_string(&Scene {
+        sky: Some(Vec3::new(0.5, 0.7, 1.0)),
+        ..Scene::default()
+    });
+    assert_eq!(text, "<scene>\n  <sky color=\"0.5 0.7 1\"/>\n</scene>\n");
 }

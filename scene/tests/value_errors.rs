@@ -250,3 +250,44 @@ fn material_parameters_are_range_checked() {
         "must be a finite number",
     );
 }
+
+#[test]
+fn sky_color_is_required_and_validated() {
+    assert_error(&in_scene("  <sky/>"), 2, 3, "<sky> needs a color attribute");
+    assert_error(
+        &in_scene(r#"  <sky color="-0.1 0 0"/>"#),
+        2,
+        15,
+        "colour components must not be negative",
+    );
+    assert_error(
+        &in_scene(r#"  <sky color="1 NaN 1"/>"#),
+        2,
+        15,
+        "must be a finite number",
+    );
+    assert_error(
+        &in_scene(r#"  <sky color="1 inf 1"/>"#),
+        2,
+        15,
+        "must be a finite number",
+    );
+    assert_error(
+        &in_scene(r#"  <sky color="2 2 2"/>"#),
+        2,
+        15,
+        "color components must be linear values from 0 to 1",
+    );
+    assert_error(
+        &in_scene(r#"  <sky color="skyblu"/>"#),
+        2,
+        15,
+        "did you mean \"skyblue\"?",
+    );
+    assert_error(
+        &in_scene(r#"  <sky colour="1 1 1"/>"#),
+        2,
+        8,
+        "unknown attribute \"colour\" on <sky>; did you mean \"color\"?",
+    );
+}

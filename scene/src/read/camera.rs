@@ -1,10 +1,11 @@
-//! `<camera>` and `<light>`.
+//! `<camera>`, `<light>` and `<sky>`.
 
 use super::element::Element;
 use super::suggest::did_you_mean;
 use super::values::{self, Range, parallel};
 use crate::SceneError;
 use crate::model::{Camera, Light, LightKind, defaults};
+use glam::Vec3;
 
 /// The attributes `<camera>` takes, in writing order.
 pub(crate) const CAMERA_ATTRS: [&str; 7] = ["eye", "toward", "up", "theta", "d", "width", "height"];
@@ -18,6 +19,9 @@ pub(crate) const LIGHT_ATTRS: [&str; 6] = [
     "intensity",
     "name",
 ];
+
+/// The attributes `<sky>` takes.
+pub(crate) const SKY_ATTRS: [&str; 1] = ["color"];
 
 /// The light types, by their scene-file names.
 const LIGHT_TYPES: [&str; 3] = ["point", "directional", "ambient"];
@@ -108,5 +112,16 @@ pub(crate) fn light(el: &Element<'_>) -> Result<Light, SceneError> {
             .number("intensity", Range::NonNegative)?
             .unwrap_or_else(|| defaults::light_intensity(&kind)),
         kind,
+    })
+}
+
+/// A `<sky>`: its `color` (required), the radiance arriving from every
+/// direction that no object blocks.
+pub(crate) fn sky(el: &Element<'_>) -> Result<Vec3, SceneError> {
+    el.color("color")?.ok_or_else(|| {
+        el.error(
+            "<sky> needs a color attribute: the radiance arriving from every direction no object \
+             blocks, such as \"0.5 0.7 1\"",
+        )
     })
 }

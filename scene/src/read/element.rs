@@ -142,9 +142,13 @@ impl<'a> Element<'a> {
         self.parsed(name, |n, t| {
             let c = parse_color(t).map_err(|why| format!("{n}: {why}"))?;
             if n == "color" && c.max_element() > 1.0 {
+                let hint = if self.tag == "sky" {
+                    "a <sky> is at most white, 1 1 1; for more light, add a <light>"
+                } else {
+                    "for more light, raise intensity or emission"
+                };
                 return Err(format!(
-                    "color components must be linear values from 0 to 1, got {t:?} \
-                     (for more light, raise intensity or emission)"
+                    "color components must be linear values from 0 to 1, got {t:?} ({hint})"
                 ));
             }
             Ok(c)

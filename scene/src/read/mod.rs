@@ -10,7 +10,7 @@ mod position;
 mod suggest;
 mod values;
 
-use camera::{CAMERA_ATTRS, LIGHT_ATTRS};
+use camera::{CAMERA_ATTRS, LIGHT_ATTRS, SKY_ATTRS};
 pub use file::read_file;
 use objects::{MATERIAL_ATTRS, shape_attrs};
 pub(crate) use suggest::suggest;
@@ -44,6 +44,7 @@ pub fn read_str(text: &str, file: &str) -> Result<Scene, SceneError> {
         scene: Scene::default(),
         phase: Phase::Before,
         camera_at: None,
+        sky_at: None,
         material_names: Vec::new(),
         material_refs: Vec::new(),
         dir: Path::new(file)
@@ -86,8 +87,8 @@ enum Phase {
 }
 
 /// The children `<scene>` may have.
-const CHILDREN: [&str; 12] = [
-    "camera", "light", "material", "sphere", "box", "cylinder", "cone", "torus", "triangle",
+const CHILDREN: [&str; 13] = [
+    "camera", "light", "sky", "material", "sphere", "box", "cylinder", "cone", "torus", "triangle",
     "plane", "floor", "mesh",
 ];
 
@@ -98,6 +99,8 @@ struct Document<'a> {
     phase: Phase,
     /// Offset of the `<camera>` seen so far.
     camera_at: Option<usize>,
+    /// Offset of the `<sky>` seen so far.
+    sky_at: Option<usize>,
     /// Names of the `<material>`s so far, with their name offsets.
     material_names: Vec<(String, usize)>,
     /// Material names used by shapes, with their value offsets (checked at the end).
@@ -160,6 +163,20 @@ impl Document<'_> {
             "light" => {
                 let el = Element::parse(start, loc, &LIGHT_ATTRS)?;
                 self.scene.lights.push(camera::light(&el)?);
+            }
+            "sky" => {
+                if let Some(first) = self.sky_at {
+                    return Err(loc.error(
+                        at,
+                        format!(
+                            "a scene has at most one <sky>; the first is at {}",
+                            loc.describe(first)
+                        ),
+                    ));
+                }
+                self.sky_at = Some(at);
+                let el = Element::parse(start, loc, &SKY_ATTRS)?;
+                self.scene.sky = Some(camera::sky(&el)?);
             }
             "material" => {
                 let el = Element::parse(start, loc, &MATERIAL_ATTRS)?;
