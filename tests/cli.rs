@@ -577,3 +577,81 @@ fn bench_export_is_refused_for_the_window_benchmarks() {
     assert_eq!(output.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&output.stderr).contains("--export"));
 }
+
+#[test]
+fn chart_writes_error_against_time_per_method_as_csv_and_a_png() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let scene = dir.path().join("lamp.xml");
+    std::fs::write(
+        &scene,
+        r#"<scene>
+  <camera eye="0 1 4" toward="0 -0.2 -1" theta="30" width="24" height="16"/>
+  <sphere center="0 0.5 0" radius="0.5" color="0.7 0.6 0.5"/>
+  <triangle t0="-1 0 1" t1="1 0 1" t2="1 0 -1" color="0.5 0.5 0.5"/>
+  <triangle t0="-1 0 1" t1="1 0 -1" t2="-1 0 -1" color="0.5 0.5 0.5"/>
+  <triangle t0="-0.5 2 -0.5" t1="0.5 2 -0.5" t2="0.5 2 0.5" emission="4 4 4"/>
+</scene>"#,
+    )
+    .expect("write");
+    let prefix = dir.path().join("lamp-chart");
+    let output = raylab(&[
+        "chart",
+        scene.to_str().expect("utf-8"),
+        "--methods",
+        "path,whitted",
+        "--seconds",
+        "0.5",
+        "--max-spp",
+        "16",
+        "-o",
+        prefix.to_str().expect("utf-8"),
+    ]);
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        output.status.success(),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    assert!(stdout.contains("to 1e-2"), "prints time to 1e-2: {stdout}");
+    let csv = std::fs::read_to_string(prefix.with_extension("csv")).expect("csv written");
+    let mut lines = csv.lines();
+    assert_eq!(lines.next(), Some("method,spp,seconds,rel_mse,rmse"));
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    for method in ["path", "whitted"] {
+        let mine: Vec<&Vec<&str>> = rows.iter().filter(|r| r[0] == method).collect();
+        assert!(!mine.is_empty(), "{method} has rows");
+        let spp: Vec<u32> = mine.iter().map(|r| r[1].parse().expect("spp")).collect();
+        assert!(
+            spp.windows(2).all(|w| w[1] == w[0] + 1),
+            "{method}: one row per pass"
+        );
+        let seconds: Vec<f64> = mine
+            .iter()
+            .map(|r| r[2].parse().expect("seconds"))
+            .collect();
+        assert!(
+            seconds.windows(2).all(|w| w[1] > w[0]),
+            "{method}: time grows"
+        );
+    }
+    // Path tracing converges toward raylab's own path-traced reference.
+    let path_error: Vec<f64> = rows
+        .iter()
+        .filter(|r| r[0] == "path")
+        .map(|r| r[3].parse().expect("rel_mse"))
+        .collect();
+    let (first, last) = (path_error[0], path_error[path_error.len() - 1]);
+    assert!(
+        path_error.len() >= 4 && last < 0.5 * first,
+        "{path_error:?}"
+    );
+    let png = image::open(prefix.with_extension("png"))
+        .expect("png written")
+        .to_rgb8();
+    // The first line's colour (Tableau blue) is drawn.
+    let blue = png
+        .pixels()
+        .filter(|p| p.0[2] > 150 && p.0[0] < 80 && p.0[1] > 90 && p.0[1] < 150)
+        .count();
+    assert!(blue > 100, "the first curve is drawn ({blue} pixels)");
+}

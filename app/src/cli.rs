@@ -28,6 +28,62 @@ pub enum Command {
     Bench(BenchArgs),
     /// Re-trace one sample of one pixel and print its ray tree as JSON.
     Inspect(InspectArgs),
+    /// Chart speed against accuracy: error against render time, one line per method (CSV and PNG).
+    Chart(ChartArgs),
+}
+
+/// Arguments of `raylab chart`.
+#[derive(Debug, clap::Args)]
+pub struct ChartArgs {
+    /// The scene file.
+    pub scene: PathBuf,
+    /// A converged linear EXR of the scene at its own size; without one,
+    /// raylab path-traces its own reference for 4 × `--seconds` first.
+    #[arg(long, value_name = "REF.exr")]
+    pub reference: Option<PathBuf>,
+    /// The methods to compare, comma-separated.
+    #[arg(long, value_enum, value_delimiter = ',', default_values_t = [ChartMethod::Path, ChartMethod::PathLecture, ChartMethod::Whitted])]
+    pub methods: Vec<ChartMethod>,
+    /// Render time per method, in seconds.
+    #[arg(long, default_value_t = 10.0)]
+    pub seconds: f64,
+    /// Stop a method at this many samples per pixel even before `--seconds`.
+    #[arg(long, default_value_t = 65536, value_parser = clap::value_parser!(u32).range(1..))]
+    pub max_spp: u32,
+    /// Path length limit (Mitsuba's counting for `path`, bounces for `whitted`).
+    #[arg(long, default_value_t = 8)]
+    pub max_depth: u32,
+    /// Seed of the random samples.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Where to write: OUTPUT.csv and OUTPUT.png.
+    #[arg(short, long, default_value = "chart")]
+    pub output: PathBuf,
+}
+
+/// A rendering method `raylab chart` can compare.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ChartMethod {
+    /// Path tracing, robust intersections.
+    Path,
+    /// Path tracing with the lecture's sphere and triangle formulas.
+    PathLecture,
+    /// Whitted ray tracing, robust intersections.
+    Whitted,
+    /// Whitted ray tracing with the lecture's formulas.
+    WhittedLecture,
+}
+
+impl ChartMethod {
+    /// The name on the command line, in the CSV and in the legend.
+    pub fn name(self) -> &'static str {
+        match self {
+            ChartMethod::Path => "path",
+            ChartMethod::PathLecture => "path-lecture",
+            ChartMethod::Whitted => "whitted",
+            ChartMethod::WhittedLecture => "whitted-lecture",
+        }
+    }
 }
 
 /// Arguments of `raylab inspect`.
@@ -62,7 +118,12 @@ pub struct SceneArgs {
     /// Intersection formulas for spheres and triangles.
     #[arg(long, value_enum, default_value_t = MethodArg::Robust)]
     pub method: MethodArg,
-    /// Maximum reflection/refraction depth.
+    /// Which integrator estimates each pixel's radiance.
+    #[arg(long, value_enum, default_value_t = IntegratorArg::Whitted)]
+    pub integrator: IntegratorArg,
+    /// whitted: the most reflection/refraction bounces after the first hit;
+    /// path: the longest path in segments, counted as Mitsuba counts its
+    /// max_depth (1 = emitters seen directly, 2 = direct lighting).
     #[arg(long, default_value_t = 8)]
     pub max_depth: u32,
 }
@@ -123,6 +184,10 @@ pub struct RenderArgs {
     /// diagnostic of the passes (variance, cost).
     #[arg(long, value_enum, default_value_t = AovArg::Color)]
     pub aov: AovArg,
+    /// A linear EXR of the same scene and size: print the render's relative
+    /// MSE and RMSE against it (colour only).
+    #[arg(long, value_name = "REF.exr")]
+    pub reference: Option<PathBuf>,
 }
 
 /// `--method`.
@@ -139,6 +204,24 @@ impl From<MethodArg> for renderer::Method {
         match arg {
             MethodArg::Lecture => renderer::Method::Lecture,
             MethodArg::Robust => renderer::Method::Robust,
+        }
+    }
+}
+
+/// `--integrator`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum IntegratorArg {
+    /// Whitted's recursive ray tracer (default).
+    Whitted,
+    /// Path tracing with next-event estimation and MIS (physically based).
+    Path,
+}
+
+impl From<IntegratorArg> for renderer::integrator::Integrator {
+    fn from(arg: IntegratorArg) -> Self {
+        match arg {
+            IntegratorArg::Whitted => Self::Whitted,
+            IntegratorArg::Path => Self::Path,
         }
     }
 }

@@ -2,6 +2,8 @@
 
 mod bench_cmd;
 mod bench_export;
+mod chart_cmd;
+mod chart_plot;
 mod cli;
 mod gui;
 mod inspect_cmd;
@@ -77,6 +79,18 @@ fn main() -> ExitCode {
         Some(Command::Inspect(args)) => match inspect_cmd::run(&args) {
             Ok(json) => {
                 println!("{json}");
+                ExitCode::SUCCESS
+            }
+            Err(error) => {
+                eprintln!("error: {error:#}");
+                ExitCode::from(2)
+            }
+        },
+        Some(Command::Chart(args)) => match chart_cmd::run(&args) {
+            Ok(written) => {
+                for path in written {
+                    println!("wrote {}", path.display());
+                }
                 ExitCode::SUCCESS
             }
             Err(error) => {

@@ -28,6 +28,7 @@ pub fn prepare(args: &SceneArgs) -> Result<(World, RenderOptions)> {
     let world = World::from_scene(&scene)
         .map_err(|e| UserError(format!("{}: {e}", args.scene.display())))?;
     let options = RenderOptions {
+        integrator: args.integrator.into(),
         method: args.method.into(),
         max_depth: args.max_depth,
         seed: args.seed,
@@ -58,6 +59,16 @@ pub fn run(args: &RenderArgs) -> Result<Duration> {
                 );
             }
             let pixels = film.linear();
+            if let Some(path) = &args.reference {
+                let reference = renderer::reference_image::read_exr_rgb(path)?;
+                reference.check_size(path, w, h)?;
+                println!(
+                    "relMSE {:.4e}, RMSE {:.4e} against {}",
+                    renderer::metrics::rel_mse(&pixels, &reference.pixels),
+                    renderer::metrics::rmse(&pixels, &reference.pixels),
+                    path.display()
+                );
+            }
             let diagnostic = match args.aov {
                 AovArg::Variance => Some((Display::Variance, "variance")),
                 AovArg::Cost => Some((Display::Cost, "cost")),

@@ -1,6 +1,6 @@
 //! Progressive accumulation: each pass adds one jittered sample per pixel.
 
-use crate::integrator::{RenderOptions, whitted};
+use crate::integrator::{Integrator, RenderOptions, path, whitted};
 use crate::pixel_stats::{PixelStats, luminance};
 use crate::preview::PreviewSamples;
 use crate::sampler::Sampler;
@@ -16,12 +16,17 @@ const BAND_ROWS: usize = 4;
 /// jittered point (i + x, j + y) on the view window, seeded from
 /// (seed, pixel, sample) alone, so it can be re-traced exactly at any time.
 pub fn sample_pixel(world: &World, options: &RenderOptions, i: u32, j: u32, sample: u32) -> Vec3 {
-    let ray = world.camera.ray(i, j, sample_offset(options, i, j, sample));
-    whitted(world, &ray, options)
+    let mut sampler = Sampler::for_sample(options.seed, i, j, sample);
+    let ray = world.camera.ray(i, j, sampler.next_2d());
+    match options.integrator {
+        Integrator::Whitted => whitted(world, &ray, options),
+        Integrator::Path => path(world, &ray, options, &mut sampler),
+    }
 }
 
 /// (x, y) in [0, 1)², where sample `sample` of pixel (i, j) passes through
-/// the pixel: the jitter replacing the lecture's (½, ½) in P_ij.
+/// the pixel: the jitter replacing the lecture's (½, ½) in P_ij (the first
+/// two numbers of the sample's stream, as [`sample_pixel`] draws them).
 pub fn sample_offset(options: &RenderOptions, i: u32, j: u32, sample: u32) -> Vec2 {
     Sampler::for_sample(options.seed, i, j, sample).next_2d()
 }

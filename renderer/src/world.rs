@@ -4,6 +4,7 @@
 use crate::accel::{Aabb, SceneBvh};
 use crate::blas_cache;
 use crate::camera::{Camera, CameraError};
+use crate::emitters::Emitters;
 use crate::light::Light;
 use crate::placed_mesh::PlacedMesh;
 use crate::ray::Ray;
@@ -91,8 +92,12 @@ pub struct World {
     /// Point and directional lights (ambient ones are folded into `ambient`).
     pub lights: Vec<Light>,
     /// Total ambient radiance: lights every surface unshadowed, and is what
-    /// rays escaping the scene see.
+    /// rays escaping the scene see (Whitted only; the path tracer has no ambient term).
     pub ambient: Vec3,
+    /// Radiance of the constant environment (`<sky>`), zero without one.
+    pub sky: Vec3,
+    /// Every emissive surface, as area lights.
+    pub emitters: Emitters,
     /// The top level's items, in BVH item order.
     items: Vec<Item>,
     /// The top level over every bounded item.
@@ -159,8 +164,19 @@ impl World {
                 None => unbounded.push(id),
             }
         }
+        let emissive_shapes: Vec<_> = objects
+            .iter()
+            .zip(&resolved.objects)
+            .map(|(object, resolved)| match object {
+                Object::Shape(shape) => (Some(*shape), resolved.material.emission),
+                Object::Model { .. } => (None, Vec3::ZERO),
+            })
+            .collect();
+        let emitters = Emitters::new(&emissive_shapes, &meshes);
         Ok(World {
             camera,
+            emitters,
+            sky: resolved.sky,
             objects,
             materials: resolved.objects.iter().map(|o| o.material).collect(),
             names: resolved.objects.iter().map(|o| o.name.clone()).collect(),

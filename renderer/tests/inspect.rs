@@ -137,6 +137,7 @@ fn contributions_of_all_rays_add_up_to_the_sample_colour_for_both_methods() {
                     method,
                     max_depth,
                     seed: 3,
+                    ..Default::default()
                 };
                 for j in 0..20 {
                     for i in 0..32 {

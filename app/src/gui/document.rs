@@ -2,6 +2,7 @@
 //! belong to, what was last saved, and the undo history.
 
 use super::history::History;
+use renderer::integrator::Integrator;
 use renderer::{Method, RenderOptions};
 use scene::Scene;
 use std::path::{Path, PathBuf};
@@ -9,6 +10,8 @@ use std::path::{Path, PathBuf};
 /// Integrator settings the user edits alongside the scene (undoable, not saved in the file).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RenderSettings {
+    /// Whitted or path tracing.
+    pub integrator: Integrator,
     /// Lecture or robust intersection formulas.
     pub method: Method,
     /// Maximum reflection/refraction bounces.
@@ -20,6 +23,7 @@ pub struct RenderSettings {
 impl Default for RenderSettings {
     fn default() -> Self {
         Self {
+            integrator: Integrator::Whitted,
             method: Method::Robust,
             max_depth: RenderOptions::default().max_depth,
             target_spp: Some(64),
@@ -31,6 +35,7 @@ impl RenderSettings {
     /// The integrator options these settings ask for.
     pub fn options(&self) -> RenderOptions {
         RenderOptions {
+            integrator: self.integrator,
             method: self.method,
             max_depth: self.max_depth,
             ..RenderOptions::default()

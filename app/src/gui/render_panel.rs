@@ -1,8 +1,9 @@
-//! Integrator settings: intersection method, bounce depth, samples per pixel.
+//! Integrator settings: integrator, intersection method, depth, samples per pixel.
 
 use super::document::RenderSettings;
 use super::widgets;
 use renderer::Method;
+use renderer::integrator::Integrator;
 
 /// Samples per pixel offered when the user turns a target back on.
 const DEFAULT_TARGET: u32 = 64;
@@ -14,6 +15,24 @@ pub fn show(ui: &mut egui::Ui, settings: &mut RenderSettings) -> bool {
     egui::Grid::new("render-settings")
         .num_columns(2)
         .show(ui, |ui| {
+            ui.label("Integrator");
+            ui.horizontal(|ui| {
+                changed |= ui
+                    .radio_value(&mut settings.integrator, Integrator::Whitted, "Whitted")
+                    .on_hover_text(
+                        "point and directional lights, ambient light, perfect mirrors and glass",
+                    )
+                    .changed();
+                changed |= ui
+                    .radio_value(&mut settings.integrator, Integrator::Path, "path")
+                    .on_hover_text(
+                        "physically based path tracing: emissive shapes, the sky, indirect light; \
+                         no ambient term",
+                    )
+                    .changed();
+            });
+            ui.end_row();
+
             ui.label("Intersections");
             ui.horizontal(|ui| {
                 changed |= ui
@@ -29,11 +48,19 @@ pub fn show(ui: &mut egui::Ui, settings: &mut RenderSettings) -> bool {
 
             ui.label("Max depth");
             changed |= ui
-                .add(
-                    widgets::drag(&mut settings.max_depth)
-                        .range(0..=64)
-                        .prefix("bounces "),
-                )
+                .add(widgets::drag(&mut settings.max_depth).range(0..=64).prefix(
+                    match settings.integrator {
+                        Integrator::Whitted => "bounces ",
+                        Integrator::Path => "path segments ",
+                    },
+                ))
+                .on_hover_text(match settings.integrator {
+                    Integrator::Whitted => "reflection/refraction bounces after the first hit",
+                    Integrator::Path => {
+                        "the longest path, counted as Mitsuba counts max_depth: \
+                         1 = emitters seen directly, 2 = direct lighting"
+                    }
+                })
                 .changed();
             ui.end_row();
 

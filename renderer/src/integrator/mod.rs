@@ -1,19 +1,51 @@
 //! Integrators: how a ray's radiance is estimated.
 
+pub mod path;
 pub mod recorder;
 pub mod whitted;
 
+pub use path::path;
 pub use recorder::{NoRecorder, Note, RayKind, Recorder};
 pub use whitted::{whitted, whitted_recorded};
 
 use crate::shapes::Method;
 
+/// Which estimator of a ray's radiance renders the image.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Integrator {
+    /// Whitted's recursive ray tracer: direct light from point and
+    /// directional lights, ambient light, perfect reflection and refraction.
+    #[default]
+    Whitted,
+    /// Unbiased path tracing with next-event estimation and multiple
+    /// importance sampling, as Mitsuba 3's `path`.
+    Path,
+}
+
+impl Integrator {
+    /// Both integrators, in the order the interface lists them.
+    pub const ALL: [Integrator; 2] = [Integrator::Whitted, Integrator::Path];
+
+    /// The name used on the command line and in the interface.
+    pub fn name(self) -> &'static str {
+        match self {
+            Integrator::Whitted => "whitted",
+            Integrator::Path => "path",
+        }
+    }
+}
+
 /// Settings shared by every integrator.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RenderOptions {
+    /// Which estimator renders the image.
+    pub integrator: Integrator,
     /// Which intersection formulas to use.
     pub method: Method,
-    /// Maximum number of reflection/refraction bounces after the primary hit.
+    /// Whitted: the most reflection/refraction bounces after the primary hit.
+    /// Path: the longest path in segments, counted as Mitsuba counts
+    /// `max_depth` (1 = emitters seen directly, 2 = direct lighting).
     pub max_depth: u32,
     /// Seed of every random choice; with (pixel, sample index) it fixes a sample.
     pub seed: u64,
@@ -22,6 +54,7 @@ pub struct RenderOptions {
 impl Default for RenderOptions {
     fn default() -> Self {
         Self {
+            integrator: Integrator::Whitted,
             method: Method::Robust,
             max_depth: 8,
             seed: 0,

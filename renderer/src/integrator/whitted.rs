@@ -43,8 +43,9 @@ fn trace<R: Recorder>(
     node: R::Node,
 ) -> Vec3 {
     let Some(hit) = world.intersect(ray, options.method) else {
-        rec.miss(node, world.ambient);
-        return world.ambient;
+        let background = world.ambient + world.sky;
+        rec.miss(node, background);
+        return background;
     };
     let surface = world.surface(ray, hit);
     let material = &world.material(hit);

@@ -1,13 +1,14 @@
 //! The capped cone: the side's quadratic H²(x² + z²) = R²(H − y)² in object
 //! space, restricted to the nappe 0 ≤ y ≤ H, plus the base disk.
 
-use super::Surface;
 use super::bound::BoundingSphere;
 use super::cylinder::shift_near;
 use super::quadratic::solve_quadratic;
+use super::{AreaSample, Surface};
 use crate::frame::Frame;
 use crate::ray::Ray;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
+use std::f32::consts::PI;
 
 /// A cone on the base disk of radius R (local y = 0), apex at local (0, H, 0),
 /// capped at its base.
@@ -130,6 +131,44 @@ impl Cone {
             (Vec3::new(p.x * scale, 0.0, p.z * scale), -Vec3::Y)
         };
         self.frame.surface_to_world(point, normal)
+    }
+}
+
+impl Cone {
+    /// The surface area: the lateral surface and the base disk.
+    pub fn area(&self) -> f32 {
+        let r = self.radius;
+        PI * r * (r + r.hypot(self.height))
+    }
+
+    /// A point drawn uniformly over the lateral surface and the base, with
+    /// its outward normal.
+    pub fn sample_area(&self, u: Vec2) -> Option<AreaSample> {
+        let (r, h) = (self.radius, self.height);
+        let area = self.area();
+        if !(area > 0.0) {
+            return None;
+        }
+        let slant = r.hypot(h);
+        let lateral = slant / (slant + r);
+        let (p, n) = if u.x < lateral {
+            // Distance from the apex ∝ √u: area grows linearly with it.
+            let s = (u.x / lateral).sqrt();
+            let phi = 2.0 * PI * u.y;
+            let radial = Vec3::new(phi.cos(), 0.0, phi.sin());
+            let n = (h * radial + Vec3::new(0.0, r, 0.0)) / slant;
+            (r * s * radial + Vec3::new(0.0, h * (1.0 - s), 0.0), n)
+        } else {
+            let t = (u.x - lateral) / (1.0 - lateral);
+            let d = r * crate::bsdf::lambert::concentric_disk(Vec2::new(t, u.y));
+            (Vec3::new(d.x, 0.0, d.y), -Vec3::Y)
+        };
+        let s = self.frame.surface_to_world(p, n);
+        Some(AreaSample {
+            point: s.point,
+            normal: s.normal,
+            pdf_area: 1.0 / area,
+        })
     }
 }
 

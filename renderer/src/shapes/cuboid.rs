@@ -1,11 +1,11 @@
 //! The oriented box: a slab test in object space (Kay–Kajiya), written so that
 //! zero direction components and rays lying in a face plane never produce NaN.
 
-use super::Surface;
 use super::bound::BoundingSphere;
+use super::{AreaSample, Surface};
 use crate::frame::Frame;
 use crate::ray::Ray;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// An oriented box: centre, half edge lengths along its own axes, rotation.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -101,6 +101,56 @@ impl Cuboid {
         let mut normal = Vec3::ZERO;
         normal[axis] = 1.0f32.copysign(p[axis]);
         self.frame.surface_to_world(p, normal)
+    }
+}
+
+impl Cuboid {
+    /// The surface area of the six faces.
+    pub fn area(&self) -> f32 {
+        let h = self.half;
+        8.0 * (h.y * h.z + h.x * h.z + h.x * h.y)
+    }
+
+    /// A point drawn uniformly over the faces (a face in proportion to its
+    /// area, then uniformly on it), with its outward normal.
+    pub fn sample_area(&self, u: Vec2) -> Option<AreaSample> {
+        let area = self.area();
+        if !(area > 0.0) {
+            return None;
+        }
+        let h = self.half;
+        // Face pairs by axis, each pair's share of the area.
+        let pairs = [h.y * h.z, h.x * h.z, h.x * h.y];
+        let total = pairs[0] + pairs[1] + pairs[2];
+        let mut x = u.x * total;
+        let mut axis = 2;
+        for (k, &a) in pairs.iter().enumerate() {
+            if x < a || k == 2 {
+                axis = k;
+                break;
+            }
+            x -= a;
+        }
+        // x / pairs[axis] ∈ [0, 1): its lower half picks the − face.
+        let t = (x / pairs[axis]).clamp(0.0, 1.0);
+        let (sign, t) = if t < 0.5 {
+            (-1.0, 2.0 * t)
+        } else {
+            (1.0, 2.0 * t - 1.0)
+        };
+        let (a, b) = ((axis + 1) % 3, (axis + 2) % 3);
+        let mut p = Vec3::ZERO;
+        p[axis] = sign * h[axis];
+        p[a] = (2.0 * t - 1.0) * h[a];
+        p[b] = (2.0 * u.y - 1.0) * h[b];
+        let mut n = Vec3::ZERO;
+        n[axis] = sign;
+        let s = self.frame.surface_to_world(p, n);
+        Some(AreaSample {
+            point: s.point,
+            normal: s.normal,
+            pdf_area: 1.0 / area,
+        })
     }
 }
 

@@ -1,12 +1,13 @@
 //! The capped cylinder: the side's quadratic x² + z² = R² in object space,
 //! restricted to 0 ≤ y ≤ H, plus the two cap disks.
 
-use super::Surface;
 use super::bound::BoundingSphere;
 use super::quadratic::solve_quadratic;
+use super::{AreaSample, Surface};
 use crate::frame::Frame;
 use crate::ray::Ray;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
+use std::f32::consts::PI;
 
 /// A capped cylinder standing on the disk of radius R at its base point,
 /// its axis along the local +y, its top cap at local y = H.
@@ -129,6 +130,45 @@ pub(super) fn shift_near(local: &Ray, centre: Vec3) -> (f32, Vec3, Vec3) {
     };
     let shift = if shift.is_finite() { shift } else { 0.0 };
     (shift, o + shift * d, d)
+}
+
+impl Cylinder {
+    /// The surface area: the side and both caps.
+    pub fn area(&self) -> f32 {
+        let r = self.radius;
+        2.0 * PI * r * (self.height + r)
+    }
+
+    /// A point drawn uniformly over the side and caps, with its outward normal.
+    pub fn sample_area(&self, u: Vec2) -> Option<AreaSample> {
+        let (r, h) = (self.radius, self.height);
+        let area = self.area();
+        if !(area > 0.0) {
+            return None;
+        }
+        let side = h / (h + r);
+        let (p, n) = if u.x < side {
+            let phi = 2.0 * PI * u.y;
+            let radial = Vec3::new(phi.cos(), 0.0, phi.sin());
+            (r * radial + Vec3::new(0.0, h * (u.x / side), 0.0), radial)
+        } else {
+            // The caps: the lower half of the rest is the bottom one.
+            let t = (u.x - side) / (1.0 - side);
+            let (t, y, n) = if t < 0.5 {
+                (2.0 * t, 0.0, -Vec3::Y)
+            } else {
+                (2.0 * t - 1.0, h, Vec3::Y)
+            };
+            let d = r * crate::bsdf::lambert::concentric_disk(Vec2::new(t, u.y));
+            (Vec3::new(d.x, y, d.y), n)
+        };
+        let s = self.frame.surface_to_world(p, n);
+        Some(AreaSample {
+            point: s.point,
+            normal: s.normal,
+            pdf_area: 1.0 / area,
+        })
+    }
 }
 
 #[cfg(test)]

@@ -51,6 +51,17 @@ pub struct Surface {
     pub normal: Vec3,
 }
 
+/// A point drawn on a shape's surface, for sampling it as a light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AreaSample {
+    /// The point on the surface.
+    pub point: Vec3,
+    /// The unit outward (for triangles: (t1 − t0) × (t2 − t0)) normal there.
+    pub normal: Vec3,
+    /// The density of drawing it, per unit area.
+    pub pdf_area: f32,
+}
+
 /// Every primitive raylab can render.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Shape {
@@ -131,6 +142,75 @@ impl Shape {
             Shape::Cone(s) => s.intersect(ray),
             Shape::Torus(s) => s.intersect(ray),
             Shape::Plane(s) => s.intersect(ray),
+        }
+    }
+
+    /// The surface area (+∞ for a plane).
+    pub fn area(&self) -> f32 {
+        match self {
+            Shape::Sphere(s) => 4.0 * std::f32::consts::PI * s.radius * s.radius,
+            Shape::Triangle(s) => 0.5 * (s.t1 - s.t0).cross(s.t2 - s.t0).length(),
+            Shape::Box(s) => s.area(),
+            Shape::Cylinder(s) => s.area(),
+            Shape::Cone(s) => s.area(),
+            Shape::Torus(s) => s.area(),
+            Shape::Plane(_) => f32::INFINITY,
+        }
+    }
+
+    /// A point drawn on the surface from `u` ∈ [0, 1)², with its density per
+    /// unit area: uniform, except on the torus (see [`Torus::sample_area`]);
+    /// `None` for a plane (infinite) and a shape of no area.
+    pub fn sample_area(&self, u: glam::Vec2) -> Option<AreaSample> {
+        match self {
+            Shape::Sphere(s) => {
+                let area = 4.0 * std::f32::consts::PI * s.radius * s.radius;
+                let z = 1.0 - 2.0 * u.x;
+                let r = (1.0 - z * z).max(0.0).sqrt();
+                let phi = std::f32::consts::TAU * u.y;
+                let normal = Vec3::new(r * phi.cos(), r * phi.sin(), z);
+                (area > 0.0).then(|| AreaSample {
+                    point: s.center + s.radius * normal,
+                    normal,
+                    pdf_area: 1.0 / area,
+                })
+            }
+            Shape::Triangle(s) => {
+                let area = 0.5 * (s.t1 - s.t0).cross(s.t2 - s.t0).length();
+                if !(area > 0.0) {
+                    return None;
+                }
+                // Uniform barycentrics by folding the unit square.
+                let (b, c) = if u.x + u.y > 1.0 {
+                    (1.0 - u.x, 1.0 - u.y)
+                } else {
+                    (u.x, u.y)
+                };
+                let point = s.t0 + b * (s.t1 - s.t0) + c * (s.t2 - s.t0);
+                Some(AreaSample {
+                    point,
+                    normal: (s.t1 - s.t0).cross(s.t2 - s.t0).normalize(),
+                    pdf_area: 1.0 / area,
+                })
+            }
+            Shape::Box(s) => s.sample_area(u),
+            Shape::Cylinder(s) => s.sample_area(u),
+            Shape::Cone(s) => s.sample_area(u),
+            Shape::Torus(s) => s.sample_area(u),
+            Shape::Plane(_) => None,
+        }
+    }
+
+    /// The density per unit area with which [`Shape::sample_area`] draws
+    /// `point` (a point on the surface).
+    pub fn pdf_area(&self, point: Vec3) -> f32 {
+        match self {
+            Shape::Torus(s) => s.pdf_area(point),
+            Shape::Plane(_) => 0.0,
+            other => {
+                let area = other.area();
+                if area > 0.0 { 1.0 / area } else { 0.0 }
+            }
         }
     }
 

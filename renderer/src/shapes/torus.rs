@@ -1,10 +1,10 @@
 //! The torus (√(x² + z²) − R)² + y² = r² in object space: a quartic in α,
 //! formed in f64 from an origin first moved onto the bounding sphere.
 
-use super::Surface;
+use super::{AreaSample, Surface};
 use crate::frame::Frame;
 use crate::ray::Ray;
-use glam::{DVec3, Vec3};
+use glam::{DVec3, Vec2, Vec3};
 
 /// A torus around its centre in the local xz-plane: major radius R (centre
 /// to tube centre), minor radius r (the tube's).
@@ -121,6 +121,46 @@ impl Torus {
         let c = self.major * radial;
         let normal = (p - c).try_normalize().unwrap_or(Vec3::Y);
         self.frame.surface_to_world(c + self.minor * normal, normal)
+    }
+}
+
+impl Torus {
+    /// The surface area 4π² R r.
+    pub fn area(&self) -> f32 {
+        4.0 * std::f32::consts::PI * std::f32::consts::PI * self.major * self.minor
+    }
+
+    /// A point drawn with the angles around the axis (φ) and around the tube
+    /// (ψ) uniform: area density 1 / (4π² r (R + r cos ψ)), not uniform.
+    pub fn sample_area(&self, u: Vec2) -> Option<AreaSample> {
+        let (big, small) = (self.major, self.minor);
+        if !(self.area() > 0.0) {
+            return None;
+        }
+        let tau = 2.0 * std::f32::consts::PI;
+        let (phi, psi) = (tau * u.x, tau * u.y);
+        let radial = Vec3::new(phi.cos(), 0.0, phi.sin());
+        let n = psi.cos() * radial + psi.sin() * Vec3::Y;
+        let p = big * radial + small * n;
+        let s = self.frame.surface_to_world(p, n);
+        Some(AreaSample {
+            point: s.point,
+            normal: s.normal,
+            pdf_area: self.pdf_area(s.point),
+        })
+    }
+
+    /// The area density of [`Torus::sample_area`] at a point on the torus.
+    pub fn pdf_area(&self, point: Vec3) -> f32 {
+        let p = self
+            .frame
+            .ray_to_object(&crate::ray::Ray::new(point, Vec3::Y))
+            .origin;
+        let rho = (p.x * p.x + p.z * p.z).sqrt();
+        // R + r cos ψ is the distance from the axis.
+        let tau = 2.0 * std::f32::consts::PI;
+        let d = tau * tau * self.minor * rho.max(self.major - self.minor).max(f32::MIN_POSITIVE);
+        1.0 / d
     }
 }
 

@@ -1,0 +1,134 @@
+//! `raylab chart`: speed against accuracy. Renders a scene progressively
+//! with each method, records after every pass the time and the error against
+//! a reference, and writes the curves as CSV and as a log–log PNG chart.
+
+use crate::cli::{ChartArgs, ChartMethod};
+use crate::render_cmd::UserError;
+use anyhow::{Context, Result};
+use renderer::convergence::{Budget, ConvergencePoint, converge, time_to_reach};
+use renderer::integrator::Integrator;
+use renderer::reference_image::read_exr_rgb;
+use renderer::{Film, Method, RenderOptions, World};
+use std::io::Write;
+use std::path::PathBuf;
+use std::time::Duration;
+
+/// One method's curve.
+pub struct Curve {
+    /// The method's name as the command line spells it.
+    pub name: &'static str,
+    /// Its passes.
+    pub points: Vec<ConvergencePoint>,
+}
+
+/// The options a method renders with.
+fn options_of(method: ChartMethod, max_depth: u32, seed: u64) -> RenderOptions {
+    let (integrator, intersections) = match method {
+        ChartMethod::Path => (Integrator::Path, Method::Robust),
+        ChartMethod::PathLecture => (Integrator::Path, Method::Lecture),
+        ChartMethod::Whitted => (Integrator::Whitted, Method::Robust),
+        ChartMethod::WhittedLecture => (Integrator::Whitted, Method::Lecture),
+    };
+    RenderOptions {
+        integrator,
+        method: intersections,
+        max_depth,
+        seed,
+    }
+}
+
+/// Runs the command; returns the paths written.
+pub fn run(args: &ChartArgs) -> Result<Vec<PathBuf>> {
+    let scene = scene::read_any(&args.scene).map_err(|e| UserError(e.to_string()))?;
+    let world = World::from_scene(&scene)
+        .map_err(|e| UserError(format!("{}: {e}", args.scene.display())))?;
+    let (w, h) = (world.camera.w, world.camera.h);
+    let reference = match &args.reference {
+        Some(path) => {
+            let image = read_exr_rgb(path).map_err(|e| UserError(e.to_string()))?;
+            image
+                .check_size(path, w, h)
+                .map_err(|e| UserError(e.to_string()))?;
+            eprintln!("reference: {}", path.display());
+            image.pixels
+        }
+        None => {
+            let seconds = 4.0 * args.seconds;
+            eprintln!(
+                "no --reference: rendering raylab's own path-traced reference for {seconds:.0} s"
+            );
+            own_reference(&world, args.max_depth, seconds)
+        }
+    };
+    let budget = Budget {
+        time: Duration::from_secs_f64(args.seconds),
+        max_spp: args.max_spp,
+    };
+    let mut curves = Vec::new();
+    for &method in &args.methods {
+        let name = method.name();
+        let options = options_of(method, args.max_depth, args.seed);
+        let (points, _) = converge(&world, &options, &reference, budget);
+        if let Some(last) = points.last() {
+            let reach = |target| {
+                time_to_reach(&points, target)
+                    .map_or_else(|| "not reached".to_owned(), |t| format!("{t:.2} s"))
+            };
+            println!(
+                "{name:>16}: {} spp in {:.2} s, relMSE {:.3e}; to 1e-2: {}, to 1e-3: {}",
+                last.spp,
+                last.seconds,
+                last.rel_mse,
+                reach(1e-2),
+                reach(1e-3)
+            );
+        }
+        curves.push(Curve { name, points });
+    }
+    let csv = args.output.with_extension("csv");
+    let png = args.output.with_extension("png");
+    write_csv(&csv, &curves)?;
+    let title = format!(
+        "{} ({w}×{h}): error against time",
+        args.scene.file_name().map_or_else(
+            || args.scene.display().to_string(),
+            |n| n.to_string_lossy().into()
+        )
+    );
+    crate::chart_plot::write_chart(&png, &title, &curves)?;
+    Ok(vec![csv, png])
+}
+
+/// A long path-traced render to measure against when no reference is given.
+fn own_reference(world: &World, max_depth: u32, seconds: f64) -> Vec<glam::Vec3> {
+    let options = RenderOptions {
+        integrator: Integrator::Path,
+        max_depth,
+        // A seed no charted method uses, so that its noise is independent.
+        seed: u64::MAX,
+        ..Default::default()
+    };
+    let mut film = Film::new(world.camera.w, world.camera.h);
+    let start = std::time::Instant::now();
+    while start.elapsed().as_secs_f64() < seconds {
+        film.add_pass(world, &options);
+    }
+    film.linear()
+}
+
+/// One row per method and pass: method, spp, seconds, rel_mse, rmse.
+fn write_csv(path: &std::path::Path, curves: &[Curve]) -> Result<()> {
+    let mut out = String::from("method,spp,seconds,rel_mse,rmse\n");
+    for curve in curves {
+        for p in &curve.points {
+            out.push_str(&format!(
+                "{},{},{:.6},{:.6e},{:.6e}\n",
+                curve.name, p.spp, p.seconds, p.rel_mse, p.rmse
+            ));
+        }
+    }
+    let mut file =
+        std::fs::File::create(path).with_context(|| format!("cannot write {}", path.display()))?;
+    file.write_all(out.as_bytes())
+        .with_context(|| format!("cannot write {}", path.display()))
+}

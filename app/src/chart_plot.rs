@@ -1,0 +1,112 @@
+//! Drawing speed-against-accuracy curves as a log–log PNG chart (plotters,
+//! with egui's own Ubuntu font so that no system font is needed).
+
+use crate::chart_cmd::Curve;
+use anyhow::{Result, anyhow};
+use plotters::prelude::*;
+use std::path::Path;
+use std::sync::Once;
+
+/// Chart size in pixels.
+const SIZE: (u32, u32) = (1024, 680);
+
+/// Line colours, distinct on white (Tableau 10's first colours).
+const COLORS: [RGBColor; 6] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(148, 103, 189),
+    RGBColor(255, 127, 14),
+    RGBColor(140, 86, 75),
+];
+
+/// Registers the chart font once per process.
+fn register_font() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        // The font is egui's; failing to parse it would be a bug in the build.
+        if plotters::style::register_font(
+            "sans-serif",
+            FontStyle::Normal,
+            epaint_default_fonts::UBUNTU_LIGHT,
+        )
+        .is_err()
+        {
+            eprintln!("warning: the chart font could not be loaded; labels may be missing");
+        }
+    });
+}
+
+/// The smallest and largest positive values, widened to whole decades.
+fn decades(values: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
+    let (lo, hi) = values
+        .filter(|v| v.is_finite() && *v > 0.0)
+        .fold((f64::INFINITY, 0.0f64), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
+    (hi > 0.0).then(|| {
+        (
+            10f64.powf(lo.log10().floor()),
+            10f64.powf(hi.log10().ceil()),
+        )
+    })
+}
+
+/// Writes relative MSE against seconds, one line per curve, to `path`.
+pub fn write_chart(path: &Path, title: &str, curves: &[Curve]) -> Result<()> {
+    register_font();
+    let points = || curves.iter().flat_map(|c| c.points.iter());
+    let (x0, x1) = decades(points().map(|p| p.seconds)).unwrap_or((1e-2, 1.0));
+    let (y0, y1) = decades(points().map(|p| p.rel_mse)).unwrap_or((1e-4, 1.0));
+    let plot_error =
+        |e: &dyn std::fmt::Display| anyhow!("{}: cannot draw the chart: {e}", path.display());
+    let root = BitMapBackend::new(path, SIZE).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| plot_error(&e))?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 24))
+        .margin(20)
+        .x_label_area_size(50)
+        .y_label_area_size(80)
+        .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+        .map_err(|e| plot_error(&e))?;
+    chart
+        .configure_mesh()
+        .x_desc("render time (s)")
+        .y_desc("relative MSE against the reference")
+        .label_style(("sans-serif", 16))
+        .x_label_formatter(&|x| format!("{x}"))
+        .y_label_formatter(&|y| format!("{y:.0e}"))
+        .draw()
+        .map_err(|e| plot_error(&e))?;
+    for (k, curve) in curves.iter().enumerate() {
+        let color = COLORS[k % COLORS.len()];
+        chart
+            .draw_series(LineSeries::new(
+                curve.points.iter().map(|p| (p.seconds, p.rel_mse)),
+                color.stroke_width(2),
+            ))
+            .map_err(|e| plot_error(&e))?
+            .label(curve.name)
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 24, y)], color.stroke_width(2))
+            });
+        chart
+            .draw_series(
+                curve
+                    .points
+                    .iter()
+                    .map(|p| Circle::new((p.seconds, p.rel_mse), 2, color.filled())),
+            )
+            .map_err(|e| plot_error(&e))?;
+    }
+    chart
+        .configure_series_labels()
+        .label_font(("sans-serif", 18))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()
+        .map_err(|e| plot_error(&e))?;
+    root.present().map_err(|e| plot_error(&e))?;
+    Ok(())
+}

@@ -1,0 +1,182 @@
+//! Unbiased path tracing with next-event estimation and multiple importance
+//! sampling (power heuristic), as Mitsuba 3's `path` integrator does it, so
+//! that a render can be set up exactly like a Mitsuba reference:
+//! - `max_depth` counts path segments as Mitsuba does: 1 = emitters seen
+//!   directly, 2 = direct lighting, and so on;
+//! - Russian roulette from the [`RR_DEPTH`]th scattering event on, keeping a
+//!   path with probability min(0.95, max throughput channel), the radiance
+//!   scaling of refraction divided out;
+//! - emitters seen by a BSDF-sampled ray are weighted against the chance that
+//!   light sampling finds them; point and directional lights (delta lights)
+//!   are each sampled at every smooth vertex;
+//! - no ambient term: only emitters, lights and the `<sky>` bring light.
+
+use super::RenderOptions;
+use super::whitted::albedo_at;
+use crate::bsdf::{Bsdf, ShadingFrame};
+use crate::offset::offset_ray_origin;
+use crate::ray::Ray;
+use crate::sampler::Sampler;
+use crate::world::World;
+use glam::Vec3;
+
+/// The first scattering event counted by Russian roulette (Mitsuba's `rr_depth`).
+pub const RR_DEPTH: u32 = 5;
+
+/// A shadow ray toward an area light stops this fraction short of the
+/// sampled point, so that it cannot hit the emitter itself.
+const SHADOW_SHORTENING: f32 = 1.0e-4;
+
+/// The power heuristic (β = 2): the weight of a sample drawn with density
+/// `own` where another strategy would have drawn it with density `other`.
+#[inline]
+pub fn power_heuristic(own: f32, other: f32) -> f32 {
+    let (a, b) = (own * own, other * other);
+    if a + b > 0.0 && a.is_finite() {
+        a / (a + b)
+    } else if own > 0.0 {
+        1.0
+    } else {
+        0.0
+    }
+}
+
+/// The radiance arriving along the camera ray `ray`, one path traced with
+/// the random numbers of `sampler`.
+pub fn path(world: &World, ray: &Ray, options: &RenderOptions, sampler: &mut Sampler) -> Vec3 {
+    let mut radiance = Vec3::ZERO;
+    let mut throughput = Vec3::ONE;
+    let mut ray = *ray;
+    // Where the ray started and the BSDF density it was drawn with; `None`
+    // for the camera ray and after a delta lobe (no light sample competes).
+    let mut previous: Option<(Vec3, f32)> = None;
+    // Product of refraction's radiance scaling, divided out for roulette.
+    let mut eta_scale = 1.0f32;
+    let mut depth = 0u32;
+    loop {
+        let Some(hit) = world.intersect(&ray, options.method) else {
+            radiance += throughput * world.sky;
+            break;
+        };
+        let surface = world.surface(&ray, hit);
+        let material = world.material(hit);
+        let front = ray.dir.dot(surface.normal) < 0.0;
+        if front && material.emission != Vec3::ZERO {
+            let weight = match (previous, world.emitters.index_of(&hit)) {
+                (Some((from, bsdf_pdf)), Some(index)) => power_heuristic(
+                    bsdf_pdf,
+                    world
+                        .emitters
+                        .pdf(from, index, surface.point, surface.normal),
+                ),
+                _ => 1.0,
+            };
+            radiance += throughput * weight * material.emission;
+        }
+        if depth + 1 >= options.max_depth {
+            break;
+        }
+        let geometric = if front {
+            surface.normal
+        } else {
+            -surface.normal
+        };
+        let shading = world.shading_normal(hit, &surface);
+        let frame = ShadingFrame::new(if front { shading } else { -shading });
+        let wo = frame.to_local(-ray.dir);
+        let bsdf = Bsdf::new(&material, albedo_at(&material, surface.point), front);
+        let at = Vertex {
+            point: surface.point,
+            geometric,
+            frame,
+            wo,
+            bsdf,
+        };
+        if bsdf.has_smooth() {
+            radiance += throughput * direct_light(world, options, &at, sampler);
+        }
+        let u_lobe = sampler.next_f32();
+        let Some(sample) = bsdf.sample(wo, u_lobe, sampler.next_2d()) else {
+            break;
+        };
+        let wi = frame.to_world(sample.wi);
+        throughput *= sample.weight;
+        eta_scale *= sample.radiance_scale;
+        previous = (!sample.delta).then_some((surface.point, sample.pdf));
+        let side = if wi.dot(geometric) >= 0.0 {
+            geometric
+        } else {
+            -geometric
+        };
+        ray = Ray::new(offset_ray_origin(surface.point, side), wi);
+        depth += 1;
+        if depth >= RR_DEPTH {
+            let keep = (throughput.max_element() / eta_scale).min(0.95);
+            if !(sampler.next_f32() < keep) {
+                break;
+            }
+            throughput /= keep;
+        }
+        if !(throughput.max_element() > 0.0) {
+            break;
+        }
+    }
+    radiance
+}
+
+/// A scattering vertex as light sampling needs it.
+struct Vertex {
+    point: Vec3,
+    /// The unit geometric normal on the side the ray came from.
+    geometric: Vec3,
+    frame: ShadingFrame,
+    /// Toward the previous vertex, local.
+    wo: Vec3,
+    bsdf: Bsdf,
+}
+
+/// Light reflected at `at` straight from a light: every point and
+/// directional light, plus one point drawn on the emitters, weighted by the
+/// power heuristic against BSDF sampling.
+fn direct_light(
+    world: &World,
+    options: &RenderOptions,
+    at: &Vertex,
+    sampler: &mut Sampler,
+) -> Vec3 {
+    let mut sum = Vec3::ZERO;
+    let origin = offset_ray_origin(at.point, at.geometric);
+    for light in &world.lights {
+        let Some(s) = light.sample(at.point) else {
+            continue;
+        };
+        if s.to_light.dot(at.geometric) <= 0.0 {
+            continue;
+        }
+        let f = at.bsdf.eval(at.wo, at.frame.to_local(s.to_light));
+        if f == Vec3::ZERO {
+            continue;
+        }
+        let shadow = Ray::new(origin, s.to_light).with_t_max(s.distance);
+        if !world.occluded(&shadow, options.method) {
+            sum += f * s.irradiance;
+        }
+    }
+    let u_select = sampler.next_f32();
+    let u = sampler.next_2d();
+    if let Some(s) = world.emitters.sample(at.point, u_select, u)
+        && s.to_light.dot(at.geometric) > 0.0
+    {
+        let wi = at.frame.to_local(s.to_light);
+        let f = at.bsdf.eval(at.wo, wi);
+        if f != Vec3::ZERO {
+            let shadow =
+                Ray::new(origin, s.to_light).with_t_max(s.distance * (1.0 - SHADOW_SHORTENING));
+            if !world.occluded(&shadow, options.method) {
+                let weight = power_heuristic(s.pdf, at.bsdf.pdf(at.wo, wi));
+                sum += f * s.radiance * (weight / s.pdf);
+            }
+        }
+    }
+    sum
+}
