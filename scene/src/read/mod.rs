@@ -147,16 +147,7 @@ impl Document<'_> {
         let tag = start.name().0;
         match tag {
             "camera" => {
-                if let Some(first) = self.camera_at {
-                    return Err(loc.error(
-                        at,
-                        format!(
-                            "a scene has at most one <camera>; the first is at {}",
-                            loc.describe(first)
-                        ),
-                    ));
-                }
-                self.camera_at = Some(at);
+                only_one(loc, "camera", &mut self.camera_at, at)?;
                 let el = Element::parse(start, loc, &CAMERA_ATTRS)?;
                 self.scene.camera = camera::camera(&el)?;
             }
@@ -165,16 +156,7 @@ impl Document<'_> {
                 self.scene.lights.push(camera::light(&el)?);
             }
             "sky" => {
-                if let Some(first) = self.sky_at {
-                    return Err(loc.error(
-                        at,
-                        format!(
-                            "a scene has at most one <sky>; the first is at {}",
-                            loc.describe(first)
-                        ),
-                    ));
-                }
-                self.sky_at = Some(at);
+                only_one(loc, "sky", &mut self.sky_at, at)?;
                 let el = Element::parse(start, loc, &SKY_ATTRS)?;
                 self.scene.sky = Some(camera::sky(&el)?);
             }
@@ -317,6 +299,27 @@ impl Document<'_> {
 }
 
 /// `; did you mean <x>?` (`open` is `<` or `</`) for a misspelt element name.
+/// Records that the element `<tag>` a scene may hold once starts at `at`;
+/// an error naming where the first one is when `first` already holds one.
+fn only_one(
+    loc: &Locator,
+    tag: &str,
+    first: &mut Option<usize>,
+    at: usize,
+) -> Result<(), SceneError> {
+    if let Some(first) = *first {
+        return Err(loc.error(
+            at,
+            format!(
+                "a scene has at most one <{tag}>; the first is at {}",
+                loc.describe(first)
+            ),
+        ));
+    }
+    *first = Some(at);
+    Ok(())
+}
+
 fn did_you_mean_tag(tag: &str, open: &str) -> String {
     suggest(tag, CHILDREN.iter().copied().chain(["scene"]))
         .map(|s| format!("; did you mean {open}{s}>?"))
