@@ -42,6 +42,15 @@ pub fn run(args: &RenderArgs) -> Result<Duration> {
     let (world, options) = prepare(&args.scene)?;
     let (w, h) = (world.camera.w, world.camera.h);
     let provenance = Provenance::of_render(&world.camera, Some(&args.scene.scene), args.spp);
+    // A bad reference is an error before the render, not after it.
+    let reference = match &args.reference {
+        Some(path) => {
+            let image = renderer::reference_image::read_exr_rgb(path)?;
+            image.check_size(path, w, h)?;
+            Some(image)
+        }
+        None => None,
+    };
     let start = Instant::now();
     let provenance = match args.aov {
         AovArg::Variance => provenance.with_display(Display::Variance),
@@ -59,9 +68,7 @@ pub fn run(args: &RenderArgs) -> Result<Duration> {
                 );
             }
             let pixels = film.linear();
-            if let Some(path) = &args.reference {
-                let reference = renderer::reference_image::read_exr_rgb(path)?;
-                reference.check_size(path, w, h)?;
+            if let (Some(path), Some(reference)) = (&args.reference, &reference) {
                 println!(
                     "relMSE {:.4e}, RMSE {:.4e} against {}",
                     renderer::metrics::rel_mse(&pixels, &reference.pixels),

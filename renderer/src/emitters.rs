@@ -49,7 +49,8 @@ pub struct Emitters {
     emitters: Vec<Emitter>,
     /// Probability of choosing each emitter.
     pmf: Vec<f32>,
-    /// Running sums of `pmf`, the last exactly 1.
+    /// Running sums of `pmf`, the last exactly 1; empty when nothing emits
+    /// any power (no emitter can be drawn).
     cdf: Vec<f32>,
     /// Per object id: its emitter, for analytic shapes.
     by_object: Vec<u32>,
@@ -122,7 +123,8 @@ impl Emitters {
             vec![0.0; power.len()]
         };
         let mut running = 0.0f64;
-        let mut cdf: Vec<f32> = power
+        let drawable = if total > 0.0 { power.as_slice() } else { &[] };
+        let mut cdf: Vec<f32> = drawable
             .iter()
             .map(|&p| {
                 running += f64::from(p);
@@ -141,9 +143,9 @@ impl Emitters {
         }
     }
 
-    /// Whether any emitter can be sampled.
+    /// Whether no emitter can be drawn (none, or none with power).
     pub fn is_empty(&self) -> bool {
-        self.cdf.is_empty() || self.pmf.iter().all(|&p| p == 0.0)
+        self.cdf.is_empty()
     }
 
     /// The emitters, in index order.

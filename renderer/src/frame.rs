@@ -44,6 +44,11 @@ impl Frame {
         }
     }
 
+    /// A world-space point in object space.
+    pub fn point_to_object(&self, p: Vec3) -> Vec3 {
+        self.world_from_object.transpose() * (p - self.origin)
+    }
+
     /// An object-space point in world space.
     pub fn point_to_world(&self, p: Vec3) -> Vec3 {
         self.world_from_object * p + self.origin

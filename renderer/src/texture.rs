@@ -4,6 +4,14 @@ use glam::Vec3;
 use noise::{Fbm, NoiseFn, Perlin};
 use std::sync::LazyLock;
 
+/// The material's albedo at `point`: its colour, or for marble the solid texture through it.
+pub fn albedo_at(material: &scene::Material, point: Vec3) -> Vec3 {
+    match material.base {
+        scene::BaseMaterial::Marble => marble(point, material.color),
+        _ => material.color,
+    }
+}
+
 /// Fractal Perlin noise shared by every marble surface.
 static TURBULENCE: LazyLock<Fbm<Perlin>> = LazyLock::new(|| Fbm::new(7));
 

@@ -118,8 +118,13 @@ impl Bsdf {
                 if wi.z <= 0.0 || wo.z <= 0.0 {
                     return Vec3::ZERO;
                 }
-                l.albedo * (l.diffuse * FRAC_1_PI * wi.z)
-                    + Vec3::splat(l.glossy * l.ggx.reflection(wo, wi))
+                let diffuse = l.albedo * (l.diffuse * FRAC_1_PI * wi.z);
+                // Matte has no highlight: skip its microfacet terms.
+                if l.glossy > 0.0 {
+                    diffuse + Vec3::splat(l.glossy * l.ggx.reflection(wo, wi))
+                } else {
+                    diffuse
+                }
             }
             Bsdf::Conductor { .. } | Bsdf::Dielectric(_) => Vec3::ZERO,
         }
@@ -133,7 +138,12 @@ impl Bsdf {
                 if wi.z <= 0.0 || wo.z <= 0.0 {
                     return 0.0;
                 }
-                l.diffuse * cosine_hemisphere_pdf(wi) + l.glossy * l.ggx.reflection_pdf(wo, wi)
+                let diffuse = l.diffuse * cosine_hemisphere_pdf(wi);
+                if l.glossy > 0.0 {
+                    diffuse + l.glossy * l.ggx.reflection_pdf(wo, wi)
+                } else {
+                    diffuse
+                }
             }
             Bsdf::Conductor { .. } | Bsdf::Dielectric(_) => 0.0,
         }

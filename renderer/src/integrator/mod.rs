@@ -23,19 +23,6 @@ pub enum Integrator {
     Path,
 }
 
-impl Integrator {
-    /// Both integrators, in the order the interface lists them.
-    pub const ALL: [Integrator; 2] = [Integrator::Whitted, Integrator::Path];
-
-    /// The name used on the command line and in the interface.
-    pub fn name(self) -> &'static str {
-        match self {
-            Integrator::Whitted => "whitted",
-            Integrator::Path => "path",
-        }
-    }
-}
-
 /// Settings shared by every integrator.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RenderOptions {

@@ -11,7 +11,7 @@ use super::recorder::{NoRecorder, Note, RayKind, Recorder};
 use crate::offset::offset_ray_origin;
 use crate::optics::{fresnel_dielectric, fresnel_schlick, reflect, refract};
 use crate::ray::Ray;
-use crate::texture;
+use crate::texture::albedo_at;
 use crate::world::World;
 use glam::Vec3;
 use scene::{BaseMaterial, Material};
@@ -150,14 +150,6 @@ fn trace<R: Recorder>(
         }
     }
     radiance
-}
-
-/// The material's albedo at `point` (marble is a solid texture).
-pub fn albedo_at(material: &Material, point: Vec3) -> Vec3 {
-    match material.base {
-        BaseMaterial::Marble => texture::marble(point, material.color),
-        _ => material.color,
-    }
 }
 
 /// A diffuse hit as [`direct`] shades it.

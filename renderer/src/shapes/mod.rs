@@ -148,8 +148,8 @@ impl Shape {
     /// The surface area (+∞ for a plane).
     pub fn area(&self) -> f32 {
         match self {
-            Shape::Sphere(s) => 4.0 * std::f32::consts::PI * s.radius * s.radius,
-            Shape::Triangle(s) => 0.5 * (s.t1 - s.t0).cross(s.t2 - s.t0).length(),
+            Shape::Sphere(s) => s.area(),
+            Shape::Triangle(s) => s.area(),
             Shape::Box(s) => s.area(),
             Shape::Cylinder(s) => s.area(),
             Shape::Cone(s) => s.area(),
@@ -163,36 +163,8 @@ impl Shape {
     /// `None` for a plane (infinite) and a shape of no area.
     pub fn sample_area(&self, u: glam::Vec2) -> Option<AreaSample> {
         match self {
-            Shape::Sphere(s) => {
-                let area = 4.0 * std::f32::consts::PI * s.radius * s.radius;
-                let z = 1.0 - 2.0 * u.x;
-                let r = (1.0 - z * z).max(0.0).sqrt();
-                let phi = std::f32::consts::TAU * u.y;
-                let normal = Vec3::new(r * phi.cos(), r * phi.sin(), z);
-                (area > 0.0).then(|| AreaSample {
-                    point: s.center + s.radius * normal,
-                    normal,
-                    pdf_area: 1.0 / area,
-                })
-            }
-            Shape::Triangle(s) => {
-                let area = 0.5 * (s.t1 - s.t0).cross(s.t2 - s.t0).length();
-                if !(area > 0.0) {
-                    return None;
-                }
-                // Uniform barycentrics by folding the unit square.
-                let (b, c) = if u.x + u.y > 1.0 {
-                    (1.0 - u.x, 1.0 - u.y)
-                } else {
-                    (u.x, u.y)
-                };
-                let point = s.t0 + b * (s.t1 - s.t0) + c * (s.t2 - s.t0);
-                Some(AreaSample {
-                    point,
-                    normal: (s.t1 - s.t0).cross(s.t2 - s.t0).normalize(),
-                    pdf_area: 1.0 / area,
-                })
-            }
+            Shape::Sphere(s) => s.sample_area(u),
+            Shape::Triangle(s) => s.sample_area(u),
             Shape::Box(s) => s.sample_area(u),
             Shape::Cylinder(s) => s.sample_area(u),
             Shape::Cone(s) => s.sample_area(u),

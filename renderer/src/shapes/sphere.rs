@@ -1,8 +1,8 @@
 //! The sphere: the lecture's quadratic in α, and the Ray Tracing Gems ch. 7 form.
 
-use super::{Method, Surface};
+use super::{AreaSample, Method, Surface};
 use crate::ray::Ray;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use serde::Serialize;
 
 /// A sphere with centre C and radius r.
@@ -138,6 +138,30 @@ impl Sphere {
             point: self.center + self.radius * normal,
             normal,
         }
+    }
+}
+
+impl Sphere {
+    /// The surface area 4π r².
+    pub fn area(&self) -> f32 {
+        4.0 * std::f32::consts::PI * self.radius * self.radius
+    }
+
+    /// A point drawn uniformly over the surface, with its outward normal.
+    pub fn sample_area(&self, u: Vec2) -> Option<AreaSample> {
+        let area = self.area();
+        if !(area > 0.0) {
+            return None;
+        }
+        let z = 1.0 - 2.0 * u.x;
+        let r = (1.0 - z * z).max(0.0).sqrt();
+        let phi = std::f32::consts::TAU * u.y;
+        let normal = Vec3::new(r * phi.cos(), r * phi.sin(), z);
+        Some(AreaSample {
+            point: self.center + self.radius * normal,
+            normal,
+            pdf_area: 1.0 / area,
+        })
     }
 }
 

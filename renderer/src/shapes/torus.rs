@@ -152,10 +152,7 @@ impl Torus {
 
     /// The area density of [`Torus::sample_area`] at a point on the torus.
     pub fn pdf_area(&self, point: Vec3) -> f32 {
-        let p = self
-            .frame
-            .ray_to_object(&crate::ray::Ray::new(point, Vec3::Y))
-            .origin;
+        let p = self.frame.point_to_object(point);
         let rho = (p.x * p.x + p.z * p.z).sqrt();
         // R + r cos ψ is the distance from the axis.
         let tau = 2.0 * std::f32::consts::PI;

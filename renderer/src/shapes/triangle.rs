@@ -1,9 +1,9 @@
 //! The triangle: the lecture's ray–plane α and 2×2 barycentric solve, and the
 //! watertight test of Woop, Benthin and Wald (JCGT 2013).
 
-use super::{Method, Surface};
+use super::{AreaSample, Method, Surface};
 use crate::ray::Ray;
-use glam::{DVec3, Vec3};
+use glam::{DVec3, Vec2, Vec3};
 use serde::Serialize;
 use wide::f32x4;
 
@@ -316,6 +316,34 @@ impl WatertightRay {
             alpha,
             beta: ev / det,
             gamma: ew / det,
+        })
+    }
+}
+
+impl Triangle {
+    /// The area ½ ‖(t1 − t0) × (t2 − t0)‖.
+    pub fn area(&self) -> f32 {
+        0.5 * (self.t1 - self.t0).cross(self.t2 - self.t0).length()
+    }
+
+    /// A point drawn uniformly over the triangle (barycentrics from the unit
+    /// square folded along its diagonal), with the normal (t1 − t0) × (t2 − t0).
+    pub fn sample_area(&self, u: Vec2) -> Option<AreaSample> {
+        let (v1, v2) = (self.t1 - self.t0, self.t2 - self.t0);
+        let n = v1.cross(v2);
+        let area = 0.5 * n.length();
+        if !(area > 0.0) {
+            return None;
+        }
+        let (b, c) = if u.x + u.y > 1.0 {
+            (1.0 - u.x, 1.0 - u.y)
+        } else {
+            (u.x, u.y)
+        };
+        Some(AreaSample {
+            point: self.t0 + b * v1 + c * v2,
+            normal: n / (2.0 * area),
+            pdf_area: 1.0 / area,
         })
     }
 }
