@@ -22,6 +22,21 @@ pub enum CameraError {
     /// d not a positive finite number.
     #[error("the view-window distance d must be positive, got {0}")]
     Distance(f32),
+    /// θ so small that a pixel subtends less than f32 ray directions resolve.
+    #[error(
+        "the half-height angle θ = {theta}° is too narrow for {height} pixel rows: a pixel would \
+         subtend {pixel:.1e} rad, below the {min:.1e} rad that f32 ray directions can tell apart; \
+         widen θ or lower the height",
+        min = Camera::MIN_PIXEL_ANGLE
+    )]
+    TooNarrow {
+        /// θ in degrees.
+        theta: f32,
+        /// h, the image height.
+        height: u32,
+        /// The angle one pixel subtends, 2 tan θ / h, in radians.
+        pixel: f64,
+    },
     /// w or h outside 1..=16384.
     #[error("the image size must be 1..=16384 pixels per side, got {0}×{1}")]
     Size(u32, u32),
@@ -63,6 +78,11 @@ pub struct Camera {
 }
 
 impl Camera {
+    /// The smallest angle a pixel may subtend (radians): 8 f32 ulps of a
+    /// unit direction, so that rays through neighbouring pixels differ and
+    /// each lands within about 0.06 pixel of where it should.
+    pub const MIN_PIXEL_ANGLE: f64 = 8.0 * f32::EPSILON as f64;
+
     /// Builds the camera from the scene's inputs. t is normalised; u is made
     /// orthogonal to t (Gram–Schmidt in f64, so the basis is orthonormal to
     /// f32 precision); d defaults to the lecture's h / (2 tan θ).
@@ -75,6 +95,14 @@ impl Camera {
         }
         if !(input.theta_deg > 0.0 && input.theta_deg < 90.0) {
             return Err(CameraError::Theta(input.theta_deg));
+        }
+        let pixel = 2.0 * f64::from(input.theta_deg).to_radians().tan() / f64::from(h);
+        if pixel < Self::MIN_PIXEL_ANGLE {
+            return Err(CameraError::TooNarrow {
+                theta: input.theta_deg,
+                height: h,
+                pixel,
+            });
         }
         let t = input
             .toward
@@ -217,6 +245,31 @@ mod tests {
             (c.h_d - 2.0).abs() < 1e-5 && (c.w_d - 4.0).abs() < 1e-5,
             "{c:?}"
         );
+    }
+
+    #[test]
+    fn theta_too_narrow_for_f32_rays_is_refused_and_just_wide_enough_is_accepted() {
+        let tall = ResolvedCamera {
+            theta_deg: 1e-4,
+            width: 64,
+            height: 48,
+            ..input()
+        };
+        let error = Camera::new(&tall).expect_err("a pixel of 7e-8 rad");
+        assert!(
+            matches!(error, CameraError::TooNarrow { height: 48, .. }),
+            "{error}"
+        );
+        assert!(error.to_string().contains("too narrow"), "{error}");
+        // 2 tan θ / h just above 8 ε: accepted, and neighbouring pixels get different rays.
+        let theta = (Camera::MIN_PIXEL_ANGLE * 1.01 * 24.0).atan().to_degrees() as f32;
+        let c = Camera::new(&ResolvedCamera {
+            theta_deg: theta,
+            ..tall
+        })
+        .expect("wide enough");
+        assert_ne!(c.center_ray(10, 20).dir, c.center_ray(11, 20).dir);
+        assert_ne!(c.center_ray(10, 20).dir, c.center_ray(10, 21).dir);
     }
 
     #[test]

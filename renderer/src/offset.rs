@@ -2,47 +2,27 @@
 
 use glam::Vec3;
 
-/// Below this magnitude a coordinate is offset by a fixed amount (floats are dense there).
-const ORIGIN: f32 = 1.0 / 32.0;
-/// The fixed offset near the origin, along the normal.
-const FLOAT_SCALE: f32 = 1.0 / 65536.0;
-/// The offset elsewhere, in units in the last place, along the normal.
-const INT_SCALE: f32 = 256.0;
+/// The offset along the normal, in units of f32's ε times the magnitude of
+/// the coordinates the hit point was computed from. Hit points are placed on
+/// their surface to within a few ε of that magnitude, so 64 ε keeps a wide
+/// margin against acne, while 64 ε ≈ 7.6 × 10⁻⁶ of the scene's scale stays
+/// below the 10⁻⁵ of scale that a gap must have to let no light through.
+const OFFSET_EPSILONS: f32 = 64.0;
 
-/// Moves a hit point off its surface to the side `normal` points to, by a
-/// few units in the last place of each coordinate (Wächter & Binder, "A Fast
-/// and Robust Method for Avoiding Self-Intersection", Ray Tracing Gems ch. 6).
-/// The offset scales with the coordinates, so scenes 1e4 units across get no
-/// acne while small scenes get no light leaks; rays spawned here use t_min = 0.
-pub fn offset_ray_origin(point: Vec3, normal: Vec3) -> Vec3 {
-    let offset_int = (INT_SCALE * normal).as_ivec3();
-    let shift = |p: f32, by: i32| -> f32 {
-        let by = if p < 0.0 { -by } else { by };
-        f32::from_bits((p.to_bits() as i32).wrapping_add(by) as u32)
-    };
-    let p_int = Vec3::new(
-        shift(point.x, offset_int.x),
-        shift(point.y, offset_int.y),
-        shift(point.z, offset_int.z),
-    );
-    let near = point + FLOAT_SCALE * normal;
-    Vec3::new(
-        if point.x.abs() < ORIGIN {
-            near.x
-        } else {
-            p_int.x
-        },
-        if point.y.abs() < ORIGIN {
-            near.y
-        } else {
-            p_int.y
-        },
-        if point.z.abs() < ORIGIN {
-            near.z
-        } else {
-            p_int.z
-        },
-    )
+/// Moves a hit point off its surface to the side `normal` points to, by
+/// 64 ε · m along the normal, where m is the largest of `magnitude` (the
+/// largest coordinate of the object the point lies on: its error bound scales
+/// with it, as in pbrt-v4's offset by the intersection's error bound) and the
+/// point's own coordinates. The offset scales with the scene, so a scene
+/// 10⁵ units across gets no acne and one 10⁻² across leaks no light through
+/// gaps of 10⁻⁵ of its size; near the world origin it shrinks with the object,
+/// unlike a fixed ε or Wächter & Binder's fixed offset there (Ray Tracing Gems
+/// ch. 6). Rays spawned here use t_min = 0.
+pub fn offset_ray_origin(point: Vec3, normal: Vec3, magnitude: f32) -> Vec3 {
+    let m = magnitude
+        .max(point.abs().max_element())
+        .max(f32::MIN_POSITIVE);
+    point + (OFFSET_EPSILONS * f32::EPSILON * m) * normal
 }
 
 #[cfg(test)]
@@ -57,10 +37,10 @@ mod tests {
                 Vec3::new(-scale, 0.0, scale),
             ] {
                 for n in [Vec3::X, -Vec3::Y, Vec3::new(0.6, 0.0, -0.8)] {
-                    let q = offset_ray_origin(p, n);
+                    let q = offset_ray_origin(p, n, scale);
                     assert!((q - p).dot(n) > 0.0, "scale {scale} p {p} n {n} q {q}");
                     assert!(
-                        (q - p).length() < 1e-3 * scale.max(1.0),
+                        (q - p).length() < 1e-5 * scale,
                         "too far: {}",
                         (q - p).length()
                     );

@@ -104,6 +104,8 @@ pub struct World {
     top: SceneBvh,
     /// Objects no box holds (infinite planes), tested by every ray.
     unbounded: Vec<u32>,
+    /// Per object, the largest coordinate magnitude of its geometry (see [`World::magnitude`]).
+    magnitudes: Vec<f32>,
 }
 
 /// Relative padding of an analytic shape's box in the top level, so that a
@@ -133,6 +135,8 @@ impl World {
         let mut objects = Vec::with_capacity(resolved.objects.len());
         let (mut items, mut bounds, mut unbounded) = (Vec::new(), Vec::new(), Vec::new());
         let mut next_instance = 0u32;
+        let mut magnitudes = Vec::with_capacity(resolved.objects.len());
+        let largest = |min: Vec3, max: Vec3| min.abs().max(max.abs()).max_element();
         for (id, object) in resolved.objects.iter().enumerate() {
             let id = id as u32;
             let Some(shape) = Shape::from_geometry(&object.geometry) else {
@@ -148,9 +152,22 @@ impl World {
                 objects.push(Object::Model {
                     instances: start..next_instance,
                 });
+                magnitudes.push(
+                    meshes[start as usize..next_instance as usize]
+                        .iter()
+                        .map(|m| largest(m.bounds.min, m.bounds.max))
+                        .fold(0.0, f32::max),
+                );
                 continue;
             };
             objects.push(Object::Shape(shape));
+            magnitudes.push(
+                match (&object.geometry, scene::layout::bounds(&object.geometry)) {
+                    (_, Some(b)) => largest(b.min, b.max),
+                    (scene::Geometry::Plane { point, .. }, None) => point.abs().max_element(),
+                    (_, None) => 0.0,
+                },
+            );
             match scene::layout::bounds(&object.geometry) {
                 Some(b) => {
                     let pad = BOX_PADDING * (b.max - b.min).max_element()
@@ -186,7 +203,16 @@ impl World {
             top: SceneBvh::build(&bounds),
             items,
             unbounded,
+            magnitudes,
         })
+    }
+
+    /// The largest coordinate magnitude of an object's geometry (its world
+    /// bounds; for a plane, its point). Hit points on it are placed to within
+    /// a few ε of this, so secondary rays leave it by an offset that scales
+    /// with it ([`crate::offset::offset_ray_origin`]).
+    pub fn magnitude(&self, object: u32) -> f32 {
+        self.magnitudes.get(object as usize).copied().unwrap_or(0.0)
     }
 
     /// The analytic shape of an object, `None` for a model.

@@ -87,6 +87,7 @@ pub fn path(world: &World, ray: &Ray, options: &RenderOptions, sampler: &mut Sam
         let bsdf = Bsdf::new(&material, albedo_at(&material, surface.point), front);
         let at = Vertex {
             point: surface.point,
+            magnitude: world.magnitude(hit.object),
             geometric,
             frame,
             wo,
@@ -108,7 +109,7 @@ pub fn path(world: &World, ray: &Ray, options: &RenderOptions, sampler: &mut Sam
         } else {
             -geometric
         };
-        ray = Ray::new(offset_ray_origin(surface.point, side), wi);
+        ray = Ray::new(offset_ray_origin(surface.point, side, at.magnitude), wi);
         depth += 1;
         if depth >= RR_DEPTH {
             let keep = (throughput.max_element() / eta_scale).min(0.95);
@@ -127,6 +128,8 @@ pub fn path(world: &World, ray: &Ray, options: &RenderOptions, sampler: &mut Sam
 /// A scattering vertex as light sampling needs it.
 struct Vertex {
     point: Vec3,
+    /// The largest coordinate of the object hit (see [`World::magnitude`]).
+    magnitude: f32,
     /// The unit geometric normal on the side the ray came from.
     geometric: Vec3,
     frame: ShadingFrame,
@@ -145,7 +148,7 @@ fn direct_light(
     sampler: &mut Sampler,
 ) -> Vec3 {
     let mut sum = Vec3::ZERO;
-    let origin = offset_ray_origin(at.point, at.geometric);
+    let origin = offset_ray_origin(at.point, at.geometric, at.magnitude);
     for light in &world.lights {
         let Some(s) = light.sample(at.point) else {
             continue;

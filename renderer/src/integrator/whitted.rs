@@ -65,6 +65,7 @@ fn trace<R: Recorder>(
         -surface.normal
     };
     let point = surface.point;
+    let magnitude = world.magnitude(hit.object);
     let mut radiance = if front { material.emission } else { Vec3::ZERO };
     rec.local(node, radiance);
 
@@ -75,7 +76,7 @@ fn trace<R: Recorder>(
         } else {
             -geometric_side
         };
-        Ray::new(offset_ray_origin(point, side), dir)
+        Ray::new(offset_ray_origin(point, side, magnitude), dir)
     };
     // A reflected or refracted ray, recorded as `node`'s child carrying `factor`.
     let bounce = |rec: &mut R, kind: RayKind, dir: Vec3, factor: Vec3| {
@@ -93,6 +94,7 @@ fn trace<R: Recorder>(
                 material,
                 albedo,
                 point,
+                magnitude,
                 n,
                 geometric_side,
                 to_eye: -ray.dir,
@@ -157,6 +159,8 @@ struct Shading<'a> {
     material: &'a Material,
     albedo: Vec3,
     point: Vec3,
+    /// The largest coordinate of the object hit (see [`World::magnitude`]).
+    magnitude: f32,
     /// The unit shading normal on the side the ray came from.
     n: Vec3,
     /// The unit geometric normal on that side (shadow rays start off it).
@@ -178,7 +182,7 @@ fn direct<R: Recorder>(
 ) -> Vec3 {
     let (material, albedo, point, n) = (at.material, at.albedo, at.point, at.n);
     let mut radiance = albedo * world.ambient;
-    let origin = offset_ray_origin(point, at.geometric_side);
+    let origin = offset_ray_origin(point, at.geometric_side, at.magnitude);
     for (index, light) in world.lights.iter().enumerate() {
         let Some(sample) = light.sample(point) else {
             continue;
