@@ -35,6 +35,7 @@ pub mod reference_image;
 pub mod sampler;
 pub mod shape_tests;
 pub mod shapes;
+pub mod stability;
 pub mod texture;
 pub mod throughput;
 pub mod world;
