@@ -655,3 +655,64 @@ fn chart_writes_error_against_time_per_method_as_csv_and_a_png() {
         .count();
     assert!(blue > 100, "the first curve is drawn ({blue} pixels)");
 }
+
+#[test]
+fn stability_writes_every_case_for_both_methods_as_csv_and_a_chart() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let prefix = dir.path().join("stab");
+    let output = raylab(&[
+        "stability",
+        "--quick",
+        "-o",
+        prefix.to_str().expect("utf-8"),
+    ]);
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        output.status.success(),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    assert!(
+        stdout.contains("sphere far away"),
+        "prints the table: {stdout}"
+    );
+    let csv = std::fs::read_to_string(prefix.with_extension("csv")).expect("csv written");
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next(),
+        Some(
+            "case,condition,value,method,trials,failures,failure_rate,refused,error_p99,ns_per_test"
+        )
+    );
+    let rows: Vec<&str> = lines.collect();
+    for case in renderer::stability::CASES {
+        let mine: Vec<&&str> = rows.iter().filter(|r| r.starts_with(case.name)).collect();
+        assert!(mine.len() >= 4, "{}: {} rows", case.name, mine.len());
+    }
+    // The sphere's lecture quadratic fails far away: its line rises off zero.
+    let far_lecture = rows
+        .iter()
+        .find(|r| r.starts_with("sphere far away,") && r.contains(",1e4,lecture,"))
+        .expect("the lecture sphere at 1e4 radii");
+    let rate: f64 = far_lecture
+        .split(',')
+        .nth(6)
+        .expect("rate")
+        .parse()
+        .expect("a number");
+    assert!(rate > 0.05, "{far_lecture}");
+    let png = image::open(prefix.with_extension("png"))
+        .expect("png written")
+        .to_rgb8();
+    assert!(
+        png.width() >= 1600 && png.height() >= 900,
+        "{}×{}",
+        png.width(),
+        png.height()
+    );
+    // Both methods' lines are drawn (Tableau blue and red).
+    let count = |f: &dyn Fn(&image::Rgb<u8>) -> bool| png.pixels().filter(|p| f(p)).count();
+    let blue = count(&|p| p.0[2] > 150 && p.0[0] < 80 && p.0[1] > 90 && p.0[1] < 150);
+    let red = count(&|p| p.0[0] > 180 && p.0[1] < 80 && p.0[2] < 80);
+    assert!(blue > 500 && red > 500, "blue {blue} red {red} pixels");
+}

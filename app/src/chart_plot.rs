@@ -11,7 +11,7 @@ use std::sync::Once;
 const SIZE: (u32, u32) = (1024, 680);
 
 /// Line colours, distinct on white (Tableau 10's first colours).
-const COLORS: [RGBColor; 6] = [
+pub const COLORS: [RGBColor; 6] = [
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
     RGBColor(44, 160, 44),
@@ -21,7 +21,7 @@ const COLORS: [RGBColor; 6] = [
 ];
 
 /// Registers the chart font once per process.
-fn register_font() {
+pub fn register_font() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {
         // The font is egui's; failing to parse it would be a bug in the build.

@@ -17,6 +17,10 @@ pub struct Cli {
     pub command: Option<Command>,
     /// The scene to open in the window (default: assets/scenes/seed.xml).
     pub scene: Option<PathBuf>,
+    /// A converged linear EXR of the scene at its render size: the window
+    /// plots each pass's relative MSE against it as the image refines.
+    #[arg(long, value_name = "REF.exr")]
+    pub reference: Option<PathBuf>,
 }
 
 /// The subcommands.
@@ -30,6 +34,19 @@ pub enum Command {
     Inspect(InspectArgs),
     /// Chart speed against accuracy: error against render time, one line per method (CSV and PNG).
     Chart(ChartArgs),
+    /// Run the suite of cases where numerical methods fail, lecture against robust (table, CSV and PNG).
+    Stability(StabilityArgs),
+}
+
+/// Arguments of `raylab stability`.
+#[derive(Debug, clap::Args)]
+pub struct StabilityArgs {
+    /// Fewer tests per row (2,000 rays instead of 100,000): seconds instead of a minute.
+    #[arg(long)]
+    pub quick: bool,
+    /// Where to write: OUTPUT.csv and OUTPUT.png.
+    #[arg(short, long, default_value = "stability")]
+    pub output: PathBuf,
 }
 
 /// Arguments of `raylab chart`.

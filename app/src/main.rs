@@ -10,6 +10,8 @@ mod inspect_cmd;
 mod output;
 mod render_cmd;
 mod scene_spec;
+mod stability_cmd;
+mod stability_plot;
 mod trace_bench;
 
 use clap::Parser;
@@ -26,8 +28,9 @@ fn default_scene() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/seed.xml")
 }
 
-/// Opens the window on `path`; returns when it closes.
-fn run_window(path: PathBuf) -> ExitCode {
+/// Opens the window on `path` (plotting the error against `reference`, if
+/// given); returns when it closes.
+fn run_window(path: PathBuf, reference: Option<PathBuf>) -> ExitCode {
     let scene = match scene::read_any(&path) {
         Ok(scene) => {
             output::warn_about_models(&scene);
@@ -38,6 +41,12 @@ fn run_window(path: PathBuf) -> ExitCode {
             return ExitCode::from(2);
         }
     };
+    if let Some(reference) = &reference
+        && let Err(error) = renderer::reference_image::read_exr_rgb(reference)
+    {
+        eprintln!("error: {error}");
+        return ExitCode::from(2);
+    }
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_title("raylab")
@@ -50,10 +59,13 @@ fn run_window(path: PathBuf) -> ExitCode {
         "raylab",
         options,
         Box::new(move |cc| {
-            Ok(Box::new(
+            let mut app =
                 gui::RaylabApp::with_storage(scene, gui::Document::scene_path(&path), cc.storage)
-                    .with_gpu(cc.wgpu_render_state.clone()),
-            ))
+                    .with_gpu(cc.wgpu_render_state.clone());
+            if let Some(reference) = &reference {
+                app.load_reference(reference);
+            }
+            Ok(Box::new(app))
         }),
     );
     match result {
@@ -68,7 +80,7 @@ fn run_window(path: PathBuf) -> ExitCode {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
-        None => run_window(cli.scene.unwrap_or_else(default_scene)),
+        None => run_window(cli.scene.unwrap_or_else(default_scene), cli.reference),
         Some(Command::Bench(args)) => match bench_cmd::run(&args, default_scene()) {
             Ok(()) => ExitCode::SUCCESS,
             Err(error) => {
@@ -79,6 +91,18 @@ fn main() -> ExitCode {
         Some(Command::Inspect(args)) => match inspect_cmd::run(&args) {
             Ok(json) => {
                 println!("{json}");
+                ExitCode::SUCCESS
+            }
+            Err(error) => {
+                eprintln!("error: {error:#}");
+                ExitCode::from(2)
+            }
+        },
+        Some(Command::Stability(args)) => match stability_cmd::run(&args) {
+            Ok(written) => {
+                for path in written {
+                    println!("wrote {}", path.display());
+                }
                 ExitCode::SUCCESS
             }
             Err(error) => {

@@ -15,6 +15,8 @@ pub enum DialogKind {
     SaveScene,
     /// Pick where to save the rendered image.
     SaveImage,
+    /// Pick a reference image (linear EXR) for the live error plot.
+    Reference,
 }
 
 /// A dialog that answered too quickly to have been shown: no dialog service.
@@ -71,6 +73,9 @@ impl Dialogs {
                     .add_filter("any file", &["*"])
                     .pick_file(),
                 DialogKind::SaveScene => dialog.add_filter("raylab scene", &["xml"]).save_file(),
+                DialogKind::Reference => dialog
+                    .add_filter("OpenEXR image (linear float)", &["exr"])
+                    .pick_file(),
                 DialogKind::SaveImage => dialog
                     .add_filter("PNG image (8-bit sRGB)", &["png"])
                     .add_filter("OpenEXR image (linear float)", &["exr"])

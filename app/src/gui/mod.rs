@@ -9,6 +9,7 @@ mod commands;
 mod debug_view;
 mod document;
 mod edits;
+mod error_plot;
 mod files;
 pub mod headless_gpu;
 mod history;
@@ -89,6 +90,8 @@ pub struct RaylabApp {
     image: image_view::ImageView,
     /// The newest frame on screen.
     frame: Option<RenderedFrame>,
+    /// The reference image and the live error of each pass against it.
+    errors: error_plot::ErrorPlot,
     /// Why the scene cannot be rendered as edited, if it can't.
     error: Option<String>,
     /// Refinement is paused.
@@ -157,6 +160,7 @@ impl RaylabApp {
             generation: 0,
             image: image_view::ImageView::default(),
             frame: None,
+            errors: error_plot::ErrorPlot::default(),
             error: None,
             paused: false,
             navigation: None,
@@ -259,6 +263,7 @@ impl RaylabApp {
     fn receive(&mut self, ctx: &egui::Context) {
         if let Some(frame) = self.session.as_ref().and_then(|s| s.take_frame()) {
             self.image.show_frame(ctx, &frame);
+            self.errors.add(&frame);
             self.frame = Some(frame);
         }
     }
@@ -683,7 +688,7 @@ impl RaylabApp {
     /// Opens a native file dialog of `kind` in the last folder.
     fn start_dialog(&mut self, ctx: &egui::Context, kind: DialogKind) {
         let name = match kind {
-            DialogKind::Open => None,
+            DialogKind::Open | DialogKind::Reference => None,
             DialogKind::SaveScene => Some(self.doc.display_name()).map(|n| {
                 if n.ends_with(".xml") {
                     n
@@ -720,6 +725,14 @@ impl RaylabApp {
                 }
             }
             DialogKind::SaveImage => self.save_image(&path),
+            DialogKind::Reference => self.load_reference(&path),
+        }
+    }
+
+    /// Loads a reference image for the live error plot; a bad file is a message.
+    pub fn load_reference(&mut self, path: &Path) {
+        if let Err(error) = self.errors.load(path) {
+            self.message = Some(format!("Cannot load the reference: {error}"));
         }
     }
 
@@ -827,6 +840,7 @@ impl RaylabApp {
                 DialogKind::Open => "Open scene file:",
                 DialogKind::SaveScene => "Save scene as:",
                 DialogKind::SaveImage => "Save image as (.png or .exr):",
+                DialogKind::Reference => "Reference image (linear .exr):",
             });
             ui.weak("No file dialog is available here (xdg-desktop-portal or zenity).");
             let edit = ui.add(egui::TextEdit::singleline(text).desired_width(480.0));
@@ -947,6 +961,7 @@ impl RaylabApp {
                 }
             }
         });
+        let mut load_reference = false;
         egui::Panel::left("camera")
             .resizable(true)
             .default_size(330.0)
@@ -956,8 +971,13 @@ impl RaylabApp {
                     camera_panel::show(ui, &mut self.doc.state.scene, camera.as_ref());
                     ui.separator();
                     render_panel::show(ui, &mut self.doc.state.render);
+                    ui.separator();
+                    load_reference = self.errors.show(ui);
                 });
             });
+        if load_reference {
+            self.start_dialog(&ctx, DialogKind::Reference);
+        }
         egui::Panel::right("scene")
             .resizable(true)
             .default_size(360.0)

@@ -103,7 +103,12 @@ pub fn show(
         .show(ui, |ui| {
             ui.label(egui::RichText::new("Lights").weak());
             if scene.lights.is_empty() {
-                ui.weak("none: a default key light and ambient light");
+                // Resolving adds default lights only to a scene nothing else lights.
+                if resolved.is_none_or(|r| !r.lights.is_empty()) {
+                    ui.weak("none: a default key light and ambient light");
+                } else {
+                    ui.weak("none: lit by its emissive objects or sky");
+                }
             }
             for (i, light) in scene.lights.iter().enumerate() {
                 let selected = *selection == Selection::Light(i);

@@ -624,3 +624,69 @@ fn choosing_a_display_mode_shows_it_with_its_legend_and_keeps_the_render() {
     step_shown(&mut h);
     h.get_by_label_contains("α (scene units)");
 }
+
+#[test]
+fn a_loaded_reference_plots_each_pass_error_and_it_falls_as_the_image_refines() {
+    // The reference: the same scene at 64 spp with another seed.
+    let app = seed_app(48, 32);
+    let world = renderer::World::from_scene(&app.doc.state.scene).expect("the seed scene renders");
+    let options = renderer::RenderOptions {
+        seed: 99,
+        ..app.doc.state.render.options()
+    };
+    let mut film = renderer::Film::new(48, 32);
+    for _ in 0..64 {
+        film.add_pass(&world, &options);
+    }
+    let values: Vec<f32> = film.linear().iter().flat_map(|c| c.to_array()).collect();
+    let dir = std::env::temp_dir().join(format!("raylab-error-plot-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let reference = dir.join("reference.exr");
+    crate::output::write_exr(
+        &reference,
+        48,
+        32,
+        &["R", "G", "B"],
+        &values,
+        &crate::output::Provenance::default(),
+    )
+    .expect("the reference is written");
+
+    let mut app = app;
+    app.doc.state.render.target_spp = Some(16);
+    app.load_reference(&reference);
+    assert!(app.message.is_none(), "{:?}", app.message);
+    let mut h = harness(app);
+    settle(&mut h);
+    h.step();
+    let points = h.state().errors.points().to_vec();
+    assert!(points.len() >= 2, "{points:?}");
+    let (first, last) = (points[0], points[points.len() - 1]);
+    assert_eq!(last.1, 16, "{points:?}");
+    assert!(
+        points.iter().all(|p| p.2.is_finite() && p.0 >= 0.0),
+        "{points:?}"
+    );
+    assert!(
+        last.2 < 0.5 * first.2,
+        "the error fell from {:.3e} at {} spp only to {:.3e} at 16 spp",
+        first.2,
+        first.1,
+        last.2
+    );
+    assert!(
+        h.query_all_by_label_contains("relative MSE")
+            .next()
+            .is_some(),
+        "the panel shows the newest error"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_broken_reference_file_is_a_message_not_a_crash() {
+    let mut app = seed_app(48, 32);
+    app.load_reference(Path::new("/no/such/reference.exr"));
+    let message = app.message.clone().expect("a message");
+    assert!(message.contains("reference.exr"), "{message}");
+}
