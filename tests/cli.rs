@@ -2,7 +2,7 @@
 
 mod support;
 
-use support::{asset, raylab, read_png, render};
+use support::{asset, raylab, raylab_ok, read_png, render};
 
 #[test]
 fn every_shipped_scene_renders_to_a_lit_png() {
@@ -184,13 +184,7 @@ fn lecture_method_renders_a_well_conditioned_scene_like_the_robust_one() {
 
 /// Runs `raylab bench ARGS` and checks that it succeeds and prints every figure.
 fn assert_bench_prints(args: &[&str], figures: &[&str]) {
-    let output = raylab(&[&["bench"], args].concat());
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    assert!(
-        output.status.success(),
-        "{stdout}{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    let stdout = raylab_ok(&[&["bench"], args].concat());
     for figure in figures {
         assert!(stdout.contains(figure), "missing {figure:?} in {stdout}");
     }
@@ -275,18 +269,8 @@ fn rendered_png_records_the_camera_and_the_scene_file() {
 fn inspect_json(args: &[&str]) -> serde_json::Value {
     let mut all = vec!["inspect"];
     all.extend_from_slice(args);
-    let output = raylab(&all);
-    assert!(
-        output.status.success(),
-        "raylab {all:?} failed: {}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    serde_json::from_slice(&output.stdout).unwrap_or_else(|e| {
-        panic!(
-            "stdout is not JSON ({e}):\n{}",
-            String::from_utf8_lossy(&output.stdout)
-        )
-    })
+    let stdout = raylab_ok(&all);
+    serde_json::from_str(&stdout).unwrap_or_else(|e| panic!("stdout is not JSON ({e}):\n{stdout}"))
 }
 
 fn vec3(value: &serde_json::Value) -> [f64; 3] {
@@ -447,7 +431,7 @@ fn cost_exr_counts_only_the_shape_tests_the_bvh_makes() {
 
 #[test]
 fn bench_on_a_generated_mesh_reports_build_throughput_memory_and_frame_time_as_json() {
-    let output = raylab(&[
+    let stdout = raylab_ok(&[
         "bench",
         "knot:2000",
         "--width",
@@ -456,12 +440,6 @@ fn bench_on_a_generated_mesh_reports_build_throughput_memory_and_frame_time_as_j
         "36",
         "--json",
     ]);
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    assert!(
-        output.status.success(),
-        "{stdout}{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
     let f: serde_json::Value = serde_json::from_str(&stdout).expect("JSON");
     assert_eq!(
         f["triangles"], 2004,
@@ -507,7 +485,7 @@ fn bench_names_the_scene_it_cannot_read() {
 fn bench_export_writes_files_whose_sizes_agree_with_its_manifest() {
     let dir = tempfile::tempdir().expect("tempdir");
     let export = dir.path().join("knot");
-    let output = raylab(&[
+    let stdout = raylab_ok(&[
         "bench",
         "knot:240",
         "--width",
@@ -518,11 +496,6 @@ fn bench_export_writes_files_whose_sizes_agree_with_its_manifest() {
         "--export",
         export.to_str().expect("utf-8"),
     ]);
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
     let text = std::fs::read_to_string(export.join("manifest.json")).expect("manifest");
     let m: serde_json::Value = serde_json::from_str(&text).expect("JSON");
     let count = |v: &serde_json::Value| v.as_u64().expect("a count");
@@ -561,8 +534,8 @@ fn bench_export_writes_files_whose_sizes_agree_with_its_manifest() {
     // raylab's own figures on the same rays, from the same process.
     assert_eq!(m["raylab"]["primary"]["all"]["rays"], 16 * 9);
     assert!(m["raylab"]["incoherent"]["all"]["hit_fraction"].as_f64() > Some(0.0));
-    let stdout: serde_json::Value = serde_json::from_slice(&output.stdout).expect("JSON");
-    assert_eq!(stdout["triangles"], 244, "the figures are still printed");
+    let printed: serde_json::Value = serde_json::from_str(&stdout).expect("JSON");
+    assert_eq!(printed["triangles"], 244, "the figures are still printed");
 }
 
 #[test]
@@ -594,7 +567,7 @@ fn chart_writes_error_against_time_per_method_as_csv_and_a_png() {
     )
     .expect("write");
     let prefix = dir.path().join("lamp-chart");
-    let output = raylab(&[
+    let stdout = raylab_ok(&[
         "chart",
         scene.to_str().expect("utf-8"),
         "--methods",
@@ -606,12 +579,6 @@ fn chart_writes_error_against_time_per_method_as_csv_and_a_png() {
         "-o",
         prefix.to_str().expect("utf-8"),
     ]);
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    assert!(
-        output.status.success(),
-        "{stdout}\n{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
     assert!(stdout.contains("to 1e-2"), "prints time to 1e-2: {stdout}");
     let csv = std::fs::read_to_string(prefix.with_extension("csv")).expect("csv written");
     let mut lines = csv.lines();
@@ -660,18 +627,12 @@ fn chart_writes_error_against_time_per_method_as_csv_and_a_png() {
 fn stability_writes_every_case_for_both_methods_as_csv_and_a_chart() {
     let dir = tempfile::tempdir().expect("tempdir");
     let prefix = dir.path().join("stab");
-    let output = raylab(&[
+    let stdout = raylab_ok(&[
         "stability",
         "--quick",
         "-o",
         prefix.to_str().expect("utf-8"),
     ]);
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    assert!(
-        output.status.success(),
-        "{stdout}\n{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
     assert!(
         stdout.contains("sphere far away"),
         "prints the table: {stdout}"

@@ -41,12 +41,17 @@ fn run_window(path: PathBuf, reference: Option<PathBuf>) -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    if let Some(reference) = &reference
-        && let Err(error) = renderer::reference_image::read_exr_rgb(reference)
+    // Read once, here, so that a bad file fails before the window opens.
+    let reference = match reference
+        .map(|path| renderer::reference_image::read_exr_rgb(&path).map(|image| (path, image)))
+        .transpose()
     {
-        eprintln!("error: {error}");
-        return ExitCode::from(2);
-    }
+        Ok(reference) => reference,
+        Err(error) => {
+            eprintln!("error: {error}");
+            return ExitCode::from(2);
+        }
+    };
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_title("raylab")
@@ -62,8 +67,8 @@ fn run_window(path: PathBuf, reference: Option<PathBuf>) -> ExitCode {
             let mut app =
                 gui::RaylabApp::with_storage(scene, gui::Document::scene_path(&path), cc.storage)
                     .with_gpu(cc.wgpu_render_state.clone());
-            if let Some(reference) = &reference {
-                app.load_reference(reference);
+            if let Some((path, image)) = reference {
+                app.set_reference(path, image);
             }
             Ok(Box::new(app))
         }),
@@ -77,64 +82,42 @@ fn run_window(path: PathBuf, reference: Option<PathBuf>) -> ExitCode {
     }
 }
 
+/// Exit code 0 after `report` for a command that succeeded; the error on
+/// stderr and exit code 2 for one that failed.
+fn finish<T>(result: anyhow::Result<T>, report: impl FnOnce(T)) -> ExitCode {
+    match result {
+        Ok(value) => {
+            report(value);
+            ExitCode::SUCCESS
+        }
+        Err(error) => {
+            eprintln!("error: {error:#}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+/// Prints the files a command wrote.
+fn report_written(written: Vec<PathBuf>) {
+    for path in written {
+        println!("wrote {}", path.display());
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
         None => run_window(cli.scene.unwrap_or_else(default_scene), cli.reference),
-        Some(Command::Bench(args)) => match bench_cmd::run(&args, default_scene()) {
-            Ok(()) => ExitCode::SUCCESS,
-            Err(error) => {
-                eprintln!("error: {error:#}");
-                ExitCode::from(2)
-            }
-        },
-        Some(Command::Inspect(args)) => match inspect_cmd::run(&args) {
-            Ok(json) => {
-                println!("{json}");
-                ExitCode::SUCCESS
-            }
-            Err(error) => {
-                eprintln!("error: {error:#}");
-                ExitCode::from(2)
-            }
-        },
-        Some(Command::Stability(args)) => match stability_cmd::run(&args) {
-            Ok(written) => {
-                for path in written {
-                    println!("wrote {}", path.display());
-                }
-                ExitCode::SUCCESS
-            }
-            Err(error) => {
-                eprintln!("error: {error:#}");
-                ExitCode::from(2)
-            }
-        },
-        Some(Command::Chart(args)) => match chart_cmd::run(&args) {
-            Ok(written) => {
-                for path in written {
-                    println!("wrote {}", path.display());
-                }
-                ExitCode::SUCCESS
-            }
-            Err(error) => {
-                eprintln!("error: {error:#}");
-                ExitCode::from(2)
-            }
-        },
-        Some(Command::Render(args)) => match render_cmd::run(&args) {
-            Ok(elapsed) => {
-                println!(
-                    "wrote {} in {:.3} s",
-                    args.output.display(),
-                    elapsed.as_secs_f64()
-                );
-                ExitCode::SUCCESS
-            }
-            Err(error) => {
-                eprintln!("error: {error:#}");
-                ExitCode::from(2)
-            }
-        },
+        Some(Command::Bench(args)) => finish(bench_cmd::run(&args, default_scene()), |()| {}),
+        Some(Command::Inspect(args)) => finish(inspect_cmd::run(&args), |json| println!("{json}")),
+        Some(Command::Stability(args)) => finish(stability_cmd::run(&args), report_written),
+        Some(Command::Chart(args)) => finish(chart_cmd::run(&args), report_written),
+        Some(Command::Render(args)) => finish(render_cmd::run(&args), |elapsed| {
+            println!(
+                "wrote {} in {:.3} s",
+                args.output.display(),
+                elapsed.as_secs_f64()
+            );
+        }),
     }
 }

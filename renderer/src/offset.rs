@@ -5,17 +5,18 @@ use glam::Vec3;
 /// The offset along the normal, in units of f32's ε times the magnitude of
 /// the coordinates the hit point was computed from. Hit points are placed on
 /// their surface to within a few ε of that magnitude, so 64 ε keeps a wide
-/// margin against acne, while 64 ε ≈ 7.6 × 10⁻⁶ of the scene's scale stays
-/// below the 10⁻⁵ of scale that a gap must have to let no light through.
+/// margin against acne, while 64 ε ≈ 7.6 × 10⁻⁶ of the largest coordinate
+/// stays below a gap of 10⁻⁵ of it, so such a gap lets no light through
+/// (`raylab stability` measures both).
 const OFFSET_EPSILONS: f32 = 64.0;
 
 /// Moves a hit point off its surface to the side `normal` points to, by
 /// 64 ε · m along the normal, where m is the largest of `magnitude` (the
 /// largest coordinate of the object the point lies on: its error bound scales
 /// with it, as in pbrt-v4's offset by the intersection's error bound) and the
-/// point's own coordinates. The offset scales with the scene, so a scene
-/// 10⁵ units across gets no acne and one 10⁻² across leaks no light through
-/// gaps of 10⁻⁵ of its size; near the world origin it shrinks with the object,
+/// point's own coordinates. The offset scales with the coordinates, so a
+/// scene 10⁵ units across gets no acne and one 10⁻² across leaks no light
+/// through gaps of 10⁻⁵ of its size; near the world origin it shrinks with the object,
 /// unlike a fixed ε or Wächter & Binder's fixed offset there (Ray Tracing Gems
 /// ch. 6). Rays spawned here use t_min = 0.
 pub fn offset_ray_origin(point: Vec3, normal: Vec3, magnitude: f32) -> Vec3 {

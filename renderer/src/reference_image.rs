@@ -18,7 +18,10 @@ pub enum ReferenceError {
     #[error("{0}: the reference has NaN or infinite pixels")]
     NotFinite(String),
     /// It is not the size of the render.
-    #[error("{path}: the reference is {found:?} pixels, the render {expected:?}")]
+    #[error(
+        "{path}: the reference is {}×{} pixels, the render {}×{}",
+        found.0, found.1, expected.0, expected.1
+    )]
     Size {
         /// The file.
         path: String,

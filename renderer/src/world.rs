@@ -161,24 +161,26 @@ impl World {
                 continue;
             };
             objects.push(Object::Shape(shape));
-            magnitudes.push(
-                match (&object.geometry, scene::layout::bounds(&object.geometry)) {
-                    (_, Some(b)) => largest(b.min, b.max),
-                    (scene::Geometry::Plane { point, .. }, None) => point.abs().max_element(),
-                    (_, None) => 0.0,
-                },
-            );
             match scene::layout::bounds(&object.geometry) {
                 Some(b) => {
-                    let pad = BOX_PADDING * (b.max - b.min).max_element()
-                        + f32::EPSILON * b.min.abs().max(b.max.abs()).max_element();
+                    let magnitude = largest(b.min, b.max);
+                    magnitudes.push(magnitude);
+                    let pad =
+                        BOX_PADDING * (b.max - b.min).max_element() + f32::EPSILON * magnitude;
                     items.push(Item::Shape(id));
                     bounds.push(Aabb {
                         min: b.min - Vec3::splat(pad),
                         max: b.max + Vec3::splat(pad),
                     });
                 }
-                None => unbounded.push(id),
+                None => {
+                    // An infinite plane: its hit points are placed from its point.
+                    magnitudes.push(match &object.geometry {
+                        scene::Geometry::Plane { point, .. } => point.abs().max_element(),
+                        _ => 0.0,
+                    });
+                    unbounded.push(id);
+                }
             }
         }
         let emissive_shapes: Vec<_> = objects

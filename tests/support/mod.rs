@@ -23,6 +23,19 @@ pub fn raylab(args: &[&str]) -> Output {
         .expect("raylab runs")
 }
 
+/// Runs `raylab` with `args`, panics with its output if it fails, and
+/// returns what it printed on stdout.
+pub fn raylab_ok(args: &[&str]) -> String {
+    let output = raylab(args);
+    let stdout = String::from_utf8_lossy(&output.stdout).into_owned();
+    assert!(
+        output.status.success(),
+        "raylab {args:?} failed:\n{stdout}{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    stdout
+}
+
 /// Runs `raylab render` and panics with its stderr if it fails.
 pub fn render(scene: &Path, out: &Path, extra: &[&str]) -> Output {
     let mut args = vec![

@@ -731,9 +731,15 @@ impl RaylabApp {
 
     /// Loads a reference image for the live error plot; a bad file is a message.
     pub fn load_reference(&mut self, path: &Path) {
-        if let Err(error) = self.errors.load(path) {
-            self.message = Some(format!("Cannot load the reference: {error}"));
+        match renderer::reference_image::read_exr_rgb(path) {
+            Ok(image) => self.set_reference(path.to_path_buf(), image),
+            Err(error) => self.message = Some(format!("Cannot load the reference: {error}")),
         }
+    }
+
+    /// Plots the live error against `image`, read from `path`.
+    pub fn set_reference(&mut self, path: PathBuf, image: renderer::reference_image::LinearImage) {
+        self.errors.set_reference(path, image);
     }
 
     /// Handles a closed file dialog.

@@ -2,7 +2,7 @@
 //! vertex of a tiled floor must hit it, at the same α either way — the
 //! boxes' slab tests must not lose what the triangles' watertight test finds.
 
-use super::measure::measure;
+use super::measure::{Tally, measure, timed};
 use super::{Case, Effort, Row};
 use crate::accel::{MeshBvh, reference};
 use crate::generate::{rays_at_shared_edges, tiled_floor};
@@ -28,21 +28,17 @@ fn run(effort: Effort) -> Vec<Row> {
         let bvh = MeshBvh::build(positions, triangles);
         // Brute force costs O(triangles) a ray: fewer rays, the same for both.
         let rays = rays_at_shared_edges(n, effort.trials.min(2_000), u64::from(n));
-        // Each ray with brute force's answer, the truth the BVH must equal.
-        let aimed: Vec<_> = rays
-            .into_iter()
-            .map(|ray| {
-                let alpha = reference::closest_hit(positions, triangles, &ray).map(|h| h.alpha);
-                (ray, alpha)
-            })
-            .collect();
         let count = triangles.len() as f64;
-        let (tally, ns) = measure(
-            &aimed,
-            |(ray, _)| reference::closest_hit(positions, triangles, ray).map(|h| h.alpha),
-            |_, alpha, tally| tally.judge(alpha.is_some(), None),
-        );
+        // Brute force's answers are the truth the BVH must equal.
+        let (truth, ns) = timed(&rays, |ray| {
+            reference::closest_hit(positions, triangles, ray).map(|h| h.alpha)
+        });
+        let mut tally = Tally::default();
+        for alpha in &truth {
+            tally.judge(alpha.is_some(), None);
+        }
         rows.push(tally.row(CASE.name, CONDITION, count, "brute force", ns));
+        let aimed: Vec<_> = rays.into_iter().zip(truth).collect();
         let (tally, ns) = measure(
             &aimed,
             |(ray, _)| bvh.closest_hit(ray).map(|h| h.alpha),

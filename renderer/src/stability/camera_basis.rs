@@ -44,15 +44,6 @@ const MAX_PIXEL_ERROR: f64 = 0.1;
 const W: u32 = 64;
 const H: u32 = 48;
 
-/// A camera as the scene gives it.
-#[derive(Clone, Copy, Debug)]
-struct Input {
-    eye: Vec3,
-    toward: Vec3,
-    up: Vec3,
-    theta_deg: f32,
-}
-
 /// What a method makes of a camera: its basis (t, u, r) and pixel rays.
 struct Built {
     basis: [Vec3; 3],
@@ -76,7 +67,7 @@ fn pixels() -> impl Iterator<Item = (u32, u32)> {
 /// C00 = P0 + d t + (H_d/2) u − (W_d/2) r,
 /// P_ij = C00 + (i + ½)(W_d/w) r − (j + ½)(H_d/h) u, v_ij = (P_ij − P0)/‖P_ij − P0‖,
 /// in f32 with t and u as given.
-fn lecture(input: &Input) -> Option<Built> {
+fn lecture(input: &ResolvedCamera) -> Option<Built> {
     let (p0, t, u) = (input.eye, input.toward, input.up);
     let r = t.cross(u);
     let theta = input.theta_deg.to_radians();
@@ -98,17 +89,8 @@ fn lecture(input: &Input) -> Option<Built> {
 }
 
 /// raylab's [`Camera::new`]; `None` when it refuses.
-fn robust(input: &Input) -> Option<Built> {
-    let camera = Camera::new(&ResolvedCamera {
-        eye: input.eye,
-        toward: input.toward,
-        up: input.up,
-        theta_deg: input.theta_deg,
-        d: None,
-        width: W,
-        height: H,
-    })
-    .ok()?;
+fn robust(input: &ResolvedCamera) -> Option<Built> {
+    let camera = Camera::new(input).ok()?;
     let half = glam::Vec2::splat(0.5);
     Some(Built {
         basis: [camera.t, camera.u, camera.r],
@@ -120,7 +102,7 @@ fn robust(input: &Input) -> Option<Built> {
 
 /// The exact pixel rays, in f64, of the camera the user meant: t normalised,
 /// u made orthogonal to it.
-fn exact_directions(input: &Input) -> Vec<DVec3> {
+fn exact_directions(input: &ResolvedCamera) -> Vec<DVec3> {
     let t = input.toward.as_dvec3().normalize();
     let up = input.up.as_dvec3();
     let u = (up - up.dot(t) * t).normalize();
@@ -161,7 +143,7 @@ fn basis_error([t, u, r]: [Vec3; 3]) -> f64 {
 
 /// The largest angle between a method's pixel rays and the exact ones, in
 /// pixels (one pixel subtends about 2θ / h at the centre); NaN if any is.
-fn direction_error(input: &Input, directions: &[Vec3]) -> f64 {
+fn direction_error(input: &ResolvedCamera, directions: &[Vec3]) -> f64 {
     let pixel = 2.0 * f64::from(input.theta_deg).to_radians() / f64::from(H);
     directions
         .iter()
@@ -194,15 +176,15 @@ fn sweep(
     values: &[f64],
     measured: Measure,
     effort: Effort,
-    camera: impl Fn(f64, &mut Sampler) -> Input,
+    camera: impl Fn(f64, &mut Sampler) -> ResolvedCamera,
 ) -> Vec<Row> {
     let mut rows = Vec::new();
     for (k, &value) in values.iter().enumerate() {
         let mut rng = Sampler::for_sample(31, k as u32, 0, 0);
-        let inputs: Vec<Input> = (0..(effort.trials / 100).max(10))
+        let inputs: Vec<ResolvedCamera> = (0..(effort.trials / 100).max(10))
             .map(|_| camera(value, &mut rng))
             .collect();
-        for (name, method) in [("lecture", lecture as fn(&Input) -> _), ("robust", robust)] {
+        for (name, method) in [("lecture", lecture as fn(&_) -> _), ("robust", robust)] {
             let (tally, ns) = measure(&inputs, method, |input, built, tally| {
                 let Some(built) = built else {
                     return tally.refuse();
@@ -222,12 +204,20 @@ fn sweep(
     rows
 }
 
-/// A random eye within 10 of the origin and a random unit t.
-fn eye_and_toward(rng: &mut Sampler) -> (Vec3, Vec3) {
-    (
-        10.0 * rng.next_direction() * rng.next_f32(),
-        rng.next_direction(),
-    )
+/// A w × h camera (d by default) at a random eye within 10 of the origin,
+/// looking along a random unit t, with u orthogonal to it and θ = 30°.
+fn random_camera(rng: &mut Sampler) -> ResolvedCamera {
+    let eye = 10.0 * rng.next_direction() * rng.next_f32();
+    let toward = rng.next_direction();
+    ResolvedCamera {
+        eye,
+        toward,
+        up: toward.any_orthonormal_vector(),
+        theta_deg: 30.0,
+        d: None,
+        width: W,
+        height: H,
+    }
 }
 
 fn run_up_near_toward(effort: Effort) -> Vec<Row> {
@@ -239,14 +229,11 @@ fn run_up_near_toward(effort: Effort) -> Vec<Row> {
         Measure::Basis,
         effort,
         |angle, rng| {
-            let (eye, toward) = eye_and_toward(rng);
-            let (side, _) = toward.any_orthonormal_pair();
+            let camera = random_camera(rng);
             let a = (angle as f32).to_radians();
-            Input {
-                eye,
-                toward,
-                up: a.cos() * toward + a.sin() * side,
-                theta_deg: 30.0,
+            ResolvedCamera {
+                up: a.cos() * camera.toward + a.sin() * camera.up,
+                ..camera
             }
         },
     )
@@ -260,15 +247,9 @@ fn run_theta(effort: Effort) -> Vec<Row> {
         &thetas,
         Measure::Pixels,
         effort,
-        |theta, rng| {
-            let (eye, toward) = eye_and_toward(rng);
-            let (up, _) = toward.any_orthonormal_pair();
-            Input {
-                eye,
-                toward,
-                up,
-                theta_deg: theta as f32,
-            }
+        |theta, rng| ResolvedCamera {
+            theta_deg: theta as f32,
+            ..random_camera(rng)
         },
     )
 }
@@ -282,13 +263,10 @@ fn run_toward_length(effort: Effort) -> Vec<Row> {
         Measure::Basis,
         effort,
         |length, rng| {
-            let (eye, toward) = eye_and_toward(rng);
-            let (up, _) = toward.any_orthonormal_pair();
-            Input {
-                eye,
-                toward: length as f32 * toward,
-                up,
-                theta_deg: 30.0,
+            let camera = random_camera(rng);
+            ResolvedCamera {
+                toward: length as f32 * camera.toward,
+                ..camera
             }
         },
     )

@@ -56,7 +56,7 @@ fn exact_alpha(ray: &Ray) -> Option<f64> {
 
 /// The textbook test, in f32 from the ray's own origin: the side's quadratic
 /// by (−b ± √disc) / 2a (roots kept for 0 ≤ y ≤ 1), then the base disk.
-pub fn textbook_cone(ray: &Ray) -> Option<f32> {
+fn textbook_cone(ray: &Ray) -> Option<f32> {
     let (o, d) = (ray.origin, ray.dir);
     let w0 = 1.0 - o.y;
     let a = d.x * d.x + d.z * d.z - d.y * d.y;

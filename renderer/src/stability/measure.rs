@@ -77,19 +77,24 @@ fn percentile_99(values: &mut [f64]) -> Option<f64> {
     Some(values[rank - 1])
 }
 
-/// Runs `method` on every input, then tallies each answer with `judge`.
-/// Only the method's calls are timed: the mean cost of one call in ns.
-pub fn measure<I, R>(
-    inputs: &[I],
-    method: impl Fn(&I) -> R,
-    judge: impl Fn(&I, &R, &mut Tally),
-) -> (Tally, f64) {
+/// Runs `method` on every input: its answers, and the mean cost of one call in ns.
+pub fn timed<I, R>(inputs: &[I], method: impl Fn(&I) -> R) -> (Vec<R>, f64) {
     let start = Instant::now();
     let answers: Vec<R> = inputs
         .iter()
         .map(|i| black_box(method(black_box(i))))
         .collect();
     let ns = start.elapsed().as_nanos() as f64 / inputs.len().max(1) as f64;
+    (answers, ns)
+}
+
+/// Runs `method` on every input ([`timed`]), then tallies each answer with `judge`.
+pub fn measure<I, R>(
+    inputs: &[I],
+    method: impl Fn(&I) -> R,
+    judge: impl Fn(&I, &R, &mut Tally),
+) -> (Tally, f64) {
+    let (answers, ns) = timed(inputs, method);
     let mut tally = Tally::default();
     for (input, answer) in inputs.iter().zip(&answers) {
         judge(input, answer, &mut tally);

@@ -17,8 +17,6 @@ mod triangle_edges;
 mod triangle_parallel;
 mod triangle_slivers;
 
-pub use measure::Tally;
-
 /// How many tests each (condition value, method) pair gets.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Effort {

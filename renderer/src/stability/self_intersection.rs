@@ -110,6 +110,28 @@ fn offset(hit: &Hit) -> Ray {
     )
 }
 
+/// One row per way of spawning at `scale`: a shadow ray from each hit, tested
+/// against `target`; `right` says whether what it found (α, if anything) is right.
+fn spawn_rows(
+    case: &Case,
+    scale: f64,
+    hits: &[Hit],
+    target: &Shape,
+    right: fn(Option<f32>) -> bool,
+) -> Vec<Row> {
+    SPAWNS
+        .iter()
+        .map(|&(name, spawn)| {
+            let (tally, ns) = measure(
+                hits,
+                |hit| target.intersect(&spawn(hit), Method::Robust),
+                |_, found, tally| tally.judge(right(*found), None),
+            );
+            tally.row(case.name, CONDITION, scale, name, ns)
+        })
+        .collect()
+}
+
 fn run_acne(effort: Effort) -> Vec<Row> {
     let mut rows = Vec::new();
     for scale in SCALES {
@@ -125,14 +147,10 @@ fn run_acne(effort: Effort) -> Vec<Row> {
             0.2 * s,
             effort,
         );
-        for (name, spawn) in SPAWNS {
-            let (tally, ns) = measure(
-                &hits,
-                |hit| sphere.intersect(&spawn(hit), Method::Robust),
-                |_, shadowed, tally| tally.judge(shadowed.is_none(), None),
-            );
-            rows.push(tally.row(ACNE.name, CONDITION, scale, name, ns));
-        }
+        // Right when the shadow ray does not find the sphere it left.
+        rows.extend(spawn_rows(&ACNE, scale, &hits, &sphere, |hit| {
+            hit.is_none()
+        }));
     }
     rows
 }
@@ -153,14 +171,10 @@ fn run_leak(effort: Effort) -> Vec<Row> {
             0.3 * s,
             effort,
         );
-        for (name, spawn) in SPAWNS {
-            let (tally, ns) = measure(
-                &hits,
-                |hit| occluder.intersect(&spawn(hit), Method::Robust),
-                |_, blocked, tally| tally.judge(blocked.is_some(), None),
-            );
-            rows.push(tally.row(LEAK.name, CONDITION, scale, name, ns));
-        }
+        // Right when the shadow ray finds the occluder just above.
+        rows.extend(spawn_rows(&LEAK, scale, &hits, &occluder, |hit| {
+            hit.is_some()
+        }));
     }
     rows
 }

@@ -37,7 +37,7 @@ const MINOR: f32 = 0.25;
 
 /// The textbook torus test: the quartic in α formed in f32 from the ray's
 /// origin as it is, its roots by the same solver, the nearest one in range.
-pub fn textbook_torus(ray: &Ray) -> Option<f32> {
+fn textbook_torus(ray: &Ray) -> Option<f32> {
     let (o, d) = (ray.origin, ray.dir);
     let (big, small) = (MAJOR, MINOR);
     let dd = d.dot(d);
