@@ -8,7 +8,7 @@ use anyhow::{Context, Result};
 use renderer::convergence::{Budget, ConvergencePoint, converge, time_to_reach};
 use renderer::integrator::Integrator;
 use renderer::reference_image::read_exr_rgb;
-use renderer::{Film, Method, RenderOptions, World};
+use renderer::{Film, Method, RenderOptions, Sampling, World};
 use std::io::Write;
 use std::path::PathBuf;
 use std::time::Duration;
@@ -23,17 +23,21 @@ pub struct Curve {
 
 /// The options a method renders with.
 fn options_of(method: ChartMethod, max_depth: u32, seed: u64) -> RenderOptions {
-    let (integrator, intersections) = match method {
-        ChartMethod::Path => (Integrator::Path, Method::Robust),
-        ChartMethod::PathLecture => (Integrator::Path, Method::Lecture),
-        ChartMethod::Whitted => (Integrator::Whitted, Method::Robust),
-        ChartMethod::WhittedLecture => (Integrator::Whitted, Method::Lecture),
+    let (integrator, intersections, sampling) = match method {
+        ChartMethod::Path => (Integrator::Path, Method::Robust, Sampling::Independent),
+        ChartMethod::PathSobol => (Integrator::Path, Method::Robust, Sampling::Sobol),
+        ChartMethod::PathLecture => (Integrator::Path, Method::Lecture, Sampling::Independent),
+        ChartMethod::Whitted => (Integrator::Whitted, Method::Robust, Sampling::Independent),
+        ChartMethod::WhittedLecture => {
+            (Integrator::Whitted, Method::Lecture, Sampling::Independent)
+        }
     };
     RenderOptions {
         integrator,
         method: intersections,
         max_depth,
         seed,
+        sampling,
     }
 }
 

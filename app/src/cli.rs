@@ -83,6 +83,8 @@ pub struct ChartArgs {
 pub enum ChartMethod {
     /// Path tracing, robust intersections.
     Path,
+    /// Path tracing with Owen-scrambled Sobol samples.
+    PathSobol,
     /// Path tracing with the lecture's sphere and triangle formulas.
     PathLecture,
     /// Whitted ray tracing, robust intersections.
@@ -96,6 +98,7 @@ impl ChartMethod {
     pub fn name(self) -> &'static str {
         match self {
             ChartMethod::Path => "path",
+            ChartMethod::PathSobol => "path-sobol",
             ChartMethod::PathLecture => "path-lecture",
             ChartMethod::Whitted => "whitted",
             ChartMethod::WhittedLecture => "whitted-lecture",
@@ -143,6 +146,27 @@ pub struct SceneArgs {
     /// max_depth (1 = emitters seen directly, 2 = direct lighting).
     #[arg(long, default_value_t = 8)]
     pub max_depth: u32,
+    /// How each pixel's samples draw their random numbers.
+    #[arg(long, value_enum, default_value_t = SamplerArg::Independent)]
+    pub sampler: SamplerArg,
+}
+
+/// `--sampler`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum SamplerArg {
+    /// Independent uniform random numbers.
+    Independent,
+    /// Owen-scrambled Sobol points: each pixel's samples stratified.
+    Sobol,
+}
+
+impl From<SamplerArg> for renderer::Sampling {
+    fn from(arg: SamplerArg) -> Self {
+        match arg {
+            SamplerArg::Independent => renderer::Sampling::Independent,
+            SamplerArg::Sobol => renderer::Sampling::Sobol,
+        }
+    }
 }
 
 /// Arguments of `raylab bench`.

@@ -32,6 +32,7 @@ pub fn prepare(args: &SceneArgs) -> Result<(World, RenderOptions)> {
         method: args.method.into(),
         max_depth: args.max_depth,
         seed: args.seed,
+        sampling: args.sampler.into(),
     };
     Ok((world, options))
 }

@@ -16,7 +16,7 @@ const BAND_ROWS: usize = 4;
 /// jittered point (i + x, j + y) on the view window, seeded from
 /// (seed, pixel, sample) alone, so it can be re-traced exactly at any time.
 pub fn sample_pixel(world: &World, options: &RenderOptions, i: u32, j: u32, sample: u32) -> Vec3 {
-    let mut sampler = Sampler::for_sample(options.seed, i, j, sample);
+    let mut sampler = Sampler::for_pixel_sample(options.sampling, options.seed, i, j, sample);
     let ray = world.camera.ray(i, j, sampler.next_2d());
     match options.integrator {
         Integrator::Whitted => whitted(world, &ray, options),
@@ -28,7 +28,7 @@ pub fn sample_pixel(world: &World, options: &RenderOptions, i: u32, j: u32, samp
 /// the pixel: the jitter replacing the lecture's (½, ½) in P_ij (the first
 /// two numbers of the sample's stream, as [`sample_pixel`] draws them).
 pub fn sample_offset(options: &RenderOptions, i: u32, j: u32, sample: u32) -> Vec2 {
-    Sampler::for_sample(options.seed, i, j, sample).next_2d()
+    Sampler::for_pixel_sample(options.sampling, options.seed, i, j, sample).next_2d()
 }
 
 /// A sum of samples per pixel, all pixels having the same sample count,

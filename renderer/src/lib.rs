@@ -44,5 +44,6 @@ pub use camera::Camera;
 pub use film::Film;
 pub use inspect::{Inspection, inspect_pixel};
 pub use integrator::RenderOptions;
+pub use sampler::Sampling;
 pub use shapes::Method;
 pub use world::{RenderError, World};

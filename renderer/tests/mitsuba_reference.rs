@@ -7,7 +7,7 @@
 use renderer::integrator::Integrator;
 use renderer::metrics::{downsample, rel_mse};
 use renderer::reference_image::read_exr_rgb;
-use renderer::{Film, RenderOptions, World};
+use renderer::{Film, RenderOptions, Sampling, World};
 use std::path::PathBuf;
 
 fn reference_dir() -> PathBuf {
@@ -16,7 +16,7 @@ fn reference_dir() -> PathBuf {
 
 /// relMSE of an `spp` render of `name` against its reference, both averaged
 /// over `block` × `block` pixel squares.
-fn block_error(name: &str, spp: u32, block: u32) -> f64 {
+fn block_error(name: &str, spp: u32, block: u32, sampling: Sampling) -> f64 {
     let dir = reference_dir();
     let scene = scene::read_file(&dir.join(format!("{name}.xml"))).expect("reference scene");
     let world = World::from_scene(&scene).expect("valid");
@@ -27,6 +27,7 @@ fn block_error(name: &str, spp: u32, block: u32) -> f64 {
         integrator: Integrator::Path,
         max_depth: 8,
         seed: 5,
+        sampling,
         ..Default::default()
     };
     let film = Film::render(&world, &options, spp);
@@ -41,7 +42,7 @@ const BOUND: f64 = 2.0e-3;
 
 #[test]
 fn cornell_box_matches_mitsuba() {
-    let e = block_error("cornell", 8, 8);
+    let e = block_error("cornell", 8, 8, Sampling::Independent);
     eprintln!("cornell, 8 spp: relMSE of 8×8 blocks {e:.3e}");
     assert!(e <= BOUND, "relMSE of 8×8 blocks {e:.3e} > {BOUND:.0e}");
 }
@@ -49,7 +50,15 @@ fn cornell_box_matches_mitsuba() {
 #[test]
 fn hundred_spheres_with_glass_and_mirrors_match_mitsuba() {
     // Caustics through glass are noisy at low sample counts: larger blocks.
-    let e = block_error("spheres", 16, 16);
+    let e = block_error("spheres", 16, 16, Sampling::Independent);
     eprintln!("spheres, 16 spp: relMSE of 16×16 blocks {e:.3e}");
     assert!(e <= BOUND, "relMSE of 16×16 blocks {e:.3e} > {BOUND:.0e}");
+}
+
+#[test]
+fn cornell_box_with_sobol_samples_matches_mitsuba() {
+    // Stratifying the first bounce must not move the answer.
+    let e = block_error("cornell", 8, 8, Sampling::Sobol);
+    eprintln!("cornell, Sobol, 8 spp: relMSE of 8×8 blocks {e:.3e}");
+    assert!(e <= BOUND, "relMSE of 8×8 blocks {e:.3e} > {BOUND:.0e}");
 }

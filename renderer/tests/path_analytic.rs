@@ -3,7 +3,7 @@
 
 use glam::Vec3;
 use renderer::integrator::Integrator;
-use renderer::{Film, RenderOptions, World};
+use renderer::{Film, RenderOptions, Sampling, World};
 use scene::{Camera, MaterialParams, Object, Scene, Shape};
 
 fn matte(shape: Shape, albedo: f32, emission: Option<f32>) -> Object {
@@ -167,7 +167,12 @@ fn glowing_enclosure(albedo: f32, emission: f32) -> Vec<Object> {
 fn furnace_inside_a_glowing_box_every_pixel_is_emission_over_one_minus_albedo() {
     // L = E + a L everywhere inside, so L = E / (1 − a): infinite bounces,
     // with light sampling and MIS at every vertex.
-    for (albedo, spp) in [(0.0f32, 1), (0.5, 16), (0.8, 48)] {
+    for (albedo, spp, sampling) in [
+        (0.0f32, 1, Sampling::Independent),
+        (0.5, 16, Sampling::Independent),
+        (0.8, 48, Sampling::Independent),
+        (0.8, 48, Sampling::Sobol),
+    ] {
         let emission = 0.25;
         let scene = Scene {
             camera: camera(Vec3::new(0.1, 0.2, 0.5), Vec3::new(-0.3, -0.1, -1.0), 12),
@@ -175,12 +180,16 @@ fn furnace_inside_a_glowing_box_every_pixel_is_emission_over_one_minus_albedo() 
             ..Default::default()
         };
         let world = World::from_scene(&scene).expect("valid");
-        let film = Film::render(&world, &path_options(3), spp);
+        let options = RenderOptions {
+            sampling,
+            ..path_options(3)
+        };
+        let film = Film::render(&world, &options, spp);
         let expected = emission / (1.0 - albedo);
         let m = mean(&film);
         assert!(
             (m - Vec3::splat(expected)).abs().max_element() < 0.01 * expected,
-            "albedo {albedo}: mean {m}, expected {expected}"
+            "albedo {albedo}, {sampling:?}: mean {m}, expected {expected}"
         );
         // Single pixels are heavy-tailed (Russian roulette), so the image
         // mean is what is tested; no sample may be lost either.

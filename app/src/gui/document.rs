@@ -3,7 +3,7 @@
 
 use super::history::History;
 use renderer::integrator::Integrator;
-use renderer::{Method, RenderOptions};
+use renderer::{Method, RenderOptions, Sampling};
 use scene::Scene;
 use std::path::{Path, PathBuf};
 
@@ -16,6 +16,8 @@ pub struct RenderSettings {
     pub method: Method,
     /// Maximum reflection/refraction bounces.
     pub max_depth: u32,
+    /// Independent or Sobol samples.
+    pub sampling: Sampling,
     /// Stop refining at this many samples per pixel; `None` refines until stopped.
     pub target_spp: Option<u32>,
 }
@@ -26,6 +28,7 @@ impl Default for RenderSettings {
             integrator: Integrator::Whitted,
             method: Method::Robust,
             max_depth: RenderOptions::default().max_depth,
+            sampling: Sampling::Independent,
             target_spp: Some(64),
         }
     }
@@ -38,6 +41,7 @@ impl RenderSettings {
             integrator: self.integrator,
             method: self.method,
             max_depth: self.max_depth,
+            sampling: self.sampling,
             ..RenderOptions::default()
         }
     }

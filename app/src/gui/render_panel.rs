@@ -2,8 +2,8 @@
 
 use super::document::RenderSettings;
 use super::widgets;
-use renderer::Method;
 use renderer::integrator::Integrator;
+use renderer::{Method, Sampling};
 
 /// Samples per pixel offered when the user turns a target back on.
 const DEFAULT_TARGET: u32 = 64;
@@ -42,6 +42,22 @@ pub fn show(ui: &mut egui::Ui, settings: &mut RenderSettings) -> bool {
                 changed |= ui
                     .radio_value(&mut settings.method, Method::Lecture, "lecture")
                     .on_hover_text("the lecture's formulas exactly")
+                    .changed();
+            });
+            ui.end_row();
+
+            ui.label("Samples");
+            ui.horizontal(|ui| {
+                changed |= ui
+                    .radio_value(&mut settings.sampling, Sampling::Independent, "independent")
+                    .on_hover_text("independent random numbers for every sample")
+                    .changed();
+                changed |= ui
+                    .radio_value(&mut settings.sampling, Sampling::Sobol, "Sobol")
+                    .on_hover_text(
+                        "Owen-scrambled Sobol points: each pixel's samples spread evenly over \
+                         the pixel, the lights and the first bounce's directions",
+                    )
                     .changed();
             });
             ui.end_row();

@@ -8,6 +8,7 @@ pub use path::path;
 pub use recorder::{NoRecorder, Note, RayKind, Recorder};
 pub use whitted::{whitted, whitted_recorded};
 
+use crate::sampler::Sampling;
 use crate::shapes::Method;
 
 /// Which estimator of a ray's radiance renders the image.
@@ -36,6 +37,8 @@ pub struct RenderOptions {
     pub max_depth: u32,
     /// Seed of every random choice; with (pixel, sample index) it fixes a sample.
     pub seed: u64,
+    /// How each pixel's samples draw their random numbers.
+    pub sampling: Sampling,
 }
 
 impl Default for RenderOptions {
@@ -45,6 +48,7 @@ impl Default for RenderOptions {
             method: Method::Robust,
             max_depth: 8,
             seed: 0,
+            sampling: Sampling::Independent,
         }
     }
 }
