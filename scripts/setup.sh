@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs what raylab needs on a fresh Debian 12 machine that has Rust (rustup):
-# a C toolchain for linking; Mesa's software Vulkan (lavapipe) and the X client
+# a C and C++ toolchain (linking; FLIP's C++ in `raylab chart`); Mesa's software Vulkan (lavapipe) and the X client
 # libraries the window loads at run time (no GPU needed); Xvfb and
 # ImageMagick for the end-to-end test of the real window; and the
 # rustfmt/clippy components the checks use.
@@ -8,7 +8,7 @@
 set -euo pipefail
 
 packages=(
-  gcc libc6-dev ca-certificates
+  gcc g++ libc6-dev ca-certificates
   mesa-vulkan-drivers libvulkan1
   libx11-6 libx11-xcb1 libxcursor1 libxi6 libxrandr2 libxkbcommon0 libxkbcommon-x11-0
   xvfb xauth imagemagick

@@ -571,7 +571,7 @@ fn chart_writes_error_against_time_per_method_as_csv_and_a_png() {
         "chart",
         scene.to_str().expect("utf-8"),
         "--methods",
-        "path,whitted",
+        "path,whitted,path-sobol,path-adaptive",
         "--seconds",
         "0.5",
         "--max-spp",
@@ -582,9 +582,12 @@ fn chart_writes_error_against_time_per_method_as_csv_and_a_png() {
     assert!(stdout.contains("to 1e-2"), "prints time to 1e-2: {stdout}");
     let csv = std::fs::read_to_string(prefix.with_extension("csv")).expect("csv written");
     let mut lines = csv.lines();
-    assert_eq!(lines.next(), Some("method,spp,seconds,rel_mse,rmse"));
+    assert_eq!(
+        lines.next(),
+        Some("method,spp,mean_spp,seconds,rel_mse,rmse,flip")
+    );
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
-    for method in ["path", "whitted"] {
+    for method in ["path", "whitted", "path-sobol", "path-adaptive"] {
         let mine: Vec<&Vec<&str>> = rows.iter().filter(|r| r[0] == method).collect();
         assert!(!mine.is_empty(), "{method} has rows");
         let spp: Vec<u32> = mine.iter().map(|r| r[1].parse().expect("spp")).collect();
@@ -594,23 +597,34 @@ fn chart_writes_error_against_time_per_method_as_csv_and_a_png() {
         );
         let seconds: Vec<f64> = mine
             .iter()
-            .map(|r| r[2].parse().expect("seconds"))
+            .map(|r| r[3].parse().expect("seconds"))
             .collect();
         assert!(
             seconds.windows(2).all(|w| w[1] > w[0]),
             "{method}: time grows"
         );
+        for row in &mine {
+            let flip: f64 = row[6].parse().expect("flip");
+            assert!((0.0..=1.0).contains(&flip), "{method}: FLIP {flip}");
+        }
     }
     // Path tracing converges toward raylab's own path-traced reference.
-    let path_error: Vec<f64> = rows
-        .iter()
-        .filter(|r| r[0] == "path")
-        .map(|r| r[3].parse().expect("rel_mse"))
-        .collect();
+    let column = |name: &str, k: usize| -> Vec<f64> {
+        rows.iter()
+            .filter(|r| r[0] == name)
+            .map(|r| r[k].parse().expect("a number"))
+            .collect()
+    };
+    let path_error = column("path", 4);
     let (first, last) = (path_error[0], path_error[path_error.len() - 1]);
     assert!(
         path_error.len() >= 4 && last < 0.5 * first,
         "{path_error:?}"
+    );
+    let path_flip = column("path", 6);
+    assert!(
+        path_flip[path_flip.len() - 1] < path_flip[0],
+        "FLIP falls as the image converges: {path_flip:?}"
     );
     let png = image::open(prefix.with_extension("png"))
         .expect("png written")

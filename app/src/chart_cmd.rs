@@ -3,8 +3,11 @@
 //! a reference, and writes the curves as CSV and as a log–log PNG chart.
 
 use crate::cli::{ChartArgs, ChartMethod};
+use crate::flip::FlipReference;
 use crate::render_cmd::UserError;
 use anyhow::{Context, Result};
+use glam::Vec3;
+use renderer::adaptive::Adaptive;
 use renderer::convergence::{Budget, ConvergencePoint, converge, time_to_reach};
 use renderer::integrator::Integrator;
 use renderer::reference_image::read_exr_rgb;
@@ -23,21 +26,35 @@ pub struct Curve {
 
 /// The options a method renders with.
 fn options_of(method: ChartMethod, max_depth: u32, seed: u64) -> RenderOptions {
-    let (integrator, intersections, sampling) = match method {
-        ChartMethod::Path => (Integrator::Path, Method::Robust, Sampling::Independent),
-        ChartMethod::PathSobol => (Integrator::Path, Method::Robust, Sampling::Sobol),
-        ChartMethod::PathLecture => (Integrator::Path, Method::Lecture, Sampling::Independent),
-        ChartMethod::Whitted => (Integrator::Whitted, Method::Robust, Sampling::Independent),
-        ChartMethod::WhittedLecture => {
-            (Integrator::Whitted, Method::Lecture, Sampling::Independent)
-        }
-    };
-    RenderOptions {
-        integrator,
-        method: intersections,
+    let path = RenderOptions {
+        integrator: Integrator::Path,
         max_depth,
         seed,
-        sampling,
+        ..RenderOptions::default()
+    };
+    let whitted = RenderOptions {
+        integrator: Integrator::Whitted,
+        ..path
+    };
+    match method {
+        ChartMethod::Path => path,
+        ChartMethod::PathSobol => RenderOptions {
+            sampling: Sampling::Sobol,
+            ..path
+        },
+        ChartMethod::PathAdaptive => RenderOptions {
+            adaptive: Some(Adaptive::default()),
+            ..path
+        },
+        ChartMethod::PathLecture => RenderOptions {
+            method: Method::Lecture,
+            ..path
+        },
+        ChartMethod::Whitted => whitted,
+        ChartMethod::WhittedLecture => RenderOptions {
+            method: Method::Lecture,
+            ..whitted
+        },
     }
 }
 
@@ -64,6 +81,7 @@ pub fn run(args: &ChartArgs) -> Result<Vec<PathBuf>> {
             own_reference(&world, args.max_depth, seconds)
         }
     };
+    let flip = FlipReference::new(&reference, w, h);
     let budget = Budget {
         time: Duration::from_secs_f64(args.seconds),
         max_spp: args.max_spp,
@@ -72,17 +90,26 @@ pub fn run(args: &ChartArgs) -> Result<Vec<PathBuf>> {
     for &method in &args.methods {
         let name = method.name();
         let options = options_of(method, args.max_depth, args.seed);
-        let (points, _) = converge(&world, &options, &reference, budget);
+        let (points, _) = converge(
+            &world,
+            &options,
+            &reference,
+            budget,
+            Some(&|image: &[Vec3]| flip.mean_error(image)),
+        );
         if let Some(last) = points.last() {
             let reach = |target| {
                 time_to_reach(&points, target)
                     .map_or_else(|| "not reached".to_owned(), |t| format!("{t:.2} s"))
             };
             println!(
-                "{name:>16}: {} spp in {:.2} s, relMSE {:.3e}; to 1e-2: {}, to 1e-3: {}",
+                "{name:>16}: {} spp ({:.1} on average) in {:.2} s, relMSE {:.3e}, FLIP {:.4}; \
+                 to 1e-2: {}, to 1e-3: {}",
                 last.spp,
+                last.mean_spp,
                 last.seconds,
                 last.rel_mse,
+                last.perceptual.unwrap_or(f64::NAN),
                 reach(1e-2),
                 reach(1e-3)
             );
@@ -120,14 +147,21 @@ fn own_reference(world: &World, max_depth: u32, seconds: f64) -> Vec<glam::Vec3>
     film.linear()
 }
 
-/// One row per method and pass: method, spp, seconds, rel_mse, rmse.
+/// One row per method and pass: method, spp (passes), mean_spp, seconds,
+/// rel_mse, rmse, flip (LDR-FLIP's mean).
 fn write_csv(path: &std::path::Path, curves: &[Curve]) -> Result<()> {
-    let mut out = String::from("method,spp,seconds,rel_mse,rmse\n");
+    let mut out = String::from("method,spp,mean_spp,seconds,rel_mse,rmse,flip\n");
     for curve in curves {
         for p in &curve.points {
             out.push_str(&format!(
-                "{},{},{:.6},{:.6e},{:.6e}\n",
-                curve.name, p.spp, p.seconds, p.rel_mse, p.rmse
+                "{},{},{:.3},{:.6},{:.6e},{:.6e},{:.6e}\n",
+                curve.name,
+                p.spp,
+                p.mean_spp,
+                p.seconds,
+                p.rel_mse,
+                p.rmse,
+                p.perceptual.unwrap_or(f64::NAN)
             ));
         }
     }

@@ -85,6 +85,8 @@ pub enum ChartMethod {
     Path,
     /// Path tracing with Owen-scrambled Sobol samples.
     PathSobol,
+    /// Path tracing with adaptive sampling (threshold 2%).
+    PathAdaptive,
     /// Path tracing with the lecture's sphere and triangle formulas.
     PathLecture,
     /// Whitted ray tracing, robust intersections.
@@ -99,6 +101,7 @@ impl ChartMethod {
         match self {
             ChartMethod::Path => "path",
             ChartMethod::PathSobol => "path-sobol",
+            ChartMethod::PathAdaptive => "path-adaptive",
             ChartMethod::PathLecture => "path-lecture",
             ChartMethod::Whitted => "whitted",
             ChartMethod::WhittedLecture => "whitted-lecture",
@@ -149,6 +152,11 @@ pub struct SceneArgs {
     /// How each pixel's samples draw their random numbers.
     #[arg(long, value_enum, default_value_t = SamplerArg::Independent)]
     pub sampler: SamplerArg,
+    /// Adaptive sampling: after 16 passes, pixels whose relative error
+    /// (standard error over mean luminance) is below ERROR, with their
+    /// neighbours', stop receiving samples; `--adaptive` alone means 0.02.
+    #[arg(long, value_name = "ERROR", num_args = 0..=1, default_missing_value = "0.02")]
+    pub adaptive: Option<f32>,
 }
 
 /// `--sampler`.
@@ -285,4 +293,7 @@ pub enum AovArg {
     Variance,
     /// Shape tests per sample after `--spp` passes (EXR channel `cost`; PNG: a heatmap).
     Cost,
+    /// Samples each pixel received: `--adaptive` gives converged pixels fewer (EXR channel `spp`;
+    /// PNG: a heatmap).
+    Spp,
 }

@@ -5,6 +5,7 @@ mod bench_export;
 mod chart_cmd;
 mod chart_plot;
 mod cli;
+mod flip;
 mod gui;
 mod inspect_cmd;
 mod output;

@@ -33,6 +33,18 @@ pub fn prepare(args: &SceneArgs) -> Result<(World, RenderOptions)> {
         max_depth: args.max_depth,
         seed: args.seed,
         sampling: args.sampler.into(),
+        adaptive: match args.adaptive {
+            Some(threshold) if threshold > 0.0 && threshold.is_finite() => {
+                Some(renderer::adaptive::Adaptive { threshold })
+            }
+            Some(threshold) => {
+                return Err(UserError(format!(
+                    "--adaptive {threshold}: the error threshold must be a positive number"
+                ))
+                .into());
+            }
+            None => None,
+        },
     };
     Ok((world, options))
 }
@@ -56,6 +68,7 @@ pub fn run(args: &RenderArgs) -> Result<Duration> {
     let provenance = match args.aov {
         AovArg::Variance => provenance.with_display(Display::Variance),
         AovArg::Cost => provenance.with_display(Display::Cost),
+        AovArg::Spp => provenance.with_display(Display::SamplesPerPixel),
         _ => provenance,
     };
     match aov_of(args.aov) {
@@ -80,6 +93,7 @@ pub fn run(args: &RenderArgs) -> Result<Duration> {
             let diagnostic = match args.aov {
                 AovArg::Variance => Some((Display::Variance, "variance")),
                 AovArg::Cost => Some((Display::Cost, "cost")),
+                AovArg::Spp => Some((Display::SamplesPerPixel, "spp")),
                 _ => None,
             };
             match (format, diagnostic) {
@@ -98,6 +112,9 @@ pub fn run(args: &RenderArgs) -> Result<Duration> {
                         Display::Variance => film
                             .relative_variance()
                             .unwrap_or_else(|| vec![0.0; pixels.len()]),
+                        Display::SamplesPerPixel => {
+                            film.samples_per_pixel().iter().map(|&n| n as f32).collect()
+                        }
                         _ => film.cost_per_sample(),
                     };
                     write_exr(&args.output, w, h, &[channel], &values, &provenance)?
@@ -138,7 +155,7 @@ fn rgb_bytes(image: &DisplayImage) -> Vec<u8> {
 
 fn aov_of(arg: AovArg) -> Option<Aov> {
     match arg {
-        AovArg::Color | AovArg::Variance | AovArg::Cost => None,
+        AovArg::Color | AovArg::Variance | AovArg::Cost | AovArg::Spp => None,
         AovArg::Depth => Some(Aov::Depth),
         AovArg::Normal => Some(Aov::Normal),
         AovArg::Albedo => Some(Aov::Albedo),

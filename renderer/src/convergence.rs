@@ -11,14 +11,19 @@ use std::time::{Duration, Instant};
 /// The state of a render after one more pass.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct ConvergencePoint {
-    /// Samples per pixel so far.
+    /// Passes so far (samples of the pixels that never stopped).
     pub spp: u32,
+    /// Samples per pixel on average (below `spp` once adaptive sampling
+    /// stops pixels).
+    pub mean_spp: f64,
     /// Render time so far (error measurement excluded), in seconds.
     pub seconds: f64,
     /// Relative MSE against the reference ([`rel_mse`]).
     pub rel_mse: f64,
     /// Root mean squared error against the reference.
     pub rmse: f64,
+    /// A perceptual error measured by the caller (the chart's FLIP), if any.
+    pub perceptual: Option<f64>,
 }
 
 /// When to stop refining.
@@ -30,14 +35,20 @@ pub struct Budget {
     pub max_spp: u32,
 }
 
+/// Another error measure of an image (linear RGB, the reference's size).
+pub type ErrorMeasure<'a> = &'a dyn Fn(&[Vec3]) -> f64;
+
 /// Renders `world` pass by pass until `budget` is spent, measuring the error
 /// against `reference` (the same size, linear RGB) after every pass; the
-/// time spent measuring is not counted. Returns the curve and the last film.
+/// time spent measuring is not counted. `perceptual` adds another error
+/// measure of each pass's image. Stops early once adaptive sampling has
+/// stopped every pixel. Returns the curve and the last film.
 pub fn converge(
     world: &World,
     options: &RenderOptions,
     reference: &[Vec3],
     budget: Budget,
+    perceptual: Option<ErrorMeasure<'_>>,
 ) -> (Vec<ConvergencePoint>, Film) {
     let mut film = Film::new(world.camera.w, world.camera.h);
     assert_eq!(
@@ -47,16 +58,18 @@ pub fn converge(
     );
     let mut curve = Vec::new();
     let mut spent = Duration::ZERO;
-    while spent < budget.time && film.passes() < budget.max_spp {
+    while spent < budget.time && film.passes() < budget.max_spp && !film.converged() {
         let start = Instant::now();
         film.add_pass(world, options);
         spent += start.elapsed();
         let image = film.linear();
         curve.push(ConvergencePoint {
             spp: film.passes(),
+            mean_spp: film.mean_spp(),
             seconds: spent.as_secs_f64(),
             rel_mse: rel_mse(&image, reference),
             rmse: rmse(&image, reference),
+            perceptual: perceptual.map(|measure| measure(&image)),
         });
     }
     (curve, film)
@@ -87,9 +100,11 @@ mod tests {
     fn point(seconds: f64, rel_mse: f64) -> ConvergencePoint {
         ConvergencePoint {
             spp: 1,
+            mean_spp: 1.0,
             seconds,
             rel_mse,
             rmse: 0.0,
+            perceptual: None,
         }
     }
 

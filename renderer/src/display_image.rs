@@ -141,13 +141,34 @@ pub fn aov_image(aov: Aov, values: &[f32]) -> DisplayImage {
     }
 }
 
-/// Samples per pixel: the same for every pixel, by construction.
+/// Samples per pixel: the same everywhere unless adaptive sampling stopped
+/// some pixels, then a heatmap of each pixel's count.
 fn samples_per_pixel(source: Source, len: usize) -> DisplayImage {
     let (spp, note) = match source {
-        Source::Film(film) => (
-            film.passes() as f32,
-            "every pixel: one sample per pass".to_owned(),
-        ),
+        Source::Film(film) => {
+            let counts = film.samples_per_pixel();
+            let (min, max) = counts
+                .iter()
+                .fold((u32::MAX, 0), |(lo, hi), &n| (lo.min(n), hi.max(n)));
+            if min < max {
+                let values: Vec<f32> = counts.iter().map(|&n| n as f32).collect();
+                return heatmap(
+                    Display::SamplesPerPixel,
+                    &values,
+                    Scale::Linear,
+                    None,
+                    "samples / pixel",
+                    format!(
+                        "adaptive: {:.1} on average; a pixel stops once its error is below the threshold",
+                        film.mean_spp()
+                    ),
+                );
+            }
+            (
+                film.passes() as f32,
+                "every pixel: one sample per pass".to_owned(),
+            )
+        }
         Source::Preview(p) => {
             let stride = p.stride();
             (

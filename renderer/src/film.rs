@@ -1,5 +1,7 @@
-//! Progressive accumulation: each pass adds one jittered sample per pixel.
+//! Progressive accumulation: each pass adds one jittered sample per pixel —
+//! to every pixel, or with adaptive sampling to those still noisy.
 
+use crate::adaptive::{Adaptive, pixels_needing_samples};
 use crate::integrator::{Integrator, RenderOptions, path, whitted};
 use crate::pixel_stats::{PixelStats, luminance};
 use crate::preview::PreviewSamples;
@@ -31,15 +33,21 @@ pub fn sample_offset(options: &RenderOptions, i: u32, j: u32, sample: u32) -> Ve
     Sampler::for_pixel_sample(options.sampling, options.seed, i, j, sample).next_2d()
 }
 
-/// A sum of samples per pixel, all pixels having the same sample count,
-/// and per pixel the statistics of the diagnostic heatmaps.
+/// A sum of samples per pixel with each pixel's sample count, and per pixel
+/// the statistics of the diagnostic heatmaps and of adaptive sampling.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Film {
     width: u32,
     height: u32,
     sum: Vec<Vec3>,
     stats: Vec<PixelStats>,
+    /// Samples traced per pixel (discarded ones included): the pass count
+    /// everywhere unless adaptive sampling stopped the pixel.
+    counts: Vec<u32>,
     passes: u32,
+    /// Samples the last pass traced (all pixels without adaptive sampling).
+    last_pass_samples: u64,
+    samples: u64,
     discarded: u64,
     rays: u64,
 }
@@ -52,7 +60,10 @@ impl Film {
             height,
             sum: vec![Vec3::ZERO; width as usize * height as usize],
             stats: vec![PixelStats::default(); width as usize * height as usize],
+            counts: vec![0; width as usize * height as usize],
             passes: 0,
+            last_pass_samples: 0,
+            samples: 0,
             discarded: 0,
             rays: 0,
         }
@@ -68,9 +79,29 @@ impl Film {
         self.height
     }
 
-    /// Samples per pixel so far.
+    /// Passes so far: the samples of every pixel that never stopped.
     pub fn passes(&self) -> u32 {
         self.passes
+    }
+
+    /// Samples traced so far, over all pixels.
+    pub fn samples(&self) -> u64 {
+        self.samples
+    }
+
+    /// Samples per pixel on average.
+    pub fn mean_spp(&self) -> f64 {
+        self.samples as f64 / self.counts.len().max(1) as f64
+    }
+
+    /// Samples each pixel has, row by row from the top.
+    pub fn samples_per_pixel(&self) -> &[u32] {
+        &self.counts
+    }
+
+    /// True once adaptive sampling has stopped every pixel: more passes add nothing.
+    pub fn converged(&self) -> bool {
+        self.passes > 0 && self.last_pass_samples == 0
     }
 
     /// Samples that came out NaN or infinite and were left out (counted, not hidden).
@@ -83,7 +114,9 @@ impl Film {
         self.rays
     }
 
-    /// Adds one sample to every pixel (pass k traces sample index k), in parallel over bands of rows.
+    /// Adds one sample to every pixel that needs one (a pixel's k-th sample
+    /// traces sample index k), in parallel over bands of rows. Every pixel
+    /// needs one unless `options.adaptive` stopped it.
     pub fn add_pass(&mut self, world: &World, options: &RenderOptions) {
         let completed = self.add_pass_unless(world, options, &|| false);
         debug_assert!(completed);
@@ -126,53 +159,77 @@ impl Film {
         known: Option<&PreviewSamples>,
         cancelled: &(dyn Fn() -> bool + Sync),
     ) -> bool {
-        let (width, sample) = (self.width as usize, self.passes);
-        // Welford's weight of this pass's sample. A pixel that lost a NaN
-        // sample keeps this shared count (rare, and only the variance view
-        // reads it), so no count per pixel is stored.
-        let inv_count = 1.0 / (sample + 1) as f32;
-        let (discarded, skipped, rays): (u64, u64, u64) = self
+        let width = self.width as usize;
+        let needing = options
+            .adaptive
+            .filter(|_| self.passes >= Adaptive::MIN_SAMPLES)
+            .map(|adaptive| {
+                let variance: Vec<f32> = self
+                    .stats
+                    .iter()
+                    .zip(&self.counts)
+                    .map(|(s, &n)| s.relative_variance(n).unwrap_or(f32::INFINITY))
+                    .collect();
+                pixels_needing_samples(width, self.height as usize, &variance, adaptive.threshold)
+            });
+        let needing = needing.as_deref();
+        let (discarded, skipped, rays, traced): (u64, u64, u64, u64) = self
             .sum
             .par_chunks_mut(width * BAND_ROWS)
             .zip(self.stats.par_chunks_mut(width * BAND_ROWS))
+            .zip(self.counts.par_chunks_mut(width * BAND_ROWS))
             .enumerate()
-            .map(|(band, (rows, stats))| {
+            .map(|(band, ((rows, stats), counts))| {
                 if cancelled() {
-                    return (0, 1, 0);
+                    return (0, 1, 0, 0);
                 }
                 let rays_before = crate::ray_count::rays_on_this_thread();
-                let mut bad = 0;
-                for (row, (accs, stats)) in rows
+                let (mut bad, mut traced) = (0, 0);
+                for (row, ((accs, stats), counts)) in rows
                     .chunks_mut(width)
                     .zip(stats.chunks_mut(width))
+                    .zip(counts.chunks_mut(width))
                     .enumerate()
                 {
                     let j = (band * BAND_ROWS + row) as u32;
+                    let needing_row = needing.map(|n| &n[j as usize * width..][..width]);
                     // Blocks of pixels whose first sample may be known (no
                     // division per pixel): the whole row when none is.
                     let known_row = known.and_then(|k| k.row(j));
                     let stride = known_row.map_or(width, |row| row.stride as usize);
-                    for (block, (accs, stats)) in accs
+                    for (block, ((accs, stats), counts)) in accs
                         .chunks_mut(stride)
                         .zip(stats.chunks_mut(stride))
+                        .zip(counts.chunks_mut(stride))
                         .enumerate()
                     {
-                        for (k, (acc, stat)) in accs.iter_mut().zip(stats).enumerate() {
-                            let i = (block * stride + k) as u32;
+                        for (k, ((acc, stat), count)) in
+                            accs.iter_mut().zip(stats).zip(counts).enumerate()
+                        {
+                            let i = block * stride + k;
+                            if needing_row.is_some_and(|n| !n[i]) {
+                                continue;
+                            }
+                            let i = i as u32;
                             let (value, tests) = match known_row {
                                 Some(row) if k == 0 => {
                                     (row.values[block], u64::from(row.tests[block]))
                                 }
                                 _ => {
                                     let before = shape_tests_on_this_thread();
-                                    let value = sample_pixel(world, options, i, j, sample);
+                                    let value = sample_pixel(world, options, i, j, *count);
                                     (value, shape_tests_on_this_thread() - before)
                                 }
                             };
+                            *count += 1;
+                            traced += 1;
                             stat.add_cost(tests);
+                            // Welford's weight of this sample. A pixel that
+                            // lost a NaN sample still counts it (rare, and
+                            // the mean then treats it as black).
                             if value.is_finite() {
                                 *acc += value;
-                                stat.add(luminance(value), inv_count);
+                                stat.add(luminance(value), 1.0 / *count as f32);
                             } else {
                                 bad += 1;
                             }
@@ -180,11 +237,16 @@ impl Film {
                     }
                 }
                 let rays = crate::ray_count::rays_on_this_thread() - rays_before;
-                (bad, 0, rays)
+                (bad, 0, rays, traced)
             })
-            .reduce(|| (0, 0, 0), |a, b| (a.0 + b.0, a.1 + b.1, a.2 + b.2));
+            .reduce(
+                || (0, 0, 0, 0),
+                |a, b| (a.0 + b.0, a.1 + b.1, a.2 + b.2, a.3 + b.3),
+            );
         self.discarded += discarded;
         self.rays += rays;
+        self.samples += traced;
+        self.last_pass_samples = traced;
         self.passes += 1;
         skipped == 0
     }
@@ -200,24 +262,28 @@ impl Film {
 
     /// The mean radiance of pixel (i, j).
     pub fn pixel(&self, i: u32, j: u32) -> Vec3 {
-        self.sum[j as usize * self.width as usize + i as usize] / self.passes.max(1) as f32
+        let k = j as usize * self.width as usize + i as usize;
+        self.sum[k] / self.counts[k].max(1) as f32
     }
 
     /// The mean radiance of every pixel, row by row from the top.
     pub fn linear(&self) -> Vec<Vec3> {
-        let scale = 1.0 / self.passes.max(1) as f32;
-        self.sum.iter().map(|s| *s * scale).collect()
+        self.sum
+            .iter()
+            .zip(&self.counts)
+            .map(|(s, &n)| *s / n.max(1) as f32)
+            .collect()
     }
 
     /// The relative variance of every pixel's mean (see
     /// [`PixelStats::relative_variance`]), row by row from the top; `None`
     /// below two passes.
     pub fn relative_variance(&self) -> Option<Vec<f32>> {
-        let n = self.passes;
-        (n >= 2).then(|| {
+        (self.passes >= 2).then(|| {
             self.stats
                 .iter()
-                .map(|s| s.relative_variance(n).unwrap_or(0.0))
+                .zip(&self.counts)
+                .map(|(s, &n)| s.relative_variance(n).unwrap_or(0.0))
                 .collect()
         })
     }
@@ -226,7 +292,8 @@ impl Film {
     pub fn cost_per_sample(&self) -> Vec<f32> {
         self.stats
             .iter()
-            .map(|s| s.cost_per_sample(self.passes))
+            .zip(&self.counts)
+            .map(|(s, &n)| s.cost_per_sample(n))
             .collect()
     }
 

@@ -5,6 +5,7 @@
 //! own intersection file under [`shapes`].
 
 pub mod accel;
+pub mod adaptive;
 pub mod aov;
 pub mod blas_cache;
 pub mod bsdf;

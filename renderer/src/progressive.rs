@@ -211,10 +211,11 @@ struct Current {
 impl Current {
     fn done(&self) -> bool {
         self.next_preview >= PREVIEW_STRIDES.len()
-            && self
-                .job
-                .target_spp
-                .is_some_and(|target| self.film.passes() >= target)
+            && (self.film.converged()
+                || self
+                    .job
+                    .target_spp
+                    .is_some_and(|target| self.film.passes() >= target))
     }
 }
 
@@ -303,9 +304,7 @@ fn step(shared: &Shared, c: &mut Current, display: Display) {
             return;
         }
         c.pass_time += started.elapsed();
-        let samples =
-            f64::from(c.film.passes()) * f64::from(c.film.width()) * f64::from(c.film.height())
-                - c.reused as f64;
+        let samples = c.film.samples() as f64 - c.reused as f64;
         let seconds = c.pass_time.as_secs_f64().max(1e-9);
         let step = Step::Passes {
             spp: c.film.passes(),

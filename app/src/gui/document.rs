@@ -2,6 +2,7 @@
 //! belong to, what was last saved, and the undo history.
 
 use super::history::History;
+use renderer::adaptive::Adaptive;
 use renderer::integrator::Integrator;
 use renderer::{Method, RenderOptions, Sampling};
 use scene::Scene;
@@ -18,6 +19,8 @@ pub struct RenderSettings {
     pub max_depth: u32,
     /// Independent or Sobol samples.
     pub sampling: Sampling,
+    /// Adaptive sampling, when on.
+    pub adaptive: Option<Adaptive>,
     /// Stop refining at this many samples per pixel; `None` refines until stopped.
     pub target_spp: Option<u32>,
 }
@@ -29,6 +32,7 @@ impl Default for RenderSettings {
             method: Method::Robust,
             max_depth: RenderOptions::default().max_depth,
             sampling: Sampling::Independent,
+            adaptive: None,
             target_spp: Some(64),
         }
     }
@@ -42,6 +46,7 @@ impl RenderSettings {
             method: self.method,
             max_depth: self.max_depth,
             sampling: self.sampling,
+            adaptive: self.adaptive,
             ..RenderOptions::default()
         }
     }

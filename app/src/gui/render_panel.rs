@@ -2,6 +2,7 @@
 
 use super::document::RenderSettings;
 use super::widgets;
+use renderer::adaptive::Adaptive;
 use renderer::integrator::Integrator;
 use renderer::{Method, Sampling};
 
@@ -59,6 +60,40 @@ pub fn show(ui: &mut egui::Ui, settings: &mut RenderSettings) -> bool {
                          the pixel, the lights and the first bounce's directions",
                     )
                     .changed();
+            });
+            ui.end_row();
+
+            ui.label("Adaptive");
+            ui.horizontal(|ui| {
+                let mut on = settings.adaptive.is_some();
+                if ui
+                    .checkbox(&mut on, "stop converged pixels")
+                    .on_hover_text(
+                        "after 16 passes, a pixel whose relative error (and its neighbours') \
+                         is below the threshold gets no more samples; the \
+                         'Samples per pixel' view shows where they went",
+                    )
+                    .changed()
+                {
+                    settings.adaptive = on.then(Adaptive::default);
+                    changed = true;
+                }
+                if let Some(adaptive) = &mut settings.adaptive {
+                    let mut percent = adaptive.threshold * 100.0;
+                    if ui
+                        .add(
+                            egui::DragValue::new(&mut percent)
+                                .range(0.1..=50.0)
+                                .speed(0.05)
+                                .prefix("error < ")
+                                .suffix(" %"),
+                        )
+                        .changed()
+                    {
+                        adaptive.threshold = percent / 100.0;
+                        changed = true;
+                    }
+                }
             });
             ui.end_row();
 

@@ -7,6 +7,7 @@ use egui::{Key, Modifiers, PointerButton};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glam::Vec3;
+use renderer::adaptive::Adaptive;
 use renderer::progressive::Step;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -689,4 +690,37 @@ fn a_broken_reference_file_is_a_message_not_a_crash() {
     app.load_reference(Path::new("/no/such/reference.exr"));
     let message = app.message.clone().expect("a message");
     assert!(message.contains("reference.exr"), "{message}");
+}
+
+#[test]
+fn adaptive_sampling_from_the_panel_re_renders_and_the_samples_view_shows_where_they_went() {
+    use renderer::display::Display;
+    let mut app = seed_app(64, 48);
+    app.doc.state.render.target_spp = Some(Adaptive::MIN_SAMPLES + 8);
+    let mut h = harness(app);
+    settle(&mut h);
+    let generation = h.state().generation;
+
+    h.get_by_label("stop converged pixels").click();
+    h.step();
+    assert_eq!(
+        h.state().doc.state.render.adaptive,
+        Some(Adaptive::default())
+    );
+    settle(&mut h);
+    assert!(h.state().generation > generation, "a new render");
+
+    h.get_by_value("Colour").click();
+    step_shown(&mut h);
+    // The combo's entry (the render panel has a row of the same name).
+    h.query_all_by_label("Samples per pixel")
+        .last()
+        .expect("the display mode's entry")
+        .click();
+    h.step();
+    settle_display(&mut h, Display::SamplesPerPixel);
+    step_shown(&mut h);
+    // The seed scene's flat, evenly lit areas stop at the minimum while
+    // edges and shadows go on: the view is a heatmap with its average.
+    h.get_by_label_contains("adaptive:");
 }

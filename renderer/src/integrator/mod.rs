@@ -8,6 +8,7 @@ pub use path::path;
 pub use recorder::{NoRecorder, Note, RayKind, Recorder};
 pub use whitted::{whitted, whitted_recorded};
 
+use crate::adaptive::Adaptive;
 use crate::sampler::Sampling;
 use crate::shapes::Method;
 
@@ -39,6 +40,9 @@ pub struct RenderOptions {
     pub seed: u64,
     /// How each pixel's samples draw their random numbers.
     pub sampling: Sampling,
+    /// Adaptive sampling: pixels below its error threshold stop receiving
+    /// samples; `None` samples every pixel in every pass.
+    pub adaptive: Option<Adaptive>,
 }
 
 impl Default for RenderOptions {
@@ -49,6 +53,7 @@ impl Default for RenderOptions {
             max_depth: 8,
             seed: 0,
             sampling: Sampling::Independent,
+            adaptive: None,
         }
     }
 }
