@@ -29,14 +29,14 @@ pub enum Sampling {
 /// same layout, so each use of a number gets its own evenly filled
 /// dimension, whichever lights and lobes the path met before).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum BounceDimension {
+pub enum BounceDraw {
     /// Light sampling: which emitter (1 number), then a point on it (2).
     Light = 0,
     /// BSDF sampling: which lobe (1), a direction (2), then Russian roulette (1).
     Scatter = 2,
 }
 
-/// Draws given to each bounce (see [`BounceDimension`]): a draw is one
+/// Draws given to each bounce (see [`BounceDraw`]): a draw is one
 /// number or one 2D point.
 const DRAWS_PER_BOUNCE: u32 = 5;
 /// The camera's draw: the jitter (x, y) within the pixel.
@@ -132,7 +132,7 @@ impl Sampler {
 
     /// Moves to the numbers of bounce `depth` (0 at the camera ray's hit),
     /// at `at` within them. The independent stream just goes on.
-    pub fn seek_bounce(&mut self, depth: u32, at: BounceDimension) {
+    pub fn seek_bounce(&mut self, depth: u32, at: BounceDraw) {
         if let Source::Sobol(stream) = &mut self.source {
             stream.draw = CAMERA_DRAWS + depth * DRAWS_PER_BOUNCE + at as u32;
         }
@@ -218,13 +218,13 @@ mod tests {
     fn a_pixels_sobol_samples_fill_every_stratum_where_independent_ones_leave_gaps() {
         // 256 samples of one pixel against a 16 × 16 grid: the Sobol points
         // are (0, m, 2)-net points, one per cell, in each 2D draw.
-        for (depth, at) in [(0, BounceDimension::Light), (0, BounceDimension::Scatter)] {
+        for (depth, at) in [(0, BounceDraw::Light), (0, BounceDraw::Scatter)] {
             let points = |sampling| -> Vec<Vec2> {
                 (0..256)
                     .map(|k| {
                         let mut s = Sampler::for_pixel_sample(sampling, 9, 5, 7, k);
                         s.seek_bounce(depth, at);
-                        if at == BounceDimension::Light {
+                        if at == BounceDraw::Light {
                             s.next_f32();
                         }
                         s.next_2d()
@@ -255,8 +255,8 @@ mod tests {
         let mut read = Sampler::for_pixel_sample(Sampling::Sobol, 2, 1, 1, 17);
         let through: Vec<f32> = (0..SOBOL_DRAWS).map(|_| read.next_f32()).collect();
         let mut seek = Sampler::for_pixel_sample(Sampling::Sobol, 2, 1, 1, 17);
-        seek.seek_bounce(0, BounceDimension::Scatter);
-        let at = (CAMERA_DRAWS + BounceDimension::Scatter as u32) as usize;
+        seek.seek_bounce(0, BounceDraw::Scatter);
+        let at = (CAMERA_DRAWS + BounceDraw::Scatter as u32) as usize;
         assert_eq!(seek.next_f32(), through[at]);
         assert_eq!(seek.next_f32(), through[at + 1]);
     }

@@ -15,7 +15,7 @@ use super::RenderOptions;
 use crate::bsdf::{Bsdf, ShadingFrame};
 use crate::offset::offset_ray_origin;
 use crate::ray::Ray;
-use crate::sampler::{BounceDimension, Sampler};
+use crate::sampler::{BounceDraw, Sampler};
 use crate::texture::albedo_at;
 use crate::world::World;
 use glam::Vec3;
@@ -94,10 +94,10 @@ pub fn path(world: &World, ray: &Ray, options: &RenderOptions, sampler: &mut Sam
             bsdf,
         };
         if bsdf.has_smooth() {
-            sampler.seek_bounce(depth, BounceDimension::Light);
+            sampler.seek_bounce(depth, BounceDraw::Light);
             radiance += throughput * direct_light(world, options, &at, sampler);
         }
-        sampler.seek_bounce(depth, BounceDimension::Scatter);
+        sampler.seek_bounce(depth, BounceDraw::Scatter);
         let u_lobe = sampler.next_f32();
         let Some(sample) = bsdf.sample(wo, u_lobe, sampler.next_2d()) else {
             break;
