@@ -7,7 +7,14 @@ use support::{asset, raylab, raylab_ok, read_png, render};
 #[test]
 fn every_shipped_scene_renders_to_a_lit_png() {
     let dir = tempfile::tempdir().expect("tempdir");
-    for name in ["seed.xml", "primitives.xml", "cornell.xml", "glass.xml"] {
+    let scenes = [
+        "seed.xml",
+        "primitives.xml",
+        "cornell.xml",
+        "glass.xml",
+        "roughness.xml",
+    ];
+    for name in scenes {
         let out = dir.path().join(name.replace(".xml", ".png"));
         let output = render(
             &asset(name),

@@ -56,6 +56,15 @@ fn hundred_spheres_with_glass_and_mirrors_match_mitsuba() {
 }
 
 #[test]
+fn rough_conductor_and_rough_glass_match_mitsuba() {
+    // GGX microfacets against Mitsuba's roughconductor and roughdielectric;
+    // the frosted sphere's caustic is noisy at low sample counts.
+    let e = block_error("rough", 16, 16, Sampling::Independent);
+    eprintln!("rough, 16 spp: relMSE of 16×16 blocks {e:.3e}");
+    assert!(e <= BOUND, "relMSE of 16×16 blocks {e:.3e} > {BOUND:.0e}");
+}
+
+#[test]
 fn cornell_box_with_sobol_samples_matches_mitsuba() {
     // Stratifying the first bounce must not move the answer.
     let e = block_error("cornell", 8, 8, Sampling::Sobol);

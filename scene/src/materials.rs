@@ -14,6 +14,7 @@ pub fn builtin(base: BaseMaterial) -> Material {
         shininess: 0.0,
         specular: 0.0,
         reflectivity: 0.0,
+        roughness: 0.0,
         emission: Vec3::ZERO,
     };
     match base {
@@ -55,6 +56,7 @@ pub fn apply(material: Material, params: &MaterialParams) -> Material {
         shininess: params.shininess.unwrap_or(material.shininess),
         specular: params.specular.unwrap_or(material.specular),
         reflectivity: params.reflectivity.unwrap_or(material.reflectivity),
+        roughness: params.roughness.unwrap_or(material.roughness),
         emission: params.emission.unwrap_or(material.emission),
         base: material.base,
     }

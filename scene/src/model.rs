@@ -160,6 +160,8 @@ pub struct MaterialParams {
     pub specular: Option<f32>,
     /// Fraction of light mirror-reflected, in [0, 1].
     pub reflectivity: Option<f32>,
+    /// Microfacet roughness of mirror, metal and glass, in [0, 1] (GGX α = roughness²).
+    pub roughness: Option<f32>,
     /// Emitted radiance (linear RGB, may exceed 1), from the front side.
     pub emission: Option<Vec3>,
 }
@@ -173,6 +175,7 @@ impl MaterialParams {
             shininess: over.shininess.or(self.shininess),
             specular: over.specular.or(self.specular),
             reflectivity: over.reflectivity.or(self.reflectivity),
+            roughness: over.roughness.or(self.roughness),
             emission: over.emission.or(self.emission),
         }
     }

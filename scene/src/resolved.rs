@@ -172,6 +172,9 @@ pub struct Material {
     pub specular: f32,
     /// Mirror-reflected fraction in [0, 1] (plastic, marble).
     pub reflectivity: f32,
+    /// Microfacet roughness in [0, 1] of mirror, metal and glass (GGX α =
+    /// roughness²; 0 is perfectly smooth).
+    pub roughness: f32,
     /// Emitted radiance from the front side.
     pub emission: Vec3,
 }

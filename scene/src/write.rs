@@ -104,6 +104,7 @@ impl<'o> Tag<'o> {
             ("shininess", p.shininess),
             ("specular", p.specular),
             ("reflectivity", p.reflectivity),
+            ("roughness", p.roughness),
         ] {
             if let Some(v) = v {
                 self.attr(name, v);

@@ -258,9 +258,10 @@ fn box_has_12_triangles_under_a_z_up_to_y_up_matrix_and_a_red_material() {
     );
     assert_eq!(model.materials.len(), 1);
     // baseColorFactor 0.8 0 0 with glTF's default metallic 1, roughness 1:
-    // a rough metal, which the mapping makes matte.
+    // a rough red metal, as glTF's viewers show it.
     let m = model.materials[0];
-    assert_eq!(m.material.base, BaseMaterial::Matte);
+    assert_eq!(m.material.base, BaseMaterial::Metal);
+    assert_eq!(m.material.roughness, 1.0);
     assert_near(m.material.color, Vec3::new(0.8, 0.0, 0.0), 1e-6, "colour");
     assert_eq!(m.base_color_texture, None);
     assert!(model.cameras.is_empty() && model.lights.is_empty());

@@ -81,7 +81,8 @@ fn unknown_attribute_points_at_its_name_and_lists_the_valid_ones() {
     assert_eq!(
         e.message,
         "unknown attribute \"radus\" on <sphere>; did you mean \"radius\"? (expected one of: \
-         center, radius, name, material, color, ior, shininess, specular, reflectivity, emission)"
+         center, radius, name, material, color, ior, shininess, specular, reflectivity, roughness, \
+         emission)"
     );
     assert_error(
         &in_scene(r#"  <camera fov="40"/>"#),

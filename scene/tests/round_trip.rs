@@ -64,15 +64,17 @@ fn params() -> impl Strategy<Value = MaterialParams> {
         prop::option::of(non_negative()),
         prop::option::of(0.0f32..=1.0),
         prop::option::of(0.0f32..=1.0),
+        prop::option::of(0.0f32..=1.0),
         prop::option::of(emission()),
     )
         .prop_map(
-            |(color, ior, shininess, specular, reflectivity, emission)| MaterialParams {
+            |(color, ior, shininess, specular, reflectivity, roughness, emission)| MaterialParams {
                 color,
                 ior,
                 shininess,
                 specular,
                 reflectivity,
+                roughness,
                 emission,
             },
         )

@@ -220,6 +220,12 @@ fn material_parameters_are_range_checked() {
         "reflectivity must be a number from 0 to 1",
     );
     assert_error(
+        &in_scene(r#"  <sphere material="metal" roughness="2"/>"#),
+        2,
+        39,
+        "roughness must be a number from 0 to 1",
+    );
+    assert_error(
         &in_scene(r#"  <sphere color="1.5 0 0"/>"#),
         2,
         18,

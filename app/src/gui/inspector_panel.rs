@@ -310,11 +310,12 @@ fn details(ui: &mut egui::Ui, ray: &RayNode) {
                 row(
                     "material",
                     format!(
-                        "{} {}, reflectivity {}, ior {}",
+                        "{} {}, reflectivity {}, ior {}, roughness {}",
                         m.base,
                         v3(m.color),
                         n(m.reflectivity),
-                        n(m.ior)
+                        n(m.ior),
+                        n(m.roughness)
                     ),
                 );
                 if hit.depth_limited {

@@ -165,6 +165,7 @@ fn material(
         shininess,
         specular,
         reflectivity,
+        roughness,
         emission,
     } = &mut object.params;
     egui::Grid::new("material-params")
@@ -196,6 +197,14 @@ fn material(
             changed |= widgets::optional_row(ui, "IOR", ior, base.ior, |ui, v| {
                 ui.add(egui::Slider::new(v, 1.0..=3.0)).changed()
             });
+            changed |=
+                widgets::optional_row(ui, "roughness", roughness, base.roughness, |ui, v| {
+                    ui.add(egui::Slider::new(v, 0.0..=1.0))
+                        .on_hover_text(
+                            "mirror, metal, glass: GGX microfacets, α = roughness² (path tracer)",
+                        )
+                        .changed()
+                });
         });
     changed
 }

@@ -724,3 +724,28 @@ fn adaptive_sampling_from_the_panel_re_renders_and_the_samples_view_shows_where_
     // edges and shadows go on: the view is a heatmap with its average.
     h.get_by_label_contains("adaptive:");
 }
+
+#[test]
+fn ticking_roughness_on_the_glass_cone_sets_it_and_re_renders() {
+    let mut h = harness(seed_app(48, 32));
+    settle(&mut h);
+    h.state_mut().selection = Selection::Object(0);
+    step_shown(&mut h);
+    let generation = h.state().generation;
+    // The cone's glass is smooth: ticking the row sets its own value, 0.
+    h.get_by_label("roughness").click();
+    h.step();
+    assert_eq!(
+        h.state().doc.state.scene.objects[0].params.roughness,
+        Some(0.0)
+    );
+    settle(&mut h);
+    assert!(h.state().generation > generation, "a new render");
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.step();
+    assert_eq!(
+        h.state().doc.state.scene.objects[0].params.roughness,
+        None,
+        "undone"
+    );
+}

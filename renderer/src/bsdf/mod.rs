@@ -1,5 +1,8 @@
 //! BSDFs of the path tracer: every built-in material as a physically based
 //! scattering function that conserves energy, with importance sampling.
+//! Mirror, metal and glass with `roughness` > 0 become GGX microfacet
+//! surfaces (α = roughness²), as Mitsuba 3's `roughconductor` and
+//! `roughdielectric`.
 //!
 //! Directions are local to the shading frame turned to the side the ray came
 //! from (see [`ShadingFrame`]): `wo` (toward the previous vertex) always has
@@ -10,6 +13,8 @@ pub mod dielectric;
 pub mod frame;
 pub mod ggx;
 pub mod lambert;
+pub mod rough_conductor;
+pub mod rough_dielectric;
 
 pub use frame::ShadingFrame;
 
@@ -17,6 +22,8 @@ use crate::optics::fresnel_schlick;
 use ggx::Ggx;
 use glam::{Vec2, Vec3};
 use lambert::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
+use rough_conductor::RoughConductor;
+use rough_dielectric::RoughDielectric;
 use scene::{BaseMaterial, Material};
 use std::f32::consts::FRAC_1_PI;
 
@@ -36,6 +43,11 @@ pub enum Bsdf {
     },
     /// glass: a smooth dielectric, reflecting or refracting by Fresnel.
     Dielectric(dielectric::SmoothDielectric),
+    /// mirror and metal with roughness: a GGX microfacet conductor.
+    RoughConductor(RoughConductor),
+    /// glass with roughness: a GGX microfacet dielectric that reflects and
+    /// refracts.
+    RoughDielectric(RoughDielectric),
 }
 
 /// The mixture of [`Bsdf::Layered`].
@@ -75,6 +87,9 @@ impl Bsdf {
     /// texture at the point); `front` tells whether the ray arrived on the
     /// outer side (glass: whether it enters).
     pub fn new(material: &Material, albedo: Vec3, front: bool) -> Bsdf {
+        // GGX α = roughness²; below the smallest α the surface is smooth.
+        let alpha = material.roughness * material.roughness;
+        let rough = alpha >= Ggx::MIN_ALPHA;
         match material.base {
             BaseMaterial::Matte | BaseMaterial::Plastic | BaseMaterial::Marble => {
                 let mirror = material.reflectivity.clamp(0.0, 1.0);
@@ -87,19 +102,30 @@ impl Bsdf {
                     ggx: Ggx::from_shininess(material.shininess),
                 })
             }
-            BaseMaterial::Mirror => Bsdf::Conductor {
-                f0: material.color,
-                schlick: false,
-            },
-            BaseMaterial::Metal => Bsdf::Conductor {
-                f0: material.color,
-                schlick: true,
-            },
-            BaseMaterial::Glass => Bsdf::Dielectric(dielectric::SmoothDielectric::new(
-                material.ior,
-                material.color,
-                front,
-            )),
+            BaseMaterial::Mirror | BaseMaterial::Metal => {
+                let (f0, schlick) = (material.color, material.base == BaseMaterial::Metal);
+                if rough {
+                    Bsdf::RoughConductor(RoughConductor {
+                        f0,
+                        schlick,
+                        ggx: Ggx::new(alpha),
+                    })
+                } else {
+                    Bsdf::Conductor { f0, schlick }
+                }
+            }
+            BaseMaterial::Glass => {
+                let smooth = dielectric::SmoothDielectric::new(material.ior, material.color, front);
+                if rough {
+                    Bsdf::RoughDielectric(RoughDielectric {
+                        eta: smooth.eta,
+                        tint: smooth.tint,
+                        ggx: Ggx::new(alpha),
+                    })
+                } else {
+                    Bsdf::Dielectric(smooth)
+                }
+            }
         }
     }
 
@@ -108,7 +134,14 @@ impl Bsdf {
         match self {
             Bsdf::Layered(l) => l.diffuse + l.glossy > 0.0,
             Bsdf::Conductor { .. } | Bsdf::Dielectric(_) => false,
+            Bsdf::RoughConductor(_) | Bsdf::RoughDielectric(_) => true,
         }
+    }
+
+    /// Whether a non-delta part scatters light through the surface, so that
+    /// a light behind it can be sampled.
+    pub fn transmits(&self) -> bool {
+        matches!(self, Bsdf::RoughDielectric(_))
     }
 
     /// f(wo, wi) · |cos θ_i| of the non-delta parts.
@@ -126,6 +159,8 @@ impl Bsdf {
                     diffuse
                 }
             }
+            Bsdf::RoughConductor(c) => c.eval(wo, wi),
+            Bsdf::RoughDielectric(d) => d.eval(wo, wi),
             Bsdf::Conductor { .. } | Bsdf::Dielectric(_) => Vec3::ZERO,
         }
     }
@@ -145,6 +180,8 @@ impl Bsdf {
                     diffuse
                 }
             }
+            Bsdf::RoughConductor(c) => c.pdf(wo, wi),
+            Bsdf::RoughDielectric(d) => d.pdf(wo, wi),
             Bsdf::Conductor { .. } | Bsdf::Dielectric(_) => 0.0,
         }
     }
@@ -192,6 +229,8 @@ impl Bsdf {
                 })
             }
             Bsdf::Dielectric(glass) => Some(glass.sample(wo, u_lobe)),
+            Bsdf::RoughConductor(c) => c.sample(wo, u),
+            Bsdf::RoughDielectric(d) => d.sample(wo, u_lobe, u),
         }
     }
 }

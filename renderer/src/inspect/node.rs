@@ -101,6 +101,8 @@ pub struct MaterialInfo {
     pub reflectivity: f32,
     /// The index of refraction inside (glass).
     pub ior: f32,
+    /// Microfacet roughness (mirror, metal, glass; the path tracer's GGX α = roughness²).
+    pub roughness: f32,
     /// Emitted radiance from the front side.
     pub emission: Vec3,
 }

@@ -113,6 +113,7 @@ impl Recorder for TreeRecorder<'_> {
                 color: material.color,
                 reflectivity: material.reflectivity,
                 ior: material.ior,
+                roughness: material.roughness,
                 emission: material.emission,
             },
             barycentrics,

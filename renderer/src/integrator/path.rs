@@ -150,14 +150,26 @@ fn direct_light(
     sampler: &mut Sampler,
 ) -> Vec3 {
     let mut sum = Vec3::ZERO;
-    let origin = offset_ray_origin(at.point, at.geometric, at.magnitude);
+    let transmits = at.bsdf.transmits();
+    // A shadow ray starts off the side its light is on; only a transmitting
+    // BSDF sees lights behind the surface.
+    let origin_toward = |to_light: Vec3| -> Option<Vec3> {
+        let side = if to_light.dot(at.geometric) > 0.0 {
+            at.geometric
+        } else if transmits {
+            -at.geometric
+        } else {
+            return None;
+        };
+        Some(offset_ray_origin(at.point, side, at.magnitude))
+    };
     for light in &world.lights {
         let Some(s) = light.sample(at.point) else {
             continue;
         };
-        if s.to_light.dot(at.geometric) <= 0.0 {
+        let Some(origin) = origin_toward(s.to_light) else {
             continue;
-        }
+        };
         let f = at.bsdf.eval(at.wo, at.frame.to_local(s.to_light));
         if f == Vec3::ZERO {
             continue;
@@ -170,7 +182,7 @@ fn direct_light(
     let u_select = sampler.next_f32();
     let u = sampler.next_2d();
     if let Some(s) = world.emitters.sample(at.point, u_select, u)
-        && s.to_light.dot(at.geometric) > 0.0
+        && let Some(origin) = origin_toward(s.to_light)
     {
         let wi = at.frame.to_local(s.to_light);
         let f = at.bsdf.eval(at.wo, wi);

@@ -2,12 +2,19 @@
 //! Blinn-Phong), mirror reflection, and refraction with Fresnel and total
 //! internal reflection.
 //!
+//! Whitted traces no glossy rays: a rough mirror or metal takes its lights'
+//! light through its GGX lobe (exact for point and directional lights), the
+//! ambient light in proportion to its roughness, and mirrors the scene
+//! weighted by 1 − roughness; rough glass is traced as smooth glass.
+//!
 //! One integrator serves the image and the pixel inspector: it is generic
 //! over a [`Recorder`], told about every ray beside the radiance computation.
 //! The image uses [`NoRecorder`], whose empty calls compile away.
 
 use super::RenderOptions;
 use super::recorder::{NoRecorder, Note, RayKind, Recorder};
+use crate::bsdf::rough_conductor::RoughConductor;
+use crate::bsdf::{Bsdf, ShadingFrame};
 use crate::offset::offset_ray_origin;
 use crate::optics::{fresnel_dielectric, fresnel_schlick, reflect, refract};
 use crate::ray::Ray;
@@ -111,14 +118,34 @@ fn trace<R: Recorder>(
             }
         }
         BaseMaterial::Mirror | BaseMaterial::Metal => {
-            if can_recurse {
-                let reflectance = if material.base == BaseMaterial::Metal {
-                    fresnel_schlick(-ray.dir.dot(n), material.color)
-                } else {
-                    material.color
+            // A rough conductor (see `rough_conductor_direct`) mirrors 1 − roughness.
+            let mut mirrored = 1.0;
+            if let Bsdf::RoughConductor(conductor) = Bsdf::new(material, material.color, front) {
+                let roughness = material.roughness.clamp(0.0, 1.0);
+                let at = Shading {
+                    material,
+                    albedo: material.color,
+                    point,
+                    magnitude,
+                    n,
+                    geometric_side,
+                    to_eye: -ray.dir,
                 };
-                radiance += reflectance
-                    * bounce(rec, RayKind::Reflection, reflect(ray.dir, n), reflectance);
+                radiance +=
+                    rough_conductor_direct(world, options, &at, &conductor, roughness, rec, node);
+                mirrored = 1.0 - roughness;
+            }
+            if can_recurse {
+                let reflectance = mirrored
+                    * if material.base == BaseMaterial::Metal {
+                        fresnel_schlick(-ray.dir.dot(n), material.color)
+                    } else {
+                        material.color
+                    };
+                if reflectance != Vec3::ZERO {
+                    radiance += reflectance
+                        * bounce(rec, RayKind::Reflection, reflect(ray.dir, n), reflectance);
+                }
             } else {
                 rec.note(node, Note::DepthLimit);
             }
@@ -180,14 +207,49 @@ fn direct<R: Recorder>(
     rec: &mut R,
     node: R::Node,
 ) -> Vec3 {
-    let (material, albedo, point, n) = (at.material, at.albedo, at.point, at.n);
-    let mut radiance = albedo * world.ambient;
-    let origin = offset_ray_origin(point, at.geometric_side, at.magnitude);
+    let (material, albedo, n) = (at.material, at.albedo, at.n);
+    let ambient = albedo * world.ambient;
+    ambient
+        + lights(
+            world,
+            options,
+            at,
+            scale,
+            rec,
+            node,
+            |to_light, irradiance| {
+                let lambert = albedo / PI * irradiance;
+                if material.specular > 0.0 {
+                    let half = (to_light + at.to_eye).normalize_or_zero();
+                    let lobe = n.dot(half).max(0.0).powf(material.shininess);
+                    let normalisation = (material.shininess + 8.0) / (8.0 * PI);
+                    lambert + material.specular * normalisation * lobe * irradiance
+                } else {
+                    lambert
+                }
+            },
+        )
+}
+
+/// The light of every point and directional light whose shadow ray is
+/// unblocked and which lies above the surface, as `shade(to_light, E cos θ)`
+/// reflects it toward the eye; `scale` as in [`direct`].
+fn lights<R: Recorder>(
+    world: &World,
+    options: &RenderOptions,
+    at: &Shading,
+    scale: f32,
+    rec: &mut R,
+    node: R::Node,
+    shade: impl Fn(Vec3, Vec3) -> Vec3,
+) -> Vec3 {
+    let mut radiance = Vec3::ZERO;
+    let origin = offset_ray_origin(at.point, at.geometric_side, at.magnitude);
     for (index, light) in world.lights.iter().enumerate() {
-        let Some(sample) = light.sample(point) else {
+        let Some(sample) = light.sample(at.point) else {
             continue;
         };
-        let cos = n.dot(sample.to_light);
+        let cos = at.n.dot(sample.to_light);
         if cos <= 0.0 {
             continue;
         }
@@ -196,19 +258,42 @@ fn direct<R: Recorder>(
             rec.shadow(node, index, &shadow, scale, None);
             continue;
         }
-        let irradiance = sample.irradiance * cos;
-        let lambert = albedo / PI * irradiance;
-        radiance += lambert;
-        let mut lit = lambert;
-        if material.specular > 0.0 {
-            let half = (sample.to_light + at.to_eye).normalize_or_zero();
-            let lobe = n.dot(half).max(0.0).powf(material.shininess);
-            let normalisation = (material.shininess + 8.0) / (8.0 * PI);
-            let highlight = material.specular * normalisation * lobe * irradiance;
-            radiance += highlight;
-            lit += highlight;
-        }
+        let lit = shade(sample.to_light, sample.irradiance * cos);
+        radiance += lit;
         rec.shadow(node, index, &shadow, scale, Some(lit));
     }
     radiance
+}
+
+/// A rough conductor's light from the point and directional lights through
+/// its GGX lobe (exact for such lights), plus the ambient light scaled by
+/// its reflectance and `roughness`: Whitted traces no glossy reflections,
+/// so the caller mirrors the rest, weighted by 1 − roughness.
+fn rough_conductor_direct<R: Recorder>(
+    world: &World,
+    options: &RenderOptions,
+    at: &Shading,
+    conductor: &RoughConductor,
+    roughness: f32,
+    rec: &mut R,
+    node: R::Node,
+) -> Vec3 {
+    let frame = ShadingFrame::new(at.n);
+    let wo = frame.to_local(at.to_eye);
+    let ambient = roughness * (conductor.f0 * world.ambient);
+    rec.local(node, ambient);
+    ambient
+        + lights(
+            world,
+            options,
+            at,
+            1.0,
+            rec,
+            node,
+            |to_light, irradiance| {
+                // eval includes cos θ_i; the irradiance passed in does too.
+                let cos = at.n.dot(to_light);
+                conductor.eval(wo, frame.to_local(to_light)) * irradiance / cos
+            },
+        )
 }

@@ -1,16 +1,17 @@
 //! glTF materials → raylab's built-in materials.
 //!
-//! raylab shades with a few fixed models (Lambert, a normalised Blinn-Phong
-//! highlight, perfect mirrors, smooth glass), so a glTF metallic-roughness
-//! material becomes the closest of them. Rules are tried top to bottom; every
-//! colour is taken as glTF stores it (linear RGB; alpha is ignored).
+//! raylab shades with a few fixed models (Lambert, a GGX or Blinn-Phong
+//! highlight, rough or smooth conductors, rough or smooth glass), so a glTF
+//! metallic-roughness material becomes the closest of them. Rules are tried
+//! top to bottom; every colour is taken as glTF stores it (linear RGB; alpha
+//! is ignored).
 //!
 //! | glTF material | raylab material | parameters |
 //! |---|---|---|
-//! | `KHR_materials_transmission` factor > 0 | Glass | `color` = baseColorFactor (tint); `ior` = `KHR_materials_ior` (1.5 when absent or below 1) |
-//! | roughnessFactor > 0.75 (metal or not) | Matte (Lambert) | `color` = baseColorFactor. So rough a surface shows no mirror image and no sharp highlight; for a metal the base colour is its reflectance, which a rough metal scatters broadly. (This catches the many exporters' metallic 1, roughness 1 defaults, which as a perfect mirror would show only the background.) |
-//! | metallicFactor ≥ 0.5 | Metal (tinted mirror, Schlick Fresnel toward white) | `color` = baseColorFactor; the remaining roughness is ignored: raylab's metal is a perfect mirror |
-//! | otherwise (a dielectric) | Plastic (Lambert + Blinn-Phong) | `color` = baseColorFactor; `shininess` = 2/α² − 2 with α = roughness², clamped to [1, 10000] (the Blinn-Phong exponent whose lobe matches a microfacet distribution of that roughness: roughness 0.75 gives 4.3, 0.5 gives 30, 0.2 gives 1248); `specular` = 0.04, a glTF dielectric's reflectance F0 (the renderer normalises the lobe by (n + 8)/8π, so its width and peak already follow roughness while its energy stays F0); `reflectivity` = 0.04 when roughness < 0.1 (a mirror-smooth dielectric reflects its surroundings at F0), else 0 |
+//! | `KHR_materials_transmission` factor > 0 | Glass | `color` = baseColorFactor (tint); `ior` = `KHR_materials_ior` (1.5 when absent or below 1); `roughness` = roughnessFactor (a GGX rough dielectric, α = roughness², in the path tracer) |
+//! | metallicFactor ≥ 0.5 | Metal (Schlick Fresnel from the base colour toward white, glTF's own metal BRDF) | `color` = baseColorFactor; `roughness` = roughnessFactor (a GGX rough conductor, α = roughness², in the path tracer) |
+//! | roughnessFactor > 0.75 (a dielectric) | Matte (Lambert) | `color` = baseColorFactor. So rough a surface shows no mirror image and no sharp highlight. |
+//! | otherwise (a dielectric) | Plastic (Lambert + Blinn-Phong) | `color` = baseColorFactor; `shininess` = 2/α² − 2 with α = roughness², clamped to [1, 10000] (the Blinn-Phong exponent whose lobe matches a microfacet distribution of that roughness: roughness 0.75 gives 4.3, 0.5 gives 30, 0.2 gives 1248; the path tracer turns it back into that GGX α); `specular` = 0.04, a glTF dielectric's reflectance F0 (the renderer normalises the lobe by (n + 8)/8π, so its width and peak already follow roughness while its energy stays F0); `reflectivity` = 0.04 when roughness < 0.1 (a mirror-smooth dielectric reflects its surroundings at F0), else 0 |
 //! | every material | | `emission` = emissiveFactor × `KHR_materials_emissive_strength` (1 when absent), as radiance; 0 when the material has an emissiveTexture (not supported, and the factor alone would make the whole surface glow) |
 //! | a primitive without material | Matte, light grey 0.8 | glTF's default is white, metallic 1, roughness 1, which the rows above make a white matte of albedo 1: a perfect reflector that blows out under raylab's lights. Raylab's own default matte (0.8) keeps the neutral clay look such files are meant to have. |
 //!
@@ -25,7 +26,7 @@ use crate::model::BaseMaterial;
 use crate::resolved::Material;
 use glam::Vec3;
 
-/// Roughness above which a material (metal or dielectric) is matte.
+/// Roughness above which a dielectric is matte.
 pub(super) const MATTE_ROUGHNESS: f32 = 0.75;
 /// Metallic factor from which a material is metal.
 pub(super) const METAL_METALLIC: f32 = 0.5;
@@ -83,17 +84,19 @@ pub(super) fn map(p: &Pbr) -> Material {
         Material {
             color,
             ior: p.ior.filter(|&ior| ior >= 1.0).unwrap_or(1.5),
+            roughness,
             ..builtin(BaseMaterial::Glass)
+        }
+    } else if p.metallic >= METAL_METALLIC {
+        Material {
+            color,
+            roughness,
+            ..builtin(BaseMaterial::Metal)
         }
     } else if roughness > MATTE_ROUGHNESS {
         Material {
             color,
             ..builtin(BaseMaterial::Matte)
-        }
-    } else if p.metallic >= METAL_METALLIC {
-        Material {
-            color,
-            ..builtin(BaseMaterial::Metal)
         }
     } else {
         Material {
@@ -197,12 +200,15 @@ mod tests {
     }
 
     #[test]
-    fn very_rough_metals_are_matte_with_the_base_colour() {
-        // glTF's defaults (metallic 1, roughness 1), as COLLADA2GLTF writes them.
-        let m = map(&pbr(1.0, 1.0));
-        assert_eq!(m.base, BaseMaterial::Matte);
-        assert_eq!(m.color, Vec3::new(0.8, 0.1, 0.2));
-        assert_eq!(map(&pbr(1.0, 0.75)).base, BaseMaterial::Metal);
+    fn metals_keep_their_roughness_at_every_value() {
+        // Up to glTF's defaults (metallic 1, roughness 1), as COLLADA2GLTF writes them.
+        for roughness in [0.0, 0.3, 0.75, 1.0] {
+            let m = map(&pbr(1.0, roughness));
+            assert_eq!(m.base, BaseMaterial::Metal);
+            assert_eq!(m.roughness, roughness);
+            assert_eq!(m.color, Vec3::new(0.8, 0.1, 0.2));
+        }
+        assert_eq!(map(&pbr(1.0, 1.7)).roughness, 1.0, "clamped to [0, 1]");
     }
 
     #[test]
@@ -231,6 +237,15 @@ mod tests {
         let m = map(&glass);
         assert_eq!(m.base, BaseMaterial::Glass);
         assert_eq!(m.ior, 1.33);
+        assert_eq!(m.roughness, 0.0);
+        assert_eq!(
+            map(&Pbr {
+                roughness: 0.4,
+                ..glass
+            })
+            .roughness,
+            0.4
+        );
         assert_eq!(m.color, Vec3::new(0.8, 0.1, 0.2));
         assert_eq!(map(&Pbr { ior: None, ..glass }).ior, 1.5);
         assert_eq!(

@@ -163,6 +163,7 @@ impl<'a> Element<'a> {
             shininess: self.number("shininess", Range::NonNegative)?,
             specular: self.number("specular", Range::Unit)?,
             reflectivity: self.number("reflectivity", Range::Unit)?,
+            roughness: self.number("roughness", Range::Unit)?,
             emission: self.color("emission")?,
         })
     }

@@ -10,7 +10,7 @@ use glam::Vec3;
 use std::sync::Arc;
 
 /// The attributes every shape takes after its own, in writing order.
-pub(crate) const COMMON: [&str; 8] = [
+pub(crate) const COMMON: [&str; 9] = [
     "name",
     "material",
     "color",
@@ -18,11 +18,12 @@ pub(crate) const COMMON: [&str; 8] = [
     "shininess",
     "specular",
     "reflectivity",
+    "roughness",
     "emission",
 ];
 
 /// The attributes `<material>` takes, in writing order.
-pub(crate) const MATERIAL_ATTRS: [&str; 8] = [
+pub(crate) const MATERIAL_ATTRS: [&str; 9] = [
     "name",
     "base",
     "color",
@@ -30,6 +31,7 @@ pub(crate) const MATERIAL_ATTRS: [&str; 8] = [
     "shininess",
     "specular",
     "reflectivity",
+    "roughness",
     "emission",
 ];
 

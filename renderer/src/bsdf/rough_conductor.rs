@@ -1,0 +1,72 @@
+//! A rough conductor (metal with roughness > 0): a GGX microfacet
+//! reflection, f = F(wo·h) D(h) G1(wo) G1(wi) / (4 cos θ_o cos θ_i), sampled
+//! through the normals visible from wo, as Mitsuba 3's `roughconductor`.
+
+use super::BsdfSample;
+use super::ggx::Ggx;
+use crate::optics::fresnel_schlick;
+use glam::{Vec2, Vec3};
+
+/// Metal or mirror with a GGX microsurface.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RoughConductor {
+    /// Reflectance at normal incidence.
+    pub f0: Vec3,
+    /// Whether the reflectance rises toward white at grazing angles
+    /// (Schlick, metal); a mirror reflects `f0` at every angle.
+    pub schlick: bool,
+    /// The microfacets.
+    pub ggx: Ggx,
+}
+
+impl RoughConductor {
+    /// The Fresnel reflectance of a microfacet met at `cos` = wo·h.
+    fn fresnel(&self, cos: f32) -> Vec3 {
+        if self.schlick {
+            fresnel_schlick(cos, self.f0)
+        } else {
+            self.f0
+        }
+    }
+
+    /// The half vector of wo and wi, when both are above the surface.
+    fn half(wo: Vec3, wi: Vec3) -> Option<Vec3> {
+        if wo.z <= 0.0 || wi.z <= 0.0 {
+            return None;
+        }
+        let h = (wo + wi).normalize_or_zero();
+        (h != Vec3::ZERO).then_some(h)
+    }
+
+    /// f(wo, wi) · cos θ_i.
+    pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
+        let Some(h) = Self::half(wo, wi) else {
+            return Vec3::ZERO;
+        };
+        let g = self.ggx;
+        self.fresnel(wo.dot(h)) * (g.d(h) * g.g1(wo) * g.g1(wi) / (4.0 * wo.z))
+    }
+
+    /// The density with which [`RoughConductor::sample`] draws wi:
+    /// D_wo(h) / (4 wo·h) = G1(wo) D(h) / (4 cos θ_o).
+    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        let Some(h) = Self::half(wo, wi) else {
+            return 0.0;
+        };
+        self.ggx.g1(wo) * self.ggx.d(h) / (4.0 * wo.z)
+    }
+
+    /// wi reflected about a visible micronormal; `None` below the surface.
+    pub fn sample(&self, wo: Vec3, u: Vec2) -> Option<BsdfSample> {
+        let h = self.ggx.sample_visible(wo, u);
+        let wi = 2.0 * wo.dot(h) * h - wo;
+        let pdf = self.pdf(wo, wi);
+        (pdf > 0.0).then(|| BsdfSample {
+            wi,
+            weight: self.eval(wo, wi) / pdf,
+            pdf,
+            delta: false,
+            radiance_scale: 1.0,
+        })
+    }
+}
