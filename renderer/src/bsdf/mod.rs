@@ -82,6 +82,20 @@ pub struct BsdfSample {
     pub radiance_scale: f32,
 }
 
+impl BsdfSample {
+    /// wi drawn through a non-delta lobe with density `pdf`, where the BSDF
+    /// gives f · |cos θ_i| = `f_cos`; `None` when the density is zero.
+    pub fn scattered(wi: Vec3, f_cos: Vec3, pdf: f32, radiance_scale: f32) -> Option<Self> {
+        (pdf > 0.0).then(|| BsdfSample {
+            wi,
+            weight: f_cos / pdf,
+            pdf,
+            delta: false,
+            radiance_scale,
+        })
+    }
+}
+
 impl Bsdf {
     /// The BSDF of `material` with albedo `albedo` (the colour, or marble's
     /// texture at the point); `front` tells whether the ray arrived on the
@@ -205,14 +219,7 @@ impl Bsdf {
                 } else {
                     sample_cosine_hemisphere(u)
                 };
-                let pdf = self.pdf(wo, wi);
-                (pdf > 0.0).then(|| BsdfSample {
-                    wi,
-                    weight: self.eval(wo, wi) / pdf,
-                    pdf,
-                    delta: false,
-                    radiance_scale: 1.0,
-                })
+                BsdfSample::scattered(wi, self.eval(wo, wi), self.pdf(wo, wi), 1.0)
             }
             Bsdf::Conductor { f0, schlick } => {
                 let reflectance = if schlick {

@@ -60,13 +60,6 @@ impl RoughConductor {
     pub fn sample(&self, wo: Vec3, u: Vec2) -> Option<BsdfSample> {
         let h = self.ggx.sample_visible(wo, u);
         let wi = 2.0 * wo.dot(h) * h - wo;
-        let pdf = self.pdf(wo, wi);
-        (pdf > 0.0).then(|| BsdfSample {
-            wi,
-            weight: self.eval(wo, wi) / pdf,
-            pdf,
-            delta: false,
-            radiance_scale: 1.0,
-        })
+        BsdfSample::scattered(wi, self.eval(wo, wi), self.pdf(wo, wi), 1.0)
     }
 }

@@ -131,13 +131,6 @@ impl RoughDielectric {
         if (wi.z > 0.0) != reflect {
             return None;
         }
-        let pdf = self.pdf(wo, wi);
-        (pdf > 0.0).then(|| BsdfSample {
-            wi,
-            weight: self.eval(wo, wi) / pdf,
-            pdf,
-            delta: false,
-            radiance_scale,
-        })
+        BsdfSample::scattered(wi, self.eval(wo, wi), self.pdf(wo, wi), radiance_scale)
     }
 }

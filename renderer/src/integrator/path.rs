@@ -150,18 +150,19 @@ fn direct_light(
     sampler: &mut Sampler,
 ) -> Vec3 {
     let mut sum = Vec3::ZERO;
-    let transmits = at.bsdf.transmits();
     // A shadow ray starts off the side its light is on; only a transmitting
     // BSDF sees lights behind the surface.
-    let origin_toward = |to_light: Vec3| -> Option<Vec3> {
-        let side = if to_light.dot(at.geometric) > 0.0 {
-            at.geometric
-        } else if transmits {
-            -at.geometric
+    let above = offset_ray_origin(at.point, at.geometric, at.magnitude);
+    let below = at
+        .bsdf
+        .transmits()
+        .then(|| offset_ray_origin(at.point, -at.geometric, at.magnitude));
+    let origin_toward = |to_light: Vec3| {
+        if to_light.dot(at.geometric) > 0.0 {
+            Some(above)
         } else {
-            return None;
-        };
-        Some(offset_ray_origin(at.point, side, at.magnitude))
+            below
+        }
     };
     for light in &world.lights {
         let Some(s) = light.sample(at.point) else {

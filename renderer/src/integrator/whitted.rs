@@ -92,20 +92,22 @@ fn trace<R: Recorder>(
         trace(world, &next, options, depth + 1, rec, child)
     };
 
+    // The hit as light from the point and directional lights shades it.
+    let shading = |albedo| Shading {
+        material,
+        albedo,
+        point,
+        magnitude,
+        n,
+        geometric_side,
+        to_eye: -ray.dir,
+    };
     match material.base {
         BaseMaterial::Matte | BaseMaterial::Plastic | BaseMaterial::Marble => {
             let albedo = albedo_at(material, point);
             let diffuse_weight = 1.0 - material.reflectivity;
             rec.local(node, diffuse_weight * (albedo * world.ambient));
-            let at = Shading {
-                material,
-                albedo,
-                point,
-                magnitude,
-                n,
-                geometric_side,
-                to_eye: -ray.dir,
-            };
+            let at = shading(albedo);
             radiance += diffuse_weight * direct(world, options, &at, diffuse_weight, rec, node);
             if material.reflectivity > 0.0 {
                 if can_recurse {
@@ -122,15 +124,7 @@ fn trace<R: Recorder>(
             let mut mirrored = 1.0;
             if let Bsdf::RoughConductor(conductor) = Bsdf::new(material, material.color, front) {
                 let roughness = material.roughness.clamp(0.0, 1.0);
-                let at = Shading {
-                    material,
-                    albedo: material.color,
-                    point,
-                    magnitude,
-                    n,
-                    geometric_side,
-                    to_eye: -ray.dir,
-                };
+                let at = shading(material.color);
                 radiance +=
                     rough_conductor_direct(world, options, &at, &conductor, roughness, rec, node);
                 mirrored = 1.0 - roughness;
