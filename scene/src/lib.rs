@@ -6,6 +6,7 @@
 //! assert_eq!(scene.objects.len(), 1);
 //! ```
 
+mod bounded_read;
 pub mod color;
 mod error;
 pub mod generate;
@@ -26,6 +27,7 @@ pub use mesh::TriangleMesh;
 pub use model::*;
 pub use model_file::{
     MeshInstance, ModelCamera, ModelError, ModelFile, ModelMaterial, Texture, Wrap, load_model,
+    load_model_bytes,
 };
 pub use model_scene::{is_model_path, read_any, read_model_scene};
 pub use read::{read_file, read_str};

@@ -162,3 +162,11 @@ impl ModelFile {
 pub fn load_model(path: &Path) -> Result<ModelFile, ModelError> {
     crate::gltf::load(path)
 }
+
+/// Loads a model from bytes already in memory, as though read from `path`:
+/// errors name `path`, and relative buffer and image URIs resolve beside it.
+/// The fuzz target and the hostile-file tests use it; [`load_model`] reads
+/// the file and calls it.
+pub fn load_model_bytes(bytes: Vec<u8>, path: &Path) -> Result<ModelFile, ModelError> {
+    crate::gltf::load_bytes(bytes, path)
+}

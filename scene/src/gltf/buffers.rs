@@ -24,7 +24,16 @@ pub(super) fn load(doc: &Document, base: &Path, blob: Option<Vec<u8>>) -> Result
             None => format!("buffer {}", buffer.index()),
         };
         let bytes = match buffer.source() {
-            Source::Uri(uri) => read_uri(uri, base).map_err(|e| format!("{name}: {e}"))?,
+            _ if buffer.length() > MAX_FILE_BYTES => {
+                return Err(format!(
+                    "{name} claims {} bytes, more than the {MAX_FILE_BYTES} raylab reads",
+                    buffer.length()
+                ));
+            }
+            // A buffer needs only its byteLength; the rest of its file is never read.
+            Source::Uri(uri) => {
+                read_uri(uri, base, buffer.length()).map_err(|e| format!("{name}: {e}"))?
+            }
             // Only the first buffer may be the GLB's BIN chunk.
             Source::Bin if buffer.index() == 0 && blob.is_some() => blob.take().unwrap_or_default(),
             Source::Bin if meshopt => {
@@ -84,8 +93,9 @@ impl Buffers {
 }
 
 /// The bytes a URI names: a base64 `data:` URI, or a file relative to `base`
-/// (percent-encoded as URIs are), or a `file:` URI.
-pub(super) fn read_uri(uri: &str, base: &Path) -> Result<Vec<u8>, String> {
+/// (percent-encoded as URIs are), or a `file:` URI, of which only the first
+/// `limit` bytes are read. Network URIs are refused, never fetched.
+pub(super) fn read_uri(uri: &str, base: &Path, limit: usize) -> Result<Vec<u8>, String> {
     if let Some(rest) = uri.strip_prefix("data:") {
         let Some((_, payload)) = rest.split_once(";base64,") else {
             return Err(
@@ -101,8 +111,13 @@ pub(super) fn read_uri(uri: &str, base: &Path) -> Result<Vec<u8>, String> {
         return Ok(bytes);
     }
     let path = file_path(uri, base)?;
-    std::fs::read(&path).map_err(|e| format!("cannot read \"{}\": {e}", path.display()))
+    crate::bounded_read::read_prefix(&path, limit)
+        .map_err(|e| format!("\"{}\": {e}", path.display()))
 }
+
+/// The most bytes raylab reads from one model, buffer or image file (1 GiB):
+/// a file that claims more is refused before anything that size is allocated.
+pub(super) const MAX_FILE_BYTES: usize = 1 << 30;
 
 /// The file a non-data URI names.
 fn file_path(uri: &str, base: &Path) -> Result<PathBuf, String> {
@@ -164,12 +179,13 @@ mod tests {
         let bytes = read_uri(
             "data:application/octet-stream;base64,aGVsbG8=",
             Path::new("."),
+            16,
         )
         .expect("valid base64");
         assert_eq!(bytes, b"hello");
-        let e = read_uri("data:text/plain,hello", Path::new(".")).expect_err("not base64");
+        let e = read_uri("data:text/plain,hello", Path::new("."), 16).expect_err("not base64");
         assert!(e.contains("base64"), "{e}");
-        assert!(read_uri("data:;base64,@@@@", Path::new(".")).is_err());
+        assert!(read_uri("data:;base64,@@@@", Path::new("."), 16).is_err());
     }
 
     #[test]
@@ -191,7 +207,8 @@ mod tests {
 
     #[test]
     fn missing_files_name_the_path() {
-        let e = read_uri("no-such-file.bin", Path::new("/nonexistent-dir")).expect_err("missing");
+        let e =
+            read_uri("no-such-file.bin", Path::new("/nonexistent-dir"), 16).expect_err("missing");
         assert!(e.contains("/nonexistent-dir/no-such-file.bin"), "{e}");
     }
 }

@@ -39,7 +39,17 @@ pub(crate) fn load(path: &Path) -> Result<ModelFile, ModelError> {
         path: path.display().to_string(),
         message,
     };
-    let bytes = std::fs::read(path).map_err(|e| fail(format!("cannot read the file: {e}")))?;
+    let bytes = crate::bounded_read::read_limited(path, buffers::MAX_FILE_BYTES).map_err(fail)?;
+    load_bytes(bytes, path)
+}
+
+/// Loads a model from its bytes, as though read from `path` (errors name
+/// it; its folder resolves relative URIs); see [`crate::model_file::load_model_bytes`].
+pub(crate) fn load_bytes(bytes: Vec<u8>, path: &Path) -> Result<ModelFile, ModelError> {
+    let fail = |message: String| ModelError {
+        path: path.display().to_string(),
+        message,
+    };
     let document::Parsed { doc, blob } = document::parse(&bytes).map_err(fail)?;
     drop(bytes);
     let base = path.parent().unwrap_or(Path::new("."));

@@ -2,7 +2,7 @@
 //! `data:` URI or a file) decoded to RGBA8 sRGB texels, with the sampler's
 //! wrap modes. Filters are not kept: raylab samples as it chooses.
 
-use super::buffers::{Buffers, read_uri};
+use super::buffers::{Buffers, MAX_FILE_BYTES, read_uri};
 use super::warnings::Warnings;
 use crate::model_file::{Texture, Wrap};
 use ::gltf::texture::WrappingMode;
@@ -54,7 +54,9 @@ pub(super) fn decode(
             .view(&view)
             .map_err(|e| format!("{name}: {e}"))?
             .to_vec(),
-        (None, Some(uri)) => read_uri(uri, base).map_err(|e| format!("{name}: {e}"))?,
+        (None, Some(uri)) => {
+            read_uri(uri, base, MAX_FILE_BYTES).map_err(|e| format!("{name}: {e}"))?
+        }
         (None, None) => return Err(format!("{name} has neither a uri nor a bufferView")),
     };
     let format = match image::guess_format(&bytes) {

@@ -5,6 +5,10 @@ use super::read_str;
 use crate::{Scene, SceneError};
 use std::path::Path;
 
+/// The largest scene file raylab reads (64 MiB; scenes are small, meshes
+/// live in model files): anything longer is refused before it is read whole.
+pub const MAX_SCENE_BYTES: usize = 64 << 20;
+
 /// Reads and parses a scene file; a file that cannot be read (or is not
 /// UTF-8) is an error at 1:1 (or at the first invalid byte) saying why.
 pub fn read_file(path: &Path) -> Result<Scene, SceneError> {
@@ -16,7 +20,7 @@ pub fn read_file(path: &Path) -> Result<Scene, SceneError> {
         message,
     };
     let bytes =
-        std::fs::read(path).map_err(|e| error(1, 1, format!("cannot read the file: {e}")))?;
+        crate::bounded_read::read_limited(path, MAX_SCENE_BYTES).map_err(|e| error(1, 1, e))?;
     let text = match String::from_utf8(bytes) {
         Ok(text) => text,
         Err(e) => {
