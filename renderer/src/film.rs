@@ -69,6 +69,11 @@ impl Film {
         }
     }
 
+    /// Bytes a film holds per pixel (sum, statistics and sample count).
+    pub fn bytes_per_pixel() -> u64 {
+        (size_of::<Vec3>() + size_of::<PixelStats>() + size_of::<u32>()) as u64
+    }
+
     /// Width in pixels.
     pub fn width(&self) -> u32 {
         self.width

@@ -19,6 +19,7 @@ pub mod film;
 pub mod frame;
 pub mod generate;
 pub mod heatmap;
+pub mod image_memory;
 pub mod image_texture;
 pub mod inspect;
 pub mod integrator;

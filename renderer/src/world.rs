@@ -23,6 +23,9 @@ pub enum RenderError {
     /// The camera is degenerate.
     #[error("camera: {0}")]
     Camera(#[from] CameraError),
+    /// The image would not fit in memory ([`crate::image_memory`]).
+    #[error("image size: {0}")]
+    Memory(String),
 }
 
 /// What the ray hit: which object, how far along the ray, and for meshes
@@ -123,6 +126,7 @@ impl World {
     /// before (built in parallel), then the top level over everything.
     pub fn new(resolved: &ResolvedScene) -> Result<World, RenderError> {
         let camera = Camera::new(&resolved.camera)?;
+        crate::image_memory::check_fits(camera.w, camera.h).map_err(RenderError::Memory)?;
         let mut lights = Vec::new();
         let mut ambient = Vec3::ZERO;
         for light in resolved.lights.iter().map(Light::from_scene) {

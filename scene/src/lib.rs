@@ -30,7 +30,7 @@ pub use model_file::{
     load_model_bytes,
 };
 pub use model_scene::{is_model_path, read_any, read_model_scene};
-pub use read::{read_file, read_str};
+pub use read::{MAX_MAGNITUDE, read_file, read_str};
 pub use resolve::resolve;
 pub use resolved::*;
 pub use write::write_string;

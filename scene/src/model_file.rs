@@ -108,7 +108,7 @@ pub struct ModelCamera {
 
 /// Why a model file cannot be loaded at all.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("{path}: {message}")]
+#[error("{path}: {}", crate::error::elide(.message))]
 pub struct ModelError {
     /// The file.
     pub path: String,

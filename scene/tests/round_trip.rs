@@ -9,13 +9,16 @@ use scene::{
     read_str, write_string,
 };
 
-/// Any finite f32: mostly human-sized, sometimes extreme or subnormal.
+/// Any number a scene may hold (within ±1e6): mostly human-sized, sometimes
+/// extreme or subnormal.
 fn finite() -> impl Strategy<Value = f32> {
     prop_oneof![
         4 => -100.0f32..100.0,
         1 => Just(0.0f32),
         1 => (-20i32..20).prop_map(|i| i as f32 * 0.25),
-        1 => prop::num::f32::NORMAL | prop::num::f32::SUBNORMAL | prop::num::f32::ZERO,
+        1 => (prop::num::f32::NORMAL | prop::num::f32::SUBNORMAL | prop::num::f32::ZERO)
+            .prop_filter("within the scene format's ±1e6", |x| x.abs() <= 1.0e6),
+        1 => Just(1.0e6f32),
     ]
 }
 
@@ -60,7 +63,7 @@ fn emission() -> impl Strategy<Value = Vec3> {
 fn params() -> impl Strategy<Value = MaterialParams> {
     (
         prop::option::of(color()),
-        prop::option::of(positive()),
+        prop::option::of(prop_oneof![0.1f32..=10.0, Just(0.1f32), Just(10.0f32)]),
         prop::option::of(non_negative()),
         prop::option::of(0.0f32..=1.0),
         prop::option::of(0.0f32..=1.0),

@@ -199,7 +199,7 @@ fn material_parameters_are_range_checked() {
         &in_scene(r#"  <sphere ior="0"/>"#),
         2,
         16,
-        "ior must be a positive number",
+        "ior must be an index of refraction from 0.1 to 10",
     );
     assert_error(
         &in_scene(r#"  <sphere shininess="-1"/>"#),

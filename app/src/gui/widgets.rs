@@ -3,11 +3,14 @@
 
 use glam::Vec3;
 
-/// A drag value whose typed text must be a finite number: "NaN" or "inf"
-/// typed into a field is refused, so the scene never holds them.
+/// A drag value whose typed text must be a number the scene format accepts:
+/// "NaN", "inf" or 1e30 typed into a field is refused, so the scene never
+/// holds a value its own file could not be read back with.
 pub fn drag<Num: egui::emath::Numeric>(value: &mut Num) -> egui::DragValue<'_> {
-    egui::DragValue::new(value)
-        .custom_parser(|text| text.trim().parse::<f64>().ok().filter(|v| v.is_finite()))
+    egui::DragValue::new(value).custom_parser(|text| {
+        let max = f64::from(scene::MAX_MAGNITUDE);
+        text.trim().parse::<f64>().ok().filter(|v| v.abs() <= max)
+    })
 }
 
 /// Three drag values for a vector, labelled x, y, z.
@@ -19,7 +22,12 @@ pub fn vec3(ui: &mut egui::Ui, v: &mut Vec3, speed: f32) -> bool {
             .zip([&mut v.x, &mut v.y, &mut v.z])
         {
             changed |= ui
-                .add(drag(c).speed(speed).prefix(format!("{axis} ")))
+                .add(
+                    drag(c)
+                        .speed(speed)
+                        .range(-scene::MAX_MAGNITUDE..=scene::MAX_MAGNITUDE)
+                        .prefix(format!("{axis} ")),
+                )
                 .changed();
         }
     });

@@ -8,7 +8,7 @@
 //!
 //! | glTF material | raylab material | parameters |
 //! |---|---|---|
-//! | `KHR_materials_transmission` factor > 0 | Glass | `color` = baseColorFactor (tint); `ior` = `KHR_materials_ior` (1.5 when absent or below 1); `roughness` = roughnessFactor (a GGX rough dielectric, α = roughness², in the path tracer) |
+//! | `KHR_materials_transmission` factor > 0 | Glass | `color` = baseColorFactor (tint); `ior` = `KHR_materials_ior` (1.5 when absent or outside 1 to 10); `roughness` = roughnessFactor (a GGX rough dielectric, α = roughness², in the path tracer) |
 //! | metallicFactor ≥ 0.5 | Metal (Schlick Fresnel from the base colour toward white, glTF's own metal BRDF) | `color` = baseColorFactor; `roughness` = roughnessFactor (a GGX rough conductor, α = roughness², in the path tracer) |
 //! | roughnessFactor > 0.75 (a dielectric) | Matte (Lambert) | `color` = baseColorFactor. So rough a surface shows no mirror image and no sharp highlight. |
 //! | otherwise (a dielectric) | Plastic (Lambert + Blinn-Phong) | `color` = baseColorFactor; `shininess` = 2/α² − 2 with α = roughness², clamped to [1, 10000] (the Blinn-Phong exponent whose lobe matches a microfacet distribution of that roughness: roughness 0.75 gives 4.3, 0.5 gives 30, 0.2 gives 1248; the path tracer turns it back into that GGX α); `specular` = 0.04, a glTF dielectric's reflectance F0 (the renderer normalises the lobe by (n + 8)/8π, so its width and peak already follow roughness while its energy stays F0); `reflectivity` = 0.04 when roughness < 0.1 (a mirror-smooth dielectric reflects its surroundings at F0), else 0 |
@@ -83,7 +83,10 @@ pub(super) fn map(p: &Pbr) -> Material {
     let mut material = if p.transmission > 0.0 {
         Material {
             color,
-            ior: p.ior.filter(|&ior| ior >= 1.0).unwrap_or(1.5),
+            ior: p
+                .ior
+                .filter(|ior| (1.0..=10.0).contains(ior))
+                .unwrap_or(1.5),
             roughness,
             ..builtin(BaseMaterial::Glass)
         }

@@ -52,6 +52,7 @@ pub(crate) fn load_bytes(bytes: Vec<u8>, path: &Path) -> Result<ModelFile, Model
     };
     let document::Parsed { doc, blob } = document::parse(&bytes).map_err(fail)?;
     drop(bytes);
+    warnings::check_required(&doc).map_err(fail)?;
     let base = path.parent().unwrap_or(Path::new("."));
     let buffers = buffers::load(&doc, base, blob).map_err(fail)?;
 

@@ -68,9 +68,30 @@ pub(super) fn document_warnings(doc: &Document, warnings: &mut Warnings) {
     }
 }
 
+/// A required extension that raylab neither reads nor has a documented
+/// fallback for (see [`fallback`]) is an error naming it: glTF says a loader
+/// must not load a file whose required extensions it does not support.
+pub(super) fn check_required(doc: &Document) -> Result<(), String> {
+    for (index, name) in doc.extensions_required().enumerate() {
+        if !SUPPORTED_EXTENSIONS.contains(&name) && fallback(name).is_none() {
+            return Err(format!(
+                "extensionsRequired[{index}]: the file requires extension {name}, which raylab \
+                 does not know, so it cannot be shown faithfully"
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// What raylab does instead of an unsupported extension.
 fn instead(name: &str) -> &'static str {
-    match name {
+    fallback(name).unwrap_or("its data is ignored and the rest of the file loads without it")
+}
+
+/// What raylab does instead of an extension it knows but does not read;
+/// `None` for an extension it does not know.
+fn fallback(name: &str) -> Option<&'static str> {
+    Some(match name {
         DRACO => {
             "its Draco-compressed primitives are skipped (primitives with uncompressed data still load)"
         }
@@ -91,8 +112,8 @@ fn instead(name: &str) -> &'static str {
         _ if name.starts_with("KHR_materials_") || name.starts_with("EXT_materials_") => {
             "that part of the material is ignored; the metallic-roughness mapping is used"
         }
-        _ => "its data is ignored and the rest of the file loads without it",
-    }
+        _ => return None,
+    })
 }
 
 #[cfg(test)]

@@ -159,7 +159,7 @@ impl<'a> Element<'a> {
     pub fn params(&self) -> Result<MaterialParams, SceneError> {
         Ok(MaterialParams {
             color: self.color("color")?,
-            ior: self.number("ior", Range::Positive)?,
+            ior: self.number("ior", Range::Ior)?,
             shininess: self.number("shininess", Range::NonNegative)?,
             specular: self.number("specular", Range::Unit)?,
             reflectivity: self.number("reflectivity", Range::Unit)?,

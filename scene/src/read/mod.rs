@@ -14,6 +14,7 @@ use camera::{CAMERA_ATTRS, LIGHT_ATTRS, SKY_ATTRS};
 pub use file::read_file;
 use objects::{MATERIAL_ATTRS, shape_attrs};
 pub(crate) use suggest::suggest;
+pub use values::MAX_MAGNITUDE;
 pub(crate) use values::parse_triple;
 
 use crate::SceneError;
@@ -197,6 +198,14 @@ impl Document<'_> {
     fn load_model(&mut self, src: &str) -> Result<Arc<ModelFile>, String> {
         if let Some(model) = self.models.get(src) {
             return Ok(model.clone());
+        }
+        if let Some((scheme, _)) = src.split_once("://")
+            && scheme != "file"
+        {
+            return Err(format!(
+                "\"{scheme}://…\" is a network address; raylab never fetches files from the \
+                 network (download the model and name the file)"
+            ));
         }
         let model = Arc::new(load_model(&self.dir.join(src)).map_err(|e| e.to_string())?);
         self.models.insert(src.to_owned(), model.clone());

@@ -16,6 +16,9 @@ pub(crate) enum Range {
     Unit,
     /// An angle in degrees strictly between 0 and 90.
     OpenQuarterTurn,
+    /// An index of refraction from 0.1 to 10 (real materials lie within 1 to
+    /// 4; below 1 models a thinner medium inside a denser one).
+    Ior,
 }
 
 impl Range {
@@ -27,6 +30,7 @@ impl Range {
             Range::NonNegative => x >= 0.0,
             Range::Unit => (0.0..=1.0).contains(&x),
             Range::OpenQuarterTurn => x > 0.0 && x < 90.0,
+            Range::Ior => (0.1..=10.0).contains(&x),
         }
     }
 
@@ -38,14 +42,23 @@ impl Range {
             Range::NonNegative => "a number ≥ 0",
             Range::Unit => "a number from 0 to 1",
             Range::OpenQuarterTurn => "an angle in degrees strictly between 0 and 90",
+            Range::Ior => "an index of refraction from 0.1 to 10",
         }
     }
 }
 
-/// A finite `f32`; the reason otherwise (without the attribute name).
+/// The largest magnitude of any number in a scene file (a kilometre in
+/// millimetres). Beyond it 32-bit arithmetic loses a scene's detail (the
+/// spacing of f32 values near 1e6 is 0.06), and the torus's quartic, whose
+/// coefficients grow as the fourth power of sizes and distances, overflows.
+pub const MAX_MAGNITUDE: f32 = 1.0e6;
+
+/// A finite `f32` within ±[`MAX_MAGNITUDE`]; the reason otherwise (without
+/// the attribute name).
 fn finite(token: &str) -> Result<f32, &'static str> {
     match token.parse::<f32>() {
-        Ok(x) if x.is_finite() => Ok(x),
+        Ok(x) if x.abs() <= MAX_MAGNITUDE => Ok(x),
+        Ok(x) if x.is_finite() => Err("must lie within ±1e6"),
         Ok(_) => Err("must be a finite number"),
         Err(_) => Err("is not a number"),
     }
