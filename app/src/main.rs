@@ -1,5 +1,6 @@
 //! The `raylab` program: the desktop window (`raylab [SCENE]`) and the command line.
 
+mod atomic_file;
 mod bench_cmd;
 mod bench_export;
 mod chart_cmd;

@@ -663,7 +663,11 @@ impl RaylabApp {
                 true
             }
             Err(e) => {
-                self.message = Some(format!("Cannot save {}: {e}", path.display()));
+                self.message = Some(format!(
+                    "Cannot save {}: {e}\n\nThe file on disk is unchanged; the changes are \
+                     still unsaved.",
+                    path.display()
+                ));
                 false
             }
         }
