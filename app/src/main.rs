@@ -69,6 +69,9 @@ fn run_window(path: PathBuf, reference: Option<PathBuf>) -> ExitCode {
             let mut app =
                 gui::RaylabApp::with_storage(scene, gui::Document::scene_path(&path), cc.storage)
                     .with_gpu(cc.wgpu_render_state.clone());
+            if let Some(dir) = gui::recovery_dir("raylab") {
+                app = app.with_recovery(&dir);
+            }
             if let Some((path, image)) = reference {
                 app.set_reference(path, image);
             }

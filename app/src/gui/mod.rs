@@ -3,6 +3,7 @@
 //! renders: after every edit it snapshots the scene for the progressive
 //! session and shows the newest frame the session hands back.
 
+mod autosave;
 pub mod bench;
 mod camera_panel;
 mod commands;
@@ -20,6 +21,8 @@ mod legend;
 mod light_editor;
 mod navigation;
 mod object_editor;
+mod recovery;
+mod recovery_offer;
 mod render_panel;
 mod scene_panel;
 mod screenshot;
@@ -33,6 +36,7 @@ use document::RenderSettings;
 use edits::Selection;
 use files::{DialogKind, DialogResult, Dialogs, Settings};
 use navigation::OrbitView;
+pub use recovery::default_dir as recovery_dir;
 use renderer::display::Display;
 use renderer::progressive::{Job, ProgressiveRenderer, RenderedFrame};
 use renderer::ray::Ray;
@@ -40,7 +44,7 @@ use renderer::{RenderOptions, World};
 use scene::{ResolvedScene, Scene};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::time::Instant;
+use std::time::{Instant, SystemTime};
 
 /// Orbit speed, radians per point dragged.
 const ORBIT_SPEED: f32 = 0.008;
@@ -131,6 +135,10 @@ pub struct RaylabApp {
     /// The rays the debug view draws: the inspection's, or those of all the
     /// pixel's samples so far (then the key's sample is their count).
     drawn_rays: Option<(InspectionKey, bool, Vec<debug_view::DrawnRay>)>,
+    /// Writes the unsaved scene to a recovery file; `None`: no recovery.
+    autosave: Option<autosave::Autosave>,
+    /// Recovery files of crashed runs still to offer, newest first.
+    left_behind: Vec<recovery::Left>,
 }
 
 /// What an inspection was traced from: the world, the options, the pixel and
@@ -180,7 +188,17 @@ impl RaylabApp {
             inspected: None,
             inspection: None,
             drawn_rays: None,
+            autosave: None,
+            left_behind: Vec::new(),
         }
+    }
+
+    /// Autosaves unsaved changes to a recovery file in `dir` (see
+    /// [`recovery`]) and offers to restore what crashed runs left there.
+    pub fn with_recovery(mut self, dir: &Path) -> Self {
+        self.left_behind = recovery::left_behind(dir);
+        self.autosave = Some(autosave::Autosave::new(dir, autosave::INTERVAL));
+        self
     }
 
     /// Lets the app draw with wgpu itself (the debug view); without it the
@@ -631,6 +649,10 @@ impl RaylabApp {
                 self.selection = Selection::None;
             }
             Pending::Close => {
+                // Closing without saving discards the changes: the recovery file too.
+                if let Some(autosave) = &mut self.autosave {
+                    autosave.remove();
+                }
                 self.allow_close = true;
                 ctx.send_viewport_cmd(egui::ViewportCommand::Close);
             }
@@ -936,6 +958,59 @@ impl RaylabApp {
         }
     }
 
+    /// Autosaves the scene when due at `now`, and asks for a repaint when
+    /// the next autosave is due (nothing else may wake the UI by then).
+    fn autosave_at(&mut self, ctx: &egui::Context, now: Instant) {
+        let Some(autosave) = &mut self.autosave else {
+            return;
+        };
+        let poll = autosave.poll(now, &self.doc);
+        if let Some(delay) = poll.again_in {
+            ctx.request_repaint_after(delay);
+        }
+        if let Some(error) = poll.error {
+            self.message.get_or_insert(error);
+        }
+    }
+
+    /// The offer to restore a crashed run's work. After a Restore the
+    /// others wait for the next start (restoring one more would replace it).
+    fn recovery_modal(&mut self, ctx: &egui::Context) {
+        let Some(left) = self.left_behind.first().cloned() else {
+            return;
+        };
+        match recovery_offer::show(ctx, &left, SystemTime::now()) {
+            Some(recovery_offer::Answer::Restore) => {
+                self.left_behind.clear();
+                self.restore(&left);
+            }
+            Some(recovery_offer::Answer::Discard) => {
+                self.left_behind.remove(0);
+                let _ = std::fs::remove_file(&left.file);
+            }
+            None => {}
+        }
+    }
+
+    /// Opens the recovered scene of `left` as an unsaved document of the
+    /// file it belongs to; its recovery file becomes this run's.
+    fn restore(&mut self, left: &recovery::Left) {
+        match recovery::read(&left.file) {
+            Ok((scene, source)) => {
+                self.doc =
+                    Document::recovered(scene.clone(), source.clone(), self.doc.state.render);
+                self.selection = Selection::None;
+                self.navigation = None;
+                if let Some(autosave) = &mut self.autosave {
+                    autosave.adopt(&left.file, (scene, source));
+                }
+            }
+            Err(e) => {
+                self.message = Some(format!("Cannot restore the autosaved work.\n\n{e}"));
+            }
+        }
+    }
+
     /// Draws the whole window into `ui`.
     pub fn show(&mut self, ui: &mut egui::Ui) {
         let started = Instant::now();
@@ -1023,6 +1098,7 @@ impl RaylabApp {
         });
         self.inspector_window(&ctx);
         self.guard_modal(&ctx);
+        self.recovery_modal(&ctx);
         self.message_modal(&ctx);
         self.path_prompt_modal(&ctx);
         self.help_window(&ctx);
@@ -1034,6 +1110,7 @@ impl RaylabApp {
         let gesture = ctx.input(|i| i.pointer.any_down()) || ctx.text_edit_focused();
         self.doc.history.settle(&self.doc.state, gesture);
         self.update_title(&ctx);
+        self.autosave_at(&ctx, Instant::now());
         self.submit_if_changed(&ctx);
         self.refresh_inspection();
         self.frame_times.record(started.elapsed());
@@ -1048,8 +1125,19 @@ impl eframe::App for RaylabApp {
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
         eframe::set_value(storage, Settings::KEY, &self.settings);
     }
+
+    /// A clean exit (nothing unsaved, or the user chose not to save) leaves
+    /// nothing to recover; an exit forced past unsaved changes keeps the file.
+    fn on_exit(&mut self) {
+        let clean = self.allow_close || !self.doc.is_modified();
+        if let Some(autosave) = self.autosave.as_mut().filter(|_| clean) {
+            autosave.remove();
+        }
+    }
 }
 
+#[cfg(test)]
+mod recovery_tests;
 #[cfg(test)]
 mod tests;
 
