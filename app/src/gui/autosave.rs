@@ -55,6 +55,7 @@ impl Autosave {
     }
 
     /// The recovery file this process writes.
+    #[cfg(test)]
     pub fn file(&self) -> &Path {
         &self.file
     }

@@ -711,9 +711,21 @@ impl RaylabApp {
         }
     }
 
-    /// Opens a native file dialog of `kind` in the last folder.
-    fn start_dialog(&mut self, ctx: &egui::Context, kind: DialogKind) {
-        let name = match kind {
+    /// The folder a file dialog starts in: the scene's, else the last one used.
+    fn dialog_folder(&self) -> Option<PathBuf> {
+        self.doc
+            .path
+            .as_deref()
+            .and_then(Path::parent)
+            .map(Path::to_path_buf)
+            .or_else(|| self.settings.last_folder.clone())
+    }
+
+    /// The file name a save dialog of `kind` suggests in `folder`. An
+    /// image's is free there (`seed-64spp.png`, else `seed-64spp-2.png`, …),
+    /// so accepting the suggestion never replaces an earlier image.
+    fn suggested_name(&self, kind: DialogKind, folder: Option<&Path>) -> Option<String> {
+        match kind {
             DialogKind::Open | DialogKind::Reference => None,
             DialogKind::SaveScene => Some(self.doc.display_name()).map(|n| {
                 if n.ends_with(".xml") {
@@ -724,17 +736,40 @@ impl RaylabApp {
             }),
             DialogKind::SaveImage => self.frame.as_ref().map(|f| {
                 let name = self.doc.display_name();
-                screenshot::default_file_name(&name, f.step, f.legend.display)
+                let name = screenshot::default_file_name(&name, f.step, f.legend.display);
+                let free =
+                    crate::output_path::free_file(&folder.unwrap_or(Path::new(".")).join(&name));
+                free.file_name()
+                    .map_or(name, |n| n.to_string_lossy().into_owned())
             }),
-        };
-        let folder = self
-            .doc
-            .path
-            .as_deref()
-            .and_then(Path::parent)
-            .map(Path::to_path_buf)
-            .or_else(|| self.settings.last_folder.clone());
+        }
+    }
+
+    /// Opens a native file dialog of `kind` in the scene's or the last
+    /// folder. The system's save dialog (the xdg portal's, or zenity's with
+    /// --confirm-overwrite) asks before replacing a file.
+    fn start_dialog(&mut self, ctx: &egui::Context, kind: DialogKind) {
+        let folder = self.dialog_folder();
+        let name = self.suggested_name(kind, folder.as_deref());
         self.dialogs.start(ctx, kind, folder.as_deref(), name);
+    }
+
+    /// Asks for the path of a file of `kind` by typing, where no file dialog
+    /// can be shown; a save starts from the name a dialog would suggest.
+    fn prompt_for_path(&mut self, kind: DialogKind) {
+        let start = match kind {
+            DialogKind::Open => String::new(),
+            _ => {
+                let folder = self.dialog_folder();
+                let name = self.suggested_name(kind, folder.as_deref());
+                match (folder, name) {
+                    (Some(f), Some(n)) => f.join(n).display().to_string(),
+                    (Some(f), None) => format!("{}/", f.display()),
+                    (None, n) => n.unwrap_or_default(),
+                }
+            }
+        };
+        self.path_prompt = Some((kind, start));
     }
 
     /// Acts on a file chosen in a dialog or typed into the path prompt.
@@ -772,18 +807,7 @@ impl RaylabApp {
     fn poll_dialogs(&mut self, ctx: &egui::Context) {
         match self.dialogs.poll() {
             Some(DialogResult::Chosen(kind, path)) => self.chosen(ctx, kind, path),
-            Some(DialogResult::Unavailable(kind)) => {
-                let start = match kind {
-                    DialogKind::Open => String::new(),
-                    _ => self
-                        .settings
-                        .last_folder
-                        .as_deref()
-                        .map(|f| format!("{}/", f.display()))
-                        .unwrap_or_default(),
-                };
-                self.path_prompt = Some((kind, start));
-            }
+            Some(DialogResult::Unavailable(kind)) => self.prompt_for_path(kind),
             Some(DialogResult::Cancelled) => self.after_save = None,
             None => {}
         }
@@ -876,9 +900,20 @@ impl RaylabApp {
             });
             ui.weak("No file dialog is available here (xdg-desktop-portal or zenity).");
             let edit = ui.add(egui::TextEdit::singleline(text).desired_width(480.0));
-            let entered = edit.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+            // No dialog to confirm it: replacing a file is said, and the button says it.
+            let saving = matches!(kind, DialogKind::SaveScene | DialogKind::SaveImage);
+            let replaces = saving && Path::new(text.trim()).is_file();
+            if replaces {
+                ui.colored_label(
+                    ui.visuals().warn_fg_color,
+                    "This file exists: Replace overwrites it.",
+                );
+            }
+            let entered =
+                edit.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter)) && !replaces;
             ui.horizontal(|ui| {
-                if ui.button("OK").clicked() || entered {
+                let ok = if replaces { "Replace" } else { "OK" };
+                if ui.button(ok).clicked() || entered {
                     answer = Some(true);
                 }
                 if ui.button("Cancel").clicked() {
@@ -1136,6 +1171,8 @@ impl eframe::App for RaylabApp {
     }
 }
 
+#[cfg(test)]
+mod overwrite_tests;
 #[cfg(test)]
 mod recovery_tests;
 #[cfg(test)]

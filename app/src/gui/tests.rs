@@ -35,7 +35,7 @@ pub(super) fn harness(app: RaylabApp) -> Harness<'static, RaylabApp> {
 }
 
 /// Steps the UI until the target spp of the newest job is on screen.
-fn settle(h: &mut Harness<'static, RaylabApp>) {
+pub(super) fn settle(h: &mut Harness<'static, RaylabApp>) {
     let deadline = Instant::now() + Duration::from_secs(60);
     while Instant::now() < deadline {
         h.step();
