@@ -698,3 +698,47 @@ fn stability_writes_every_case_for_both_methods_as_csv_and_a_chart() {
     let red = count(&|p| p.0[0] > 180 && p.0[1] < 80 && p.0[2] < 80);
     assert!(blue > 500 && red > 500, "blue {blue} red {red} pixels");
 }
+
+#[test]
+fn rendering_over_an_existing_file_replaces_it_and_says_so() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("seed.png");
+    let small = ["--width", "16", "--height", "12", "--spp", "1"];
+    let first = render(&asset("seed.xml"), &out, &small);
+    assert!(!String::from_utf8_lossy(&first.stdout).contains("replaced"));
+    std::fs::write(&out, "an earlier image").expect("write");
+    let second = render(&asset("seed.xml"), &out, &small);
+    let stdout = String::from_utf8_lossy(&second.stdout);
+    assert!(
+        stdout.contains("(replaced the existing file)"),
+        "says so: {stdout}"
+    );
+    assert_eq!(
+        read_png(&out).dimensions(),
+        (16, 12),
+        "the -o file is replaced"
+    );
+}
+
+#[test]
+fn stability_without_an_output_name_picks_a_free_one() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    std::fs::write(dir.path().join("stability.png"), "an earlier chart").expect("write");
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_raylab"))
+        .args(["stability", "--quick"])
+        .current_dir(dir.path())
+        .output()
+        .expect("raylab runs");
+    assert!(output.status.success());
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(stdout.contains("wrote stability-2.png"), "{stdout}");
+    assert_eq!(
+        std::fs::read_to_string(dir.path().join("stability.png")).expect("read"),
+        "an earlier chart"
+    );
+    assert!(dir.path().join("stability-2.csv").is_file());
+    assert!(
+        !dir.path().join("stability.csv").exists(),
+        "the pair stays together"
+    );
+}

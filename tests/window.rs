@@ -84,6 +84,8 @@ fn window_shows_the_rendered_seed_scene_beside_the_camera_panel() {
         .env("XDG_RUNTIME_DIR", &runtime)
         // Persistence (recent files, window layout) goes to the temp dir, not the user's.
         .env("XDG_DATA_HOME", dir.path())
+        // Recovery files then live under XDG_DATA_HOME too: none to offer.
+        .env_remove("RAYLAB_RECOVERY_DIR")
         .env("WGPU_BACKEND", "vulkan")
         .spawn()
         .expect("xvfb-run starts (scripts/setup.sh installs it)");

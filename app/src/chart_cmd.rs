@@ -116,8 +116,13 @@ pub fn run(args: &ChartArgs) -> Result<Vec<PathBuf>> {
         }
         curves.push(Curve { name, points });
     }
-    let csv = args.output.with_extension("csv");
-    let png = args.output.with_extension("png");
+    let output = match &args.output {
+        Some(output) => output.clone(),
+        None => crate::output_path::free_stem(std::path::Path::new("chart"), &["csv", "png"]),
+    };
+    let csv = output.with_extension("csv");
+    let png = output.with_extension("png");
+    crate::output_path::note_replacing(&[&csv, &png]);
     write_csv(&csv, &curves)?;
     let title = format!(
         "{} ({w}×{h}): error against time",

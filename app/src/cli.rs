@@ -44,9 +44,11 @@ pub struct StabilityArgs {
     /// Fewer tests per row (2,000 rays instead of 100,000): seconds instead of a minute.
     #[arg(long)]
     pub quick: bool,
-    /// Where to write: OUTPUT.csv and OUTPUT.png.
-    #[arg(short, long, default_value = "stability")]
-    pub output: PathBuf,
+    /// Where to write: OUTPUT.csv and OUTPUT.png (replaced if they exist).
+    /// Without it: stability.csv and stability.png, or stability-2.csv and
+    /// stability-2.png, … — the first pair not yet taken.
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
 }
 
 /// Arguments of `raylab chart`.
@@ -73,9 +75,11 @@ pub struct ChartArgs {
     /// Seed of the random samples.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
-    /// Where to write: OUTPUT.csv and OUTPUT.png.
-    #[arg(short, long, default_value = "chart")]
-    pub output: PathBuf,
+    /// Where to write: OUTPUT.csv and OUTPUT.png (replaced if they exist).
+    /// Without it: chart.csv and chart.png, or chart-2.csv and
+    /// chart-2.png, … — the first pair not yet taken.
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
 }
 
 /// A rendering method `raylab chart` can compare.
@@ -223,7 +227,8 @@ pub struct RenderArgs {
     /// The scene and how to trace it.
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// Output image: .png (8-bit sRGB) or .exr (linear float32).
+    /// Output image: .png (8-bit sRGB) or .exr (linear float32); an
+    /// existing file is replaced (and the report says so).
     #[arg(short, long)]
     pub output: PathBuf,
     /// Samples per pixel (progressive passes).

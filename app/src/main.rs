@@ -1,5 +1,6 @@
 //! The `raylab` program: the desktop window (`raylab [SCENE]`) and the command line.
 
+mod atomic_file;
 mod bench_cmd;
 mod bench_export;
 mod chart_cmd;
@@ -9,6 +10,7 @@ mod flip;
 mod gui;
 mod inspect_cmd;
 mod output;
+mod output_path;
 mod render_cmd;
 mod scene_spec;
 mod stability_cmd;
@@ -68,6 +70,9 @@ fn run_window(path: PathBuf, reference: Option<PathBuf>) -> ExitCode {
             let mut app =
                 gui::RaylabApp::with_storage(scene, gui::Document::scene_path(&path), cc.storage)
                     .with_gpu(cc.wgpu_render_state.clone());
+            if let Some(dir) = gui::recovery_dir("raylab") {
+                app = app.with_recovery(&dir);
+            }
             if let Some((path, image)) = reference {
                 app.set_reference(path, image);
             }
@@ -113,12 +118,21 @@ fn main() -> ExitCode {
         Some(Command::Inspect(args)) => finish(inspect_cmd::run(&args), |json| println!("{json}")),
         Some(Command::Stability(args)) => finish(stability_cmd::run(&args), report_written),
         Some(Command::Chart(args)) => finish(chart_cmd::run(&args), report_written),
-        Some(Command::Render(args)) => finish(render_cmd::run(&args), |elapsed| {
-            println!(
-                "wrote {} in {:.3} s",
-                args.output.display(),
-                elapsed.as_secs_f64()
-            );
-        }),
+        Some(Command::Render(args)) => {
+            // The user named the file: replacing it is what they asked, said aloud.
+            let replacing = args.output.is_file();
+            finish(render_cmd::run(&args), |elapsed| {
+                let replaced = if replacing {
+                    " (replaced the existing file)"
+                } else {
+                    ""
+                };
+                println!(
+                    "wrote {} in {:.3} s{replaced}",
+                    args.output.display(),
+                    elapsed.as_secs_f64()
+                );
+            })
+        }
     }
 }

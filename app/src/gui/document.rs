@@ -67,8 +67,9 @@ pub struct Document {
     pub state: EditState,
     /// The file the scene is saved to; `None` until it is saved.
     pub path: Option<PathBuf>,
-    /// The scene as last loaded or saved, to tell unsaved changes.
-    saved: Scene,
+    /// The scene as last loaded or saved, to tell unsaved changes; `None`
+    /// for a recovered scene, which is on disk nowhere but the recovery file.
+    saved: Option<Scene>,
     /// Undo/redo over [`EditState`].
     pub history: History<EditState>,
 }
@@ -79,9 +80,18 @@ impl Document {
         let state = EditState { scene, render };
         Self {
             history: History::new(&state),
-            saved: state.scene.clone(),
+            saved: Some(state.scene.clone()),
             state,
             path,
+        }
+    }
+
+    /// A document restored from a recovery file: `scene`, to be saved to
+    /// `path`, marked unsaved until it is saved.
+    pub fn recovered(scene: Scene, path: Option<PathBuf>, render: RenderSettings) -> Self {
+        Self {
+            saved: None,
+            ..Self::new(scene, path, render)
         }
     }
 
@@ -101,23 +111,21 @@ impl Document {
     /// True when the scene differs from the file (undoing back to the saved
     /// state clears it).
     pub fn is_modified(&self) -> bool {
-        self.state.scene != self.saved
+        self.saved.as_ref() != Some(&self.state.scene)
     }
 
-    /// Writes the scene to `path` (via a temporary file, so a failed write
-    /// never truncates the old one) and makes it the document's file.
+    /// Writes the scene to `path` atomically, keeping the file it replaces
+    /// as `path.bak` (see [`crate::atomic_file`]), and makes it the
+    /// document's file. A failed save changes nothing: not the file, not
+    /// the document (still unsaved, still pointing where it did).
     pub fn save_as(&mut self, path: &Path) -> std::io::Result<()> {
-        rebase_mesh_sources(&mut self.state.scene, path);
-        let text = scene::write_string(&self.state.scene);
-        let mut temporary = path.as_os_str().to_owned();
-        temporary.push(".raylab-saving");
-        let temporary = PathBuf::from(temporary);
-        std::fs::write(&temporary, text)?;
-        std::fs::rename(&temporary, path).inspect_err(|_| {
-            let _ = std::fs::remove_file(&temporary);
-        })?;
+        let mut scene = self.state.scene.clone();
+        rebase_mesh_sources(&mut scene, path);
+        let text = scene::write_string(&scene);
+        crate::atomic_file::replace_keeping_backup(path, text.as_bytes())?;
+        self.state.scene = scene;
         self.path = Some(path.to_path_buf());
-        self.saved = self.state.scene.clone();
+        self.saved = Some(self.state.scene.clone());
         Ok(())
     }
 
@@ -146,7 +154,7 @@ impl Document {
 /// Points every `<mesh src>` at its model file from the folder `scene_path`
 /// is in: just the file name when the model lies in that folder, else the
 /// model's absolute path (so a scene saved elsewhere still finds its models).
-fn rebase_mesh_sources(scene: &mut Scene, scene_path: &Path) {
+pub(super) fn rebase_mesh_sources(scene: &mut Scene, scene_path: &Path) {
     let folder = scene_path.parent().and_then(|f| {
         std::fs::canonicalize(if f.as_os_str().is_empty() {
             Path::new(".")

@@ -3,6 +3,7 @@
 //! renders: after every edit it snapshots the scene for the progressive
 //! session and shows the newest frame the session hands back.
 
+mod autosave;
 pub mod bench;
 mod camera_panel;
 mod commands;
@@ -20,6 +21,8 @@ mod legend;
 mod light_editor;
 mod navigation;
 mod object_editor;
+mod recovery;
+mod recovery_offer;
 mod render_panel;
 mod scene_panel;
 mod screenshot;
@@ -33,6 +36,7 @@ use document::RenderSettings;
 use edits::Selection;
 use files::{DialogKind, DialogResult, Dialogs, Settings};
 use navigation::OrbitView;
+pub use recovery::default_dir as recovery_dir;
 use renderer::display::Display;
 use renderer::progressive::{Job, ProgressiveRenderer, RenderedFrame};
 use renderer::ray::Ray;
@@ -40,7 +44,7 @@ use renderer::{RenderOptions, World};
 use scene::{ResolvedScene, Scene};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::time::Instant;
+use std::time::{Instant, SystemTime};
 
 /// Orbit speed, radians per point dragged.
 const ORBIT_SPEED: f32 = 0.008;
@@ -131,6 +135,10 @@ pub struct RaylabApp {
     /// The rays the debug view draws: the inspection's, or those of all the
     /// pixel's samples so far (then the key's sample is their count).
     drawn_rays: Option<(InspectionKey, bool, Vec<debug_view::DrawnRay>)>,
+    /// Writes the unsaved scene to a recovery file; `None`: no recovery.
+    autosave: Option<autosave::Autosave>,
+    /// Recovery files of crashed runs still to offer, newest first.
+    left_behind: Vec<recovery::Left>,
 }
 
 /// What an inspection was traced from: the world, the options, the pixel and
@@ -180,7 +188,17 @@ impl RaylabApp {
             inspected: None,
             inspection: None,
             drawn_rays: None,
+            autosave: None,
+            left_behind: Vec::new(),
         }
+    }
+
+    /// Autosaves unsaved changes to a recovery file in `dir` (see
+    /// [`recovery`]) and offers to restore what crashed runs left there.
+    pub fn with_recovery(mut self, dir: &Path) -> Self {
+        self.left_behind = recovery::left_behind(dir);
+        self.autosave = Some(autosave::Autosave::new(dir, autosave::INTERVAL));
+        self
     }
 
     /// Lets the app draw with wgpu itself (the debug view); without it the
@@ -631,6 +649,10 @@ impl RaylabApp {
                 self.selection = Selection::None;
             }
             Pending::Close => {
+                // Closing without saving discards the changes: the recovery file too.
+                if let Some(autosave) = &mut self.autosave {
+                    autosave.remove();
+                }
                 self.allow_close = true;
                 ctx.send_viewport_cmd(egui::ViewportCommand::Close);
             }
@@ -663,7 +685,11 @@ impl RaylabApp {
                 true
             }
             Err(e) => {
-                self.message = Some(format!("Cannot save {}: {e}", path.display()));
+                self.message = Some(format!(
+                    "Cannot save {}: {e}\n\nThe file on disk is unchanged; the changes are \
+                     still unsaved.",
+                    path.display()
+                ));
                 false
             }
         }
@@ -685,9 +711,21 @@ impl RaylabApp {
         }
     }
 
-    /// Opens a native file dialog of `kind` in the last folder.
-    fn start_dialog(&mut self, ctx: &egui::Context, kind: DialogKind) {
-        let name = match kind {
+    /// The folder a file dialog starts in: the scene's, else the last one used.
+    fn dialog_folder(&self) -> Option<PathBuf> {
+        self.doc
+            .path
+            .as_deref()
+            .and_then(Path::parent)
+            .map(Path::to_path_buf)
+            .or_else(|| self.settings.last_folder.clone())
+    }
+
+    /// The file name a save dialog of `kind` suggests in `folder`. An
+    /// image's is free there (`seed-64spp.png`, else `seed-64spp-2.png`, …),
+    /// so accepting the suggestion never replaces an earlier image.
+    fn suggested_name(&self, kind: DialogKind, folder: Option<&Path>) -> Option<String> {
+        match kind {
             DialogKind::Open | DialogKind::Reference => None,
             DialogKind::SaveScene => Some(self.doc.display_name()).map(|n| {
                 if n.ends_with(".xml") {
@@ -698,17 +736,40 @@ impl RaylabApp {
             }),
             DialogKind::SaveImage => self.frame.as_ref().map(|f| {
                 let name = self.doc.display_name();
-                screenshot::default_file_name(&name, f.step, f.legend.display)
+                let name = screenshot::default_file_name(&name, f.step, f.legend.display);
+                let free =
+                    crate::output_path::free_file(&folder.unwrap_or(Path::new(".")).join(&name));
+                free.file_name()
+                    .map_or(name, |n| n.to_string_lossy().into_owned())
             }),
-        };
-        let folder = self
-            .doc
-            .path
-            .as_deref()
-            .and_then(Path::parent)
-            .map(Path::to_path_buf)
-            .or_else(|| self.settings.last_folder.clone());
+        }
+    }
+
+    /// Opens a native file dialog of `kind` in the scene's or the last
+    /// folder. The system's save dialog (the xdg portal's, or zenity's with
+    /// --confirm-overwrite) asks before replacing a file.
+    fn start_dialog(&mut self, ctx: &egui::Context, kind: DialogKind) {
+        let folder = self.dialog_folder();
+        let name = self.suggested_name(kind, folder.as_deref());
         self.dialogs.start(ctx, kind, folder.as_deref(), name);
+    }
+
+    /// Asks for the path of a file of `kind` by typing, where no file dialog
+    /// can be shown; a save starts from the name a dialog would suggest.
+    fn prompt_for_path(&mut self, kind: DialogKind) {
+        let start = match kind {
+            DialogKind::Open => String::new(),
+            _ => {
+                let folder = self.dialog_folder();
+                let name = self.suggested_name(kind, folder.as_deref());
+                match (folder, name) {
+                    (Some(f), Some(n)) => f.join(n).display().to_string(),
+                    (Some(f), None) => format!("{}/", f.display()),
+                    (None, n) => n.unwrap_or_default(),
+                }
+            }
+        };
+        self.path_prompt = Some((kind, start));
     }
 
     /// Acts on a file chosen in a dialog or typed into the path prompt.
@@ -746,18 +807,7 @@ impl RaylabApp {
     fn poll_dialogs(&mut self, ctx: &egui::Context) {
         match self.dialogs.poll() {
             Some(DialogResult::Chosen(kind, path)) => self.chosen(ctx, kind, path),
-            Some(DialogResult::Unavailable(kind)) => {
-                let start = match kind {
-                    DialogKind::Open => String::new(),
-                    _ => self
-                        .settings
-                        .last_folder
-                        .as_deref()
-                        .map(|f| format!("{}/", f.display()))
-                        .unwrap_or_default(),
-                };
-                self.path_prompt = Some((kind, start));
-            }
+            Some(DialogResult::Unavailable(kind)) => self.prompt_for_path(kind),
             Some(DialogResult::Cancelled) => self.after_save = None,
             None => {}
         }
@@ -850,9 +900,20 @@ impl RaylabApp {
             });
             ui.weak("No file dialog is available here (xdg-desktop-portal or zenity).");
             let edit = ui.add(egui::TextEdit::singleline(text).desired_width(480.0));
-            let entered = edit.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+            // No dialog to confirm it: replacing a file is said, and the button says it.
+            let saving = matches!(kind, DialogKind::SaveScene | DialogKind::SaveImage);
+            let replaces = saving && Path::new(text.trim()).is_file();
+            if replaces {
+                ui.colored_label(
+                    ui.visuals().warn_fg_color,
+                    "This file exists: Replace overwrites it.",
+                );
+            }
+            let entered =
+                edit.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter)) && !replaces;
             ui.horizontal(|ui| {
-                if ui.button("OK").clicked() || entered {
+                let ok = if replaces { "Replace" } else { "OK" };
+                if ui.button(ok).clicked() || entered {
                     answer = Some(true);
                 }
                 if ui.button("Cancel").clicked() {
@@ -929,6 +990,59 @@ impl RaylabApp {
         if title != self.title {
             ctx.send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
             self.title = title;
+        }
+    }
+
+    /// Autosaves the scene when due at `now`, and asks for a repaint when
+    /// the next autosave is due (nothing else may wake the UI by then).
+    fn autosave_at(&mut self, ctx: &egui::Context, now: Instant) {
+        let Some(autosave) = &mut self.autosave else {
+            return;
+        };
+        let poll = autosave.poll(now, &self.doc);
+        if let Some(delay) = poll.again_in {
+            ctx.request_repaint_after(delay);
+        }
+        if let Some(error) = poll.error {
+            self.message.get_or_insert(error);
+        }
+    }
+
+    /// The offer to restore a crashed run's work. After a Restore the
+    /// others wait for the next start (restoring one more would replace it).
+    fn recovery_modal(&mut self, ctx: &egui::Context) {
+        let Some(left) = self.left_behind.first().cloned() else {
+            return;
+        };
+        match recovery_offer::show(ctx, &left, SystemTime::now()) {
+            Some(recovery_offer::Answer::Restore) => {
+                self.left_behind.clear();
+                self.restore(&left);
+            }
+            Some(recovery_offer::Answer::Discard) => {
+                self.left_behind.remove(0);
+                let _ = std::fs::remove_file(&left.file);
+            }
+            None => {}
+        }
+    }
+
+    /// Opens the recovered scene of `left` as an unsaved document of the
+    /// file it belongs to; its recovery file becomes this run's.
+    fn restore(&mut self, left: &recovery::Left) {
+        match recovery::read(&left.file) {
+            Ok((scene, source)) => {
+                self.doc =
+                    Document::recovered(scene.clone(), source.clone(), self.doc.state.render);
+                self.selection = Selection::None;
+                self.navigation = None;
+                if let Some(autosave) = &mut self.autosave {
+                    autosave.adopt(&left.file, (scene, source));
+                }
+            }
+            Err(e) => {
+                self.message = Some(format!("Cannot restore the autosaved work.\n\n{e}"));
+            }
         }
     }
 
@@ -1019,6 +1133,7 @@ impl RaylabApp {
         });
         self.inspector_window(&ctx);
         self.guard_modal(&ctx);
+        self.recovery_modal(&ctx);
         self.message_modal(&ctx);
         self.path_prompt_modal(&ctx);
         self.help_window(&ctx);
@@ -1030,6 +1145,7 @@ impl RaylabApp {
         let gesture = ctx.input(|i| i.pointer.any_down()) || ctx.text_edit_focused();
         self.doc.history.settle(&self.doc.state, gesture);
         self.update_title(&ctx);
+        self.autosave_at(&ctx, Instant::now());
         self.submit_if_changed(&ctx);
         self.refresh_inspection();
         self.frame_times.record(started.elapsed());
@@ -1044,8 +1160,21 @@ impl eframe::App for RaylabApp {
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
         eframe::set_value(storage, Settings::KEY, &self.settings);
     }
+
+    /// A clean exit (nothing unsaved, or the user chose not to save) leaves
+    /// nothing to recover; an exit forced past unsaved changes keeps the file.
+    fn on_exit(&mut self) {
+        let clean = self.allow_close || !self.doc.is_modified();
+        if let Some(autosave) = self.autosave.as_mut().filter(|_| clean) {
+            autosave.remove();
+        }
+    }
 }
 
+#[cfg(test)]
+mod overwrite_tests;
+#[cfg(test)]
+mod recovery_tests;
 #[cfg(test)]
 mod tests;
 

@@ -12,11 +12,11 @@ use renderer::progressive::Step;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-fn seed_path() -> PathBuf {
+pub(super) fn seed_path() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/seed.xml")
 }
 
-fn seed_app(width: u32, height: u32) -> RaylabApp {
+pub(super) fn seed_app(width: u32, height: u32) -> RaylabApp {
     let path = seed_path();
     let mut scene = scene::read_file(&path).expect("the seed scene loads");
     scene.camera.width = width;
@@ -28,14 +28,14 @@ fn seed_app(width: u32, height: u32) -> RaylabApp {
     app
 }
 
-fn harness(app: RaylabApp) -> Harness<'static, RaylabApp> {
+pub(super) fn harness(app: RaylabApp) -> Harness<'static, RaylabApp> {
     Harness::builder()
         .with_size(egui::Vec2::new(1200.0, 800.0))
         .build_ui_state(|ui, app: &mut RaylabApp| app.show(ui), app)
 }
 
 /// Steps the UI until the target spp of the newest job is on screen.
-fn settle(h: &mut Harness<'static, RaylabApp>) {
+pub(super) fn settle(h: &mut Harness<'static, RaylabApp>) {
     let deadline = Instant::now() + Duration::from_secs(60);
     while Instant::now() < deadline {
         h.step();
@@ -80,7 +80,7 @@ fn d_field<'h>(h: &'h Harness<'static, RaylabApp>) -> egui_kittest::Node<'h> {
 }
 
 /// Steps twice: a new window, menu or modal is measured invisibly on its first frame.
-fn step_shown(h: &mut Harness<'static, RaylabApp>) {
+pub(super) fn step_shown(h: &mut Harness<'static, RaylabApp>) {
     h.step();
     h.step();
 }
