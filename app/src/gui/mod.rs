@@ -1047,6 +1047,12 @@ impl eframe::App for RaylabApp {
 }
 
 #[cfg(test)]
+mod load_tests;
+#[cfg(test)]
+mod own_process;
+#[cfg(test)]
+mod process_probe;
+#[cfg(test)]
 mod tests;
 
 /// What the scene's model files use that raylab ignores, one line each
