@@ -91,7 +91,7 @@ fn jitter(rng: &mut Pcg32, r: f32) -> Vec3 {
 }
 
 /// The knot scene at [`SIZE`], refining to 4 spp, with nothing to undo.
-fn knot_app(triangles: usize) -> RaylabApp {
+pub(super) fn knot_app(triangles: usize) -> RaylabApp {
     let mut scene = scene::generate::knot_scene(triangles);
     (scene.camera.width, scene.camera.height) = SIZE;
     let mut app = RaylabApp::new(scene, None);
@@ -103,7 +103,7 @@ fn knot_app(triangles: usize) -> RaylabApp {
 /// A test renderer that applies texture updates by forgetting them. (The
 /// harness's default renderer keeps every update until a first render, so a
 /// long run that never renders would hold every frame ever shown.)
-struct DiscardTextures;
+pub(super) struct DiscardTextures;
 
 impl egui_kittest::TestRenderer for DiscardTextures {
     fn handle_delta(&mut self, delta: &mut egui::TexturesDelta) {
@@ -119,7 +119,7 @@ impl egui_kittest::TestRenderer for DiscardTextures {
     }
 }
 
-fn harness(app: RaylabApp) -> Harness<'static, RaylabApp> {
+pub(super) fn harness(app: RaylabApp) -> Harness<'static, RaylabApp> {
     Harness::builder()
         .with_size(egui::Vec2::new(1200.0, 800.0))
         .renderer(DiscardTextures)
@@ -127,7 +127,7 @@ fn harness(app: RaylabApp) -> Harness<'static, RaylabApp> {
 }
 
 /// True when the frame on screen belongs to the newest submitted job.
-fn shows_newest(h: &Harness<'static, RaylabApp>) -> bool {
+pub(super) fn shows_newest(h: &Harness<'static, RaylabApp>) -> bool {
     h.state()
         .frame
         .as_ref()
@@ -136,7 +136,7 @@ fn shows_newest(h: &Harness<'static, RaylabApp>) -> bool {
 
 /// Steps until the newest job's first frame is on screen; panics after
 /// [`PREVIEW_LIMIT`]. Returns how long it took.
-fn wait_for_newest(h: &mut Harness<'static, RaylabApp>) -> Duration {
+pub(super) fn wait_for_newest(h: &mut Harness<'static, RaylabApp>) -> Duration {
     let started = Instant::now();
     while !shows_newest(h) {
         assert!(
@@ -151,7 +151,7 @@ fn wait_for_newest(h: &mut Harness<'static, RaylabApp>) -> Duration {
 }
 
 /// Steps until the newest job has reached its target spp.
-fn wait_for_target(h: &mut Harness<'static, RaylabApp>) {
+pub(super) fn wait_for_target(h: &mut Harness<'static, RaylabApp>) {
     let started = Instant::now();
     let target = h.state().doc.state.render.target_spp.expect("a target");
     while !(shows_newest(h)
@@ -169,7 +169,7 @@ fn wait_for_target(h: &mut Harness<'static, RaylabApp>) {
 /// Checks the frame on screen against an independent render of the
 /// document's scene at the same step: the same world built afresh from the
 /// scene, the same options, the same preview stride or number of passes.
-fn assert_shows_the_document(h: &Harness<'static, RaylabApp>) {
+pub(super) fn assert_shows_the_document(h: &Harness<'static, RaylabApp>) {
     let app = h.state();
     let frame = app.frame.as_ref().expect("a frame");
     assert_eq!(frame.generation, app.generation, "a stale frame");
@@ -184,7 +184,8 @@ fn assert_shows_the_document(h: &Harness<'static, RaylabApp>) {
         Step::Preview { stride } => renderer::preview::preview(&world, options, stride),
         Step::Passes { spp } => Film::render(&world, options, spp).linear(),
     };
-    assert_eq!((frame.width, frame.height), SIZE);
+    let camera = &app.doc.state.scene.camera;
+    assert_eq!((frame.width, frame.height), (camera.width, camera.height));
     let differing = frame
         .pixels
         .iter()

@@ -1047,6 +1047,8 @@ impl eframe::App for RaylabApp {
 }
 
 #[cfg(test)]
+mod lifecycle_tests;
+#[cfg(test)]
 mod load_tests;
 #[cfg(test)]
 mod own_process;

@@ -47,6 +47,16 @@ pub fn thread_count() -> usize {
         .count()
 }
 
+/// The threads of this process named `name` (as /proc shows it: at most
+/// 15 bytes).
+pub fn threads_named(name: &str) -> usize {
+    std::fs::read_dir("/proc/self/task")
+        .expect("/proc/self/task")
+        .filter_map(|task| std::fs::read_to_string(task.ok()?.path().join("comm")).ok())
+        .filter(|comm| comm.trim_end() == name)
+        .count()
+}
+
 /// Waits up to `timeout` for the thread count to fall to `expected` or
 /// below; returns the count last seen.
 pub fn threads_settle_to(expected: usize, timeout: Duration) -> usize {

@@ -1,0 +1,138 @@
+//! The window's life around a render in progress: opening another scene,
+//! resizing every frame, and closing mid-render, which must leave no thread
+//! of the app behind.
+
+use super::RaylabApp;
+use super::commands::Command;
+use super::load_tests::{
+    DiscardTextures, assert_shows_the_document, harness, knot_app, wait_for_newest, wait_for_target,
+};
+use super::own_process::{in_own_process, test_path};
+use super::process_probe::{thread_count, threads_named, threads_settle_to};
+use egui_kittest::Harness;
+use renderer::progressive::Step;
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+/// The render worker's thread name.
+const WORKER: &str = "raylab-render";
+
+/// The generated knot's triangles.
+const KNOT: usize = crate::scene_spec::KNOT_TRIANGLES;
+
+/// Steps until a full pass of the newest job is on screen: the tracer is
+/// then refining, not previewing.
+fn wait_for_a_pass(h: &mut Harness<'static, RaylabApp>) {
+    let started = Instant::now();
+    while !(super::load_tests::shows_newest(h)
+        && matches!(
+            h.state().frame.as_ref().map(|f| f.step),
+            Some(Step::Passes { .. })
+        ))
+    {
+        assert!(started.elapsed() < Duration::from_secs(60), "no full pass");
+        std::thread::sleep(Duration::from_millis(2));
+        h.step();
+    }
+}
+
+/// The knot refining to `target` spp (`None`: without end).
+fn knot_to(target: Option<u32>) -> RaylabApp {
+    let mut app = knot_app(KNOT);
+    app.doc.state.render.target_spp = target;
+    app.doc.history = super::history::History::new(&app.doc.state);
+    app
+}
+
+#[test]
+fn opening_another_scene_mid_render_shows_the_new_scene() {
+    let mut h = harness(knot_to(None));
+    wait_for_a_pass(&mut h);
+    let seed = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/seed.xml");
+    let ctx = h.ctx.clone();
+    let opened = Instant::now();
+    h.state_mut().run(&ctx, Command::OpenPath(seed.clone()));
+    assert_eq!(h.state().doc.path.as_deref(), Some(seed.as_path()));
+    h.state_mut().doc.state.render.target_spp = Some(1);
+    let knot = h.state().generation;
+    h.step();
+    assert!(h.state().generation > knot, "the opened scene is submitted");
+    wait_for_newest(&mut h);
+    eprintln!(
+        "the opened scene's first frame after {:.0} ms",
+        opened.elapsed().as_secs_f64() * 1e3
+    );
+    assert_shows_the_document(&h);
+    wait_for_target(&mut h);
+    assert_shows_the_document(&h);
+}
+
+#[test]
+fn resizing_the_window_every_frame_while_rendering_is_harmless() {
+    let mut h = Harness::builder()
+        .with_size(egui::Vec2::new(1200.0, 800.0))
+        .wgpu()
+        .build_ui_state(|ui, app: &mut RaylabApp| app.show(ui), knot_to(Some(16)));
+    wait_for_newest(&mut h);
+    // Sizes from a tiny window to a large one, in a fixed pseudo-random order.
+    let mut x: u32 = 12345;
+    for frame in 0..300 {
+        x = x.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+        let (w, hh) = (40 + (x >> 8) % 1560, 30 + (x >> 20) % 970);
+        h.set_size(egui::Vec2::new(w as f32, hh as f32));
+        h.step();
+        if frame % 50 == 0 {
+            let image = h.render().expect("the window renders at any size");
+            assert_eq!(image.width(), w);
+        }
+    }
+    h.set_size(egui::Vec2::new(1200.0, 800.0));
+    wait_for_target(&mut h);
+    assert_shows_the_document(&h);
+}
+
+/// Opens the knot, lets it render until a full pass is shown, and drops
+/// the harness (the app and its session) while the tracer is refining;
+/// returns how long dropping took.
+fn drop_mid_render() -> Duration {
+    let mut h = Harness::builder()
+        .with_size(egui::Vec2::new(1200.0, 800.0))
+        .renderer(DiscardTextures)
+        .build_ui_state(|ui, app: &mut RaylabApp| app.show(ui), knot_to(None));
+    wait_for_a_pass(&mut h);
+    assert_eq!(threads_named(WORKER), 1, "one render worker");
+    let dropping = Instant::now();
+    drop(h);
+    dropping.elapsed()
+}
+
+#[test]
+fn closing_the_window_mid_render_leaves_no_thread_behind() {
+    let name = test_path(
+        module_path!(),
+        "closing_the_window_mid_render_leaves_no_thread_behind",
+    );
+    if !in_own_process(&name, Duration::from_secs(300)) {
+        return;
+    }
+    // Start rayon's pool and whatever else starts once per process.
+    rayon::broadcast(|_| ());
+    drop_mid_render();
+    let before = thread_count();
+    let took = drop_mid_render();
+    let after = threads_settle_to(before, Duration::from_secs(10));
+    eprintln!(
+        "closing mid-render took {:.0} ms; threads {before} → {after}",
+        took.as_secs_f64() * 1e3
+    );
+    assert_eq!(
+        threads_named(WORKER),
+        0,
+        "the render worker outlived the app"
+    );
+    assert_eq!(after, before, "threads leaked");
+    assert!(
+        took < Duration::from_secs(5),
+        "closing waited {took:?} for the render"
+    );
+}
