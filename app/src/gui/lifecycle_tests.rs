@@ -136,3 +136,75 @@ fn closing_the_window_mid_render_leaves_no_thread_behind() {
         "closing waited {took:?} for the render"
     );
 }
+
+/// A binary glTF of one triangle with these corners.
+fn triangle_glb(corners: [[f32; 3]; 3]) -> Vec<u8> {
+    let bin: Vec<u8> = corners
+        .iter()
+        .flatten()
+        .flat_map(|c| c.to_le_bytes())
+        .collect();
+    let (min, max) = (0..3).fold(([f32::MAX; 3], [f32::MIN; 3]), |(mut lo, mut hi), k| {
+        for (a, c) in corners.iter().enumerate() {
+            lo[k] = lo[k].min(c[k]);
+            hi[k] = hi[k].max(corners[a][k]);
+        }
+        (lo, hi)
+    });
+    let json = serde_json::json!({
+        "asset": {"version": "2.0"},
+        "scene": 0,
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+        "buffers": [{"byteLength": bin.len()}],
+        "bufferViews": [{"buffer": 0, "byteLength": bin.len()}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                       "min": min, "max": max}],
+    });
+    let mut json = json.to_string().into_bytes();
+    json.resize(json.len().next_multiple_of(4), b' ');
+    let total = 12 + 8 + json.len() + 8 + bin.len();
+    let mut glb = Vec::with_capacity(total);
+    for word in [0x4654_6c67, 2, total as u32, json.len() as u32, 0x4e4f_534a] {
+        glb.extend_from_slice(&u32::to_le_bytes(word));
+    }
+    glb.extend_from_slice(&json);
+    for word in [bin.len() as u32, 0x004e_4942] {
+        glb.extend_from_slice(&u32::to_le_bytes(word));
+    }
+    glb.extend_from_slice(&bin);
+    glb
+}
+
+#[test]
+fn reopening_a_scene_whose_model_changed_on_disk_shows_the_new_model() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let (scene_path, model_path) = (dir.path().join("s.xml"), dir.path().join("m.glb"));
+    std::fs::write(
+        &scene_path,
+        r#"<scene><camera eye="0 0 5" toward="0 0 -1" width="48" height="32"/><mesh src="m.glb"/></scene>"#,
+    )
+    .expect("write the scene");
+    let mut h = harness(knot_to(Some(1)));
+    let ctx = h.ctx.clone();
+    let mut open = |h: &mut Harness<'static, RaylabApp>, corners| {
+        std::fs::write(&model_path, triangle_glb(corners)).expect("write the model");
+        h.state_mut()
+            .run(&ctx, Command::OpenPath(scene_path.clone()));
+        h.step();
+        wait_for_target(h);
+        assert_shows_the_document(h);
+    };
+    open(
+        &mut h,
+        [[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [0.0, 1.0, 0.0]],
+    );
+    let before = h.state().frame.as_ref().expect("a frame").pixels.clone();
+    // The same scene file, its model re-exported with the triangle turned over.
+    open(
+        &mut h,
+        [[-1.0, 1.0, 0.0], [1.0, 1.0, 0.0], [0.0, -1.0, 0.0]],
+    );
+    assert_ne!(h.state().frame.as_ref().expect("a frame").pixels, before);
+}

@@ -644,6 +644,10 @@ impl RaylabApp {
             Ok(doc) => {
                 let warnings = model_warnings_text(&doc.state.scene);
                 self.doc = doc;
+                // Render what was read even when it compares equal to the
+                // scene on screen: meshes compare by file name, and the file
+                // may have changed since it was last read.
+                self.submitted = None;
                 self.selection = Selection::None;
                 self.navigation = None;
                 self.settings.remember(path);
