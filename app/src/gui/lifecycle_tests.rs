@@ -188,7 +188,7 @@ fn reopening_a_scene_whose_model_changed_on_disk_shows_the_new_model() {
     .expect("write the scene");
     let mut h = harness(knot_to(Some(1)));
     let ctx = h.ctx.clone();
-    let mut open = |h: &mut Harness<'static, RaylabApp>, corners| {
+    let open = |h: &mut Harness<'static, RaylabApp>, corners| {
         std::fs::write(&model_path, triangle_glb(corners)).expect("write the model");
         h.state_mut()
             .run(&ctx, Command::OpenPath(scene_path.clone()));
