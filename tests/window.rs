@@ -110,3 +110,78 @@ fn window_shows_the_rendered_seed_scene_beside_the_camera_panel() {
     let kept = last.map(|img| keep(&img, "window-failed.png"));
     panic!("no screenshot showed the rendered scene within 120 s; the last: {kept:?}");
 }
+
+#[test]
+fn the_window_resized_continuously_mid_render_then_closed_with_ctrl_q_exits_cleanly() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let (shot, stop, status) = (
+        dir.path().join("shot.png"),
+        dir.path().join("stop"),
+        dir.path().join("status"),
+    );
+    let runtime = dir.path().join("xdg");
+    std::fs::create_dir(&runtime).expect("runtime dir");
+    std::fs::set_permissions(
+        &runtime,
+        std::os::unix::fs::PermissionsExt::from_mode(0o700),
+    )
+    .expect("chmod");
+    // Resizes the window 150 times while the seed scene refines toward 64 spp,
+    // takes a screenshot, closes it with Ctrl+Q and records raylab's exit status.
+    let script = r#"
+        "$RAYLAB" "$SCENE" & pid=$!
+        wid=
+        for i in $(seq 120); do
+          wid=$(xdotool search --name raylab 2>/dev/null | head -1)
+          [ -n "$wid" ] && break
+          sleep 0.5
+        done
+        [ -n "$wid" ] || { echo nowindow > "$STATUS"; kill $pid; exit 0; }
+        sleep 2
+        for i in $(seq 150); do
+          xdotool windowsize "$wid" $((320 + i * 37 % 900)) $((240 + i * 53 % 520)) 2>/dev/null
+          sleep 0.02
+        done
+        xdotool windowsize "$wid" 1280 800
+        sleep 3
+        import -window root "$SHOT.tmp.png" 2>/dev/null && mv "$SHOT.tmp.png" "$SHOT"
+        xdotool windowfocus --sync "$wid" key ctrl+q
+        for i in $(seq 300); do kill -0 $pid 2>/dev/null || break; [ -e "$STOP" ] && break; sleep 0.1; done
+        if kill -0 $pid 2>/dev/null; then echo stuck > "$STATUS"; kill $pid; wait $pid; exit 0; fi
+        wait $pid
+        echo "exit $?" > "$STATUS"
+        exit 0"#;
+    let child = Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1280x800x24", "bash", "-c", script])
+        .env("RAYLAB", env!("CARGO_BIN_EXE_raylab"))
+        .env("SCENE", support::asset("seed.xml"))
+        .env("SHOT", &shot)
+        .env("STOP", &stop)
+        .env("STATUS", &status)
+        .env("XDG_RUNTIME_DIR", &runtime)
+        .env("XDG_DATA_HOME", dir.path())
+        .env("WGPU_BACKEND", "vulkan")
+        .spawn()
+        .expect("xvfb-run starts (scripts/setup.sh installs it)");
+    let mut session = Session { child, stop };
+    let deadline = Instant::now() + Duration::from_secs(180);
+    while Instant::now() < deadline && !status.exists() {
+        std::thread::sleep(Duration::from_millis(200));
+    }
+    let _ = session.child.wait();
+    let status = std::fs::read_to_string(&status).unwrap_or_else(|_| "no status".into());
+    let img = image::open(&shot).map(|i| i.to_rgb8());
+    if let Ok(img) = &img {
+        println!("screenshot: {}", keep(img, "window-resized.png").display());
+    }
+    assert_eq!(
+        status.trim(),
+        "exit 0",
+        "raylab did not exit cleanly after Ctrl+Q"
+    );
+    let img = img.expect("a screenshot after the resizing");
+    assert!(
+        shows_scene_and_panel(&img),
+        "after the resizing the window does not show the scene beside the panel"
+    );
+}

@@ -666,6 +666,10 @@ impl RaylabApp {
             Ok(doc) => {
                 let warnings = model_warnings_text(&doc.state.scene);
                 self.doc = doc;
+                // Render what was read even when it compares equal to the
+                // scene on screen: meshes compare by file name, and the file
+                // may have changed since it was last read.
+                self.submitted = None;
                 self.selection = Selection::None;
                 self.navigation = None;
                 self.settings.remember(path);
@@ -1172,7 +1176,15 @@ impl eframe::App for RaylabApp {
 }
 
 #[cfg(test)]
+mod lifecycle_tests;
+#[cfg(test)]
+mod load_tests;
+#[cfg(test)]
 mod overwrite_tests;
+#[cfg(test)]
+mod own_process;
+#[cfg(test)]
+mod process_probe;
 #[cfg(test)]
 mod recovery_tests;
 #[cfg(test)]
