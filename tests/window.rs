@@ -5,7 +5,7 @@
 
 mod support;
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Child, Command};
 use std::time::{Duration, Instant};
 
@@ -47,6 +47,37 @@ fn shows_scene_and_panel(img: &image::RgbImage) -> bool {
     red > 2000 && text > 200
 }
 
+/// Starts `script` under xvfb-run (1280×800) with raylab on the seed scene:
+/// `$RAYLAB`, `$SCENE`, `$SHOT` (dir/shot.png), `$STOP` (dir/stop) and the
+/// `extra` variables are set; the XDG folders (runtime, persistence and so
+/// recovery files) are inside `dir`, never the user's.
+fn start_in_xvfb(dir: &Path, script: &str, extra: &[(&str, &Path)]) -> Session {
+    let runtime = dir.join("xdg");
+    std::fs::create_dir(&runtime).expect("runtime dir");
+    std::fs::set_permissions(
+        &runtime,
+        std::os::unix::fs::PermissionsExt::from_mode(0o700),
+    )
+    .expect("chmod");
+    let stop = dir.join("stop");
+    let child = Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 1280x800x24", "bash", "-c", script])
+        .env("RAYLAB", env!("CARGO_BIN_EXE_raylab"))
+        .env("SCENE", support::asset("seed.xml"))
+        .env("SHOT", dir.join("shot.png"))
+        .env("STOP", &stop)
+        .envs(extra.iter().copied())
+        .env("XDG_RUNTIME_DIR", &runtime)
+        // Persistence (recent files, window layout) goes to the temp dir, not the user's.
+        .env("XDG_DATA_HOME", dir)
+        // Recovery files then live under XDG_DATA_HOME too: none to offer.
+        .env_remove("RAYLAB_RECOVERY_DIR")
+        .env("WGPU_BACKEND", "vulkan")
+        .spawn()
+        .expect("xvfb-run starts (scripts/setup.sh installs it)");
+    Session { child, stop }
+}
+
 /// Keeps a screenshot under target/tmp/ and returns its path.
 fn keep(img: &image::RgbImage, name: &str) -> PathBuf {
     let path = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
@@ -58,14 +89,6 @@ fn keep(img: &image::RgbImage, name: &str) -> PathBuf {
 fn window_shows_the_rendered_seed_scene_beside_the_camera_panel() {
     let dir = tempfile::tempdir().expect("tempdir");
     let shot = dir.path().join("shot.png");
-    let stop = dir.path().join("stop");
-    let runtime = dir.path().join("xdg");
-    std::fs::create_dir(&runtime).expect("runtime dir");
-    std::fs::set_permissions(
-        &runtime,
-        std::os::unix::fs::PermissionsExt::from_mode(0o700),
-    )
-    .expect("chmod");
     let script = r#"
         "$RAYLAB" "$SCENE" & pid=$!
         while kill -0 $pid 2>/dev/null && [ ! -e "$STOP" ]; do
@@ -75,21 +98,7 @@ fn window_shows_the_rendered_seed_scene_beside_the_camera_panel() {
         kill $pid 2>/dev/null
         wait $pid
         exit 0"#;
-    let child = Command::new("xvfb-run")
-        .args(["-a", "-s", "-screen 0 1280x800x24", "bash", "-c", script])
-        .env("RAYLAB", env!("CARGO_BIN_EXE_raylab"))
-        .env("SCENE", support::asset("seed.xml"))
-        .env("SHOT", &shot)
-        .env("STOP", &stop)
-        .env("XDG_RUNTIME_DIR", &runtime)
-        // Persistence (recent files, window layout) goes to the temp dir, not the user's.
-        .env("XDG_DATA_HOME", dir.path())
-        // Recovery files then live under XDG_DATA_HOME too: none to offer.
-        .env_remove("RAYLAB_RECOVERY_DIR")
-        .env("WGPU_BACKEND", "vulkan")
-        .spawn()
-        .expect("xvfb-run starts (scripts/setup.sh installs it)");
-    let mut session = Session { child, stop };
+    let mut session = start_in_xvfb(dir.path(), script, &[]);
 
     let deadline = Instant::now() + Duration::from_secs(120);
     let mut last = None;
@@ -114,18 +123,7 @@ fn window_shows_the_rendered_seed_scene_beside_the_camera_panel() {
 #[test]
 fn the_window_resized_continuously_mid_render_then_closed_with_ctrl_q_exits_cleanly() {
     let dir = tempfile::tempdir().expect("tempdir");
-    let (shot, stop, status) = (
-        dir.path().join("shot.png"),
-        dir.path().join("stop"),
-        dir.path().join("status"),
-    );
-    let runtime = dir.path().join("xdg");
-    std::fs::create_dir(&runtime).expect("runtime dir");
-    std::fs::set_permissions(
-        &runtime,
-        std::os::unix::fs::PermissionsExt::from_mode(0o700),
-    )
-    .expect("chmod");
+    let (shot, status) = (dir.path().join("shot.png"), dir.path().join("status"));
     // Resizes the window 150 times while the seed scene refines toward 64 spp,
     // takes a screenshot, closes it with Ctrl+Q and records raylab's exit status.
     let script = r#"
@@ -151,19 +149,7 @@ fn the_window_resized_continuously_mid_render_then_closed_with_ctrl_q_exits_clea
         wait $pid
         echo "exit $?" > "$STATUS"
         exit 0"#;
-    let child = Command::new("xvfb-run")
-        .args(["-a", "-s", "-screen 0 1280x800x24", "bash", "-c", script])
-        .env("RAYLAB", env!("CARGO_BIN_EXE_raylab"))
-        .env("SCENE", support::asset("seed.xml"))
-        .env("SHOT", &shot)
-        .env("STOP", &stop)
-        .env("STATUS", &status)
-        .env("XDG_RUNTIME_DIR", &runtime)
-        .env("XDG_DATA_HOME", dir.path())
-        .env("WGPU_BACKEND", "vulkan")
-        .spawn()
-        .expect("xvfb-run starts (scripts/setup.sh installs it)");
-    let mut session = Session { child, stop };
+    let mut session = start_in_xvfb(dir.path(), script, &[("STATUS", &status)]);
     let deadline = Instant::now() + Duration::from_secs(180);
     while Instant::now() < deadline && !status.exists() {
         std::thread::sleep(Duration::from_millis(200));

@@ -116,13 +116,7 @@ pub fn run(args: &ChartArgs) -> Result<Vec<PathBuf>> {
         }
         curves.push(Curve { name, points });
     }
-    let output = match &args.output {
-        Some(output) => output.clone(),
-        None => crate::output_path::free_stem(std::path::Path::new("chart"), &["csv", "png"]),
-    };
-    let csv = output.with_extension("csv");
-    let png = output.with_extension("png");
-    crate::output_path::note_replacing(&[&csv, &png]);
+    let (csv, png) = crate::output_path::csv_and_png(args.output.as_deref(), "chart");
     write_csv(&csv, &curves)?;
     let title = format!(
         "{} ({w}×{h}): error against time",

@@ -17,7 +17,7 @@ fn with_ext(base: &Path, ext: &str) -> PathBuf {
 /// The first of `base`, `base-2`, `base-3`, … for which no `base.EXT`
 /// (the extension appended) exists for any of `extensions`: for outputs
 /// written as several files.
-pub fn free_stem(base: &Path, extensions: &[&str]) -> PathBuf {
+fn free_stem(base: &Path, extensions: &[&str]) -> PathBuf {
     first_free(base, |b| extensions.iter().any(|e| with_ext(b, e).exists()))
 }
 
@@ -45,8 +45,24 @@ fn first_free(base: &Path, taken: impl Fn(&Path) -> bool) -> PathBuf {
         .unwrap_or_else(|| base.to_path_buf())
 }
 
+/// The CSV and PNG of a command that writes both (`raylab chart`,
+/// `raylab stability`): `output` with those extensions when the user named it
+/// (saying on stderr which files it replaces), else the first free pair
+/// `default.csv`/`default.png`, `default-2.csv`/`default-2.png`, ….
+pub fn csv_and_png(output: Option<&Path>, default: &str) -> (PathBuf, PathBuf) {
+    let stem = match output {
+        Some(output) => output.to_path_buf(),
+        None => free_stem(Path::new(default), &["csv", "png"]),
+    };
+    let (csv, png) = (stem.with_extension("csv"), stem.with_extension("png"));
+    if output.is_some() {
+        note_replacing(&[&csv, &png]);
+    }
+    (csv, png)
+}
+
 /// Says on stderr which of `paths`, named by the user, are about to be replaced.
-pub fn note_replacing(paths: &[&Path]) {
+fn note_replacing(paths: &[&Path]) {
     for path in paths.iter().filter(|p| p.is_file()) {
         eprintln!("note: replacing the existing {}", path.display());
     }

@@ -33,13 +33,7 @@ pub fn run(args: &StabilityArgs) -> Result<Vec<PathBuf>> {
         }
         rows.extend(case_rows);
     }
-    let output = match &args.output {
-        Some(output) => output.clone(),
-        None => crate::output_path::free_stem(std::path::Path::new("stability"), &["csv", "png"]),
-    };
-    let csv = output.with_extension("csv");
-    let png = output.with_extension("png");
-    crate::output_path::note_replacing(&[&csv, &png]);
+    let (csv, png) = crate::output_path::csv_and_png(args.output.as_deref(), "stability");
     write_csv(&csv, &rows)?;
     crate::stability_plot::write_chart(&png, &rows)?;
     Ok(vec![csv, png])
