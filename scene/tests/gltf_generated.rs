@@ -6,7 +6,7 @@
 
 use glam::{Mat4, Vec2, Vec3};
 use scene::{BaseMaterial, LightKind, ModelError, ModelFile, Wrap, load_model};
-use serde_json::json;
+use serde_json::{Value, json};
 use std::f32::consts::FRAC_1_SQRT_2;
 use std::path::{Path, PathBuf};
 
@@ -414,6 +414,62 @@ fn a_sparse_accessor_substitutes_its_values() {
         model.meshes[0].positions,
         vec![Vec3::ZERO, Vec3::X, Vec3::Y]
     );
+}
+
+#[test]
+fn accessors_without_a_buffer_view_share_one_allowance_per_file() {
+    // A file may decode 2^20 accessor elements plus 4 per byte of its
+    // buffers: here 2^20 + 4 × 48 (the quad's positions). Two meshes of
+    // zeros (no bufferView) take exactly that; a third mesh is one too many.
+    let dir = TempDir::new("viewless");
+    let mut b = Builder::default();
+    let quad = b.vec3s(&QUAD);
+    let half = ((1 << 20) + 4 * 48) / 2;
+    let zeros = b.accessor(None, FLOAT, half, "VEC3", json!({}));
+    let strip =
+        |position| json!({"primitives": [{"attributes": {"POSITION": position}, "mode": 5}]});
+    let doc = |meshes: Vec<Value>| {
+        let nodes: Vec<Value> = (0..meshes.len()).map(|i| json!({"mesh": i})).collect();
+        json!({"scenes": [{"nodes": (0..meshes.len()).collect::<Vec<_>>()}], "nodes": nodes, "meshes": meshes})
+    };
+    let b2 = b.clone();
+    let model = load(&b.write(
+        doc(vec![strip(zeros), strip(zeros)]),
+        Storage::DataUri,
+        &dir,
+        "two.gltf",
+    ));
+    assert_eq!(model.meshes.len(), 2);
+    assert_eq!(model.meshes[1].positions.len(), half);
+
+    let path = b2.write(
+        doc(vec![strip(zeros), strip(zeros), strip(quad)]),
+        Storage::DataUri,
+        &dir,
+        "three.gltf",
+    );
+    let error = load_err(&path).to_string();
+    assert_contains(
+        &error,
+        &[
+            "mesh 2, primitive 0, POSITION: accessor 0: its 4 elements would exceed",
+            "(0 elements left",
+        ],
+    );
+}
+
+#[test]
+fn an_accessor_shared_by_a_hundred_primitives_loads() {
+    let dir = TempDir::new("shared");
+    let mut b = Builder::default();
+    let position = b.vec3s(&QUAD);
+    let indices = b.indices(&QUAD_INDICES, SHORT);
+    let primitive = json!({"attributes": {"POSITION": position}, "indices": indices});
+    let mut doc = one_mesh(primitive.clone());
+    doc["meshes"][0]["primitives"] = json!(vec![primitive; 100]);
+    let model = load(&b.write(doc, Storage::DataUri, &dir, "shared.gltf"));
+    assert_eq!(model.meshes.len(), 100);
+    assert_eq!(model.drawn_triangles(), 200);
 }
 
 #[test]

@@ -180,6 +180,23 @@ def gltf_corpus():
     doc["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
     doc["meshes"][0]["primitives"][0]["material"] = 0
     write(GLTF / "image_claims_40_gigapixels.gltf", json.dumps(doc))
+    # Accessors without a bufferView are zeros, so nothing in the file bounds
+    # their count: 16 meshes of 393,216 such vertices would decode 6.3M.
+    doc = triangle_gltf()
+    count = 3 * 2**17
+    doc["accessors"].append({"componentType": 5126, "count": count, "type": "VEC3"})
+    doc["meshes"] = [{"primitives": [{"attributes": {"POSITION": 2}}]} for _ in range(16)]
+    doc["nodes"] = [{"mesh": i} for i in range(16)]
+    doc["scenes"] = [{"nodes": list(range(16))}]
+    write(GLTF / "viewless_accessors_add_up.gltf", json.dumps(doc))
+    # One 1,200-vertex accessor read by 2,000 primitives: 2.4M vertices
+    # decoded from a 14 KB buffer.
+    data = struct.pack("<3600f", *([0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0] * 400))
+    doc = triangle_gltf(buffers=[{"byteLength": len(data), "uri": b64(data)}])
+    doc["bufferViews"] = [{"buffer": 0, "byteOffset": 0, "byteLength": len(data)}]
+    doc["accessors"] = [{"bufferView": 0, "componentType": 5126, "count": 1200, "type": "VEC3"}]
+    doc["meshes"] = [{"primitives": [{"attributes": {"POSITION": 0}}] * 2000}]
+    write(GLTF / "shared_accessor_read_2000_times.gltf", json.dumps(doc, separators=(",", ":")))
     body = json.dumps(triangle_gltf(buffers=[{"byteLength": 48}])).encode()
     write(GLTF / "glb_claims_4gb.glb", glb(body, b"\0" * 48, total=2**32 - 1))
     write(GLTF / "glb_truncated.glb", glb(body, b"\0" * 48)[:40])

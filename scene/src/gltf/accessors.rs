@@ -8,10 +8,6 @@ use ::gltf::Accessor;
 use ::gltf::accessor::{DataType, Dimensions, sparse::IndexType};
 use glam::{Vec2, Vec3};
 
-/// Largest element count of an accessor without a buffer view (its data is
-/// zeros, plus sparse values if any, so nothing in the file bounds its size).
-const MAX_VIEWLESS_COUNT: usize = 1 << 24;
-
 /// The `count` elements of `accessor` as 3-vectors.
 pub(super) fn read_vec3(accessor: &Accessor, buffers: &Buffers) -> Result<Vec<Vec3>, String> {
     expect_dimensions(accessor, Dimensions::Vec3)?;
@@ -148,6 +144,11 @@ fn read_with<T: Copy + Default>(
 ) -> Result<Vec<T>, String> {
     let index = accessor.index();
     let count = accessor.count();
+    let take = || {
+        buffers
+            .take_elements(count)
+            .map_err(|e| format!("accessor {index}: {e}"))
+    };
     let mut out = match accessor.view() {
         Some(view) => {
             let stride = view.stride().unwrap_or(size);
@@ -168,18 +169,17 @@ fn read_with<T: Copy + Default>(
                     data.len()
                 )
             })?;
+            take()?;
             // `stride >= size`, so every chunk but possibly the last is a
             // whole stride; the range ends with a whole element.
             let mut out = Vec::with_capacity(count);
             out.extend((0..count).map(|i| decode(&bytes[i * stride..i * stride + size])));
             out
         }
-        None if count > MAX_VIEWLESS_COUNT => {
-            return Err(format!(
-                "accessor {index} has no bufferView and an implausible count of {count}"
-            ));
+        None => {
+            take()?;
+            vec![T::default(); count]
         }
-        None => vec![T::default(); count],
     };
     if let Some(sparse) = accessor.sparse() {
         let n = sparse.count();

@@ -4,6 +4,7 @@
 use super::warnings::MESHOPT;
 use ::gltf::Document;
 use ::gltf::buffer::{Data, Source, View};
+use std::cell::Cell;
 use std::path::{Path, PathBuf};
 
 /// Every buffer's bytes. `None` only for a buffer without data that the
@@ -11,7 +12,20 @@ use std::path::{Path, PathBuf};
 #[derive(Debug)]
 pub(super) struct Buffers {
     data: Vec<Option<Vec<u8>>>,
+    /// How many more accessor elements this file may decode; see
+    /// [`Buffers::take_elements`].
+    elements_left: Cell<usize>,
 }
+
+/// Accessor elements any file may decode beyond [`ELEMENTS_PER_BUFFER_BYTE`]
+/// per byte of its buffers (2^20: a million-vertex mesh).
+const ELEMENTS_ALLOWED: usize = 1 << 20;
+
+/// Accessor elements a file may decode per byte of its buffers. An element
+/// takes at least one byte, so a file whose accessors are each read once
+/// uses at most one per byte; the rest allows accessors that several
+/// primitives share.
+const ELEMENTS_PER_BUFFER_BYTE: usize = 4;
 
 /// Loads every buffer of `doc`; external files are looked up beside `base`.
 pub(super) fn load(doc: &Document, base: &Path, blob: Option<Vec<u8>>) -> Result<Buffers, String> {
@@ -55,10 +69,32 @@ pub(super) fn load(doc: &Document, base: &Path, blob: Option<Vec<u8>>) -> Result
         }
         data.push(Some(bytes));
     }
-    Ok(Buffers { data })
+    let buffer_bytes: usize = data.iter().flatten().map(Vec::len).sum();
+    let allowed =
+        ELEMENTS_ALLOWED.saturating_add(buffer_bytes.saturating_mul(ELEMENTS_PER_BUFFER_BYTE));
+    Ok(Buffers {
+        data,
+        elements_left: Cell::new(allowed),
+    })
 }
 
 impl Buffers {
+    /// Takes `count` elements from what this file may still decode, or says
+    /// why not. Every accessor read takes its count, so memory stays in
+    /// proportion to the file even when accessors without a buffer view
+    /// (zeros, whose count nothing in the file bounds) or one accessor read
+    /// by thousands of primitives ask for more.
+    pub(super) fn take_elements(&self, count: usize) -> Result<(), String> {
+        let left = self.elements_left.get();
+        if count > left {
+            return Err(format!(
+                "its {count} elements would exceed what raylab decodes from a file of this size ({left} elements left of {ELEMENTS_ALLOWED} plus {ELEMENTS_PER_BUFFER_BYTE} per byte of its buffers)"
+            ));
+        }
+        self.elements_left.set(left - count);
+        Ok(())
+    }
+
     /// Whether the buffer holds data (false for a meshopt fallback buffer).
     pub(super) fn has_data(&self, buffer: usize) -> bool {
         matches!(self.data.get(buffer), Some(Some(_)))

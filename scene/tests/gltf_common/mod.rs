@@ -44,7 +44,7 @@ pub enum Storage<'a> {
 }
 
 /// One binary buffer, its views and accessors, gathered while a test builds.
-#[derive(Default)]
+#[derive(Clone, Default)]
 pub struct Builder {
     pub bin: Vec<u8>,
     pub views: Vec<Value>,
