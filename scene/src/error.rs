@@ -97,4 +97,13 @@ mod tests {
         assert!(!shown.contains('\n'));
         assert_eq!(elide("short"), "short");
     }
+
+    #[test]
+    fn a_model_whose_file_name_has_a_newline_gives_a_one_line_error() {
+        let e = crate::load_model_bytes(b"not json".to_vec(), std::path::Path::new("a\nb.gltf"))
+            .expect_err("not glTF");
+        let shown = e.to_string();
+        assert!(!shown.contains('\n'), "{shown:?}");
+        assert!(shown.starts_with("a\\nb.gltf: "), "{shown:?}");
+    }
 }

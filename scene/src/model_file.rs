@@ -106,9 +106,11 @@ pub struct ModelCamera {
     pub aspect: Option<f32>,
 }
 
-/// Why a model file cannot be loaded at all.
+/// Why a model file cannot be loaded at all, shown as `FILE: what is wrong`
+/// on one line (control characters in the path or message escaped, as for
+/// [`crate::SceneError`]).
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("{path}: {}", crate::error::elide(.message))]
+#[error("{}: {}", crate::error::OneLine(.path), crate::error::elide(.message))]
 pub struct ModelError {
     /// The file.
     pub path: String,
