@@ -107,6 +107,7 @@ def xml_corpus():
     write(XML / "zero_toward.xml", seed.replace('toward="0 0 -1"', 'toward="0 0 0"'))
     write(XML / "mesh_missing_file.xml", seed.replace("</scene>", '  <mesh src="no-such-model.glb"/>\n</scene>'))
     write(XML / "mesh_network_uri.xml", seed.replace("</scene>", '  <mesh src="https://example.com/model.glb"/>\n</scene>'))
+    write(XML / "mesh_device.xml", seed.replace("</scene>", '  <mesh src="/dev/zero"/>\n</scene>'))
     write(XML / "mesh_hostile_model.xml", seed.replace("</scene>", '  <mesh src="../gltf/index_out_of_range.gltf"/>\n</scene>'))
 
 
@@ -155,7 +156,8 @@ def gltf_corpus():
     doc["buffers"] = [{"byteLength": 48, "uri": "https://example.com/buffer.bin"}]
     write(GLTF / "network_buffer_uri.gltf", json.dumps(doc))
     doc = triangle_gltf()
-    doc["buffers"] = [{"byteLength": 48, "uri": "../../../../../../../../dev/zero"}]
+    # 1 GiB of zeros for the asking, were devices read.
+    doc["buffers"] = [{"byteLength": 2**30, "uri": "../../../../../../../../dev/zero"}]
     write(GLTF / "device_buffer_uri.gltf", json.dumps(doc))
     doc = triangle_gltf(extensionsUsed=["EXT_raylab_does_not_know"], extensionsRequired=["EXT_raylab_does_not_know"])
     write(GLTF / "unknown_required_extension.gltf", json.dumps(doc))
