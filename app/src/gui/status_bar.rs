@@ -84,7 +84,7 @@ pub fn show(
             Some(s) => {
                 match (s.step, target_spp) {
                     (Step::Preview { stride }, _) => {
-                        ui.label(format!("preview: every {stride}th pixel"))
+                        ui.label(format!("preview: 1 pixel in {stride}×{stride}"))
                     }
                     // One sample per pixel per pass: passes and spp move together.
                     (Step::Passes { spp }, Some(target)) => {
