@@ -379,9 +379,13 @@ impl RaylabApp {
             view = view.pan(-gestures.pan.x * scale, gestures.pan.y * scale);
         }
         view = view.dolly((gestures.dolly * DOLLY_SPEED).exp());
+        // A move past what a scene file holds is not made (the camera stays).
+        let Some((eye, toward)) = view.as_stored() else {
+            return;
+        };
         let cam = &mut self.doc.state.scene.camera;
-        cam.eye = Some(view.eye);
-        cam.toward = Some(view.toward());
+        cam.eye = Some(eye);
+        cam.toward = Some(toward);
         self.navigation = dragging.then_some(view);
     }
 

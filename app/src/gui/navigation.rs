@@ -64,6 +64,22 @@ impl OrbitView {
         self.target - self.eye
     }
 
+    /// P0 and t as a scene file can hold them (finite, every coordinate
+    /// within ±[`scene::MAX_MAGNITUDE`]), or `None` when the eye has moved
+    /// past that: a camera the file could not read back is never made. A t
+    /// too long to hold is written as its unit direction, which looks the
+    /// same way.
+    pub fn as_stored(&self) -> Option<(Vec3, Vec3)> {
+        let fits = |v: Vec3| v.is_finite() && v.abs().max_element() <= scene::MAX_MAGNITUDE;
+        let toward = self.toward();
+        let toward = if fits(toward) {
+            toward
+        } else {
+            toward.normalize_or_zero()
+        };
+        (fits(self.eye) && fits(toward) && toward != Vec3::ZERO).then_some((self.eye, toward))
+    }
+
     /// Turns the eye about the target: `yaw` radians about u, then `pitch`
     /// radians about r (positive pitch raises the eye), stopping short of
     /// the poles so t never becomes parallel to u.
@@ -144,6 +160,35 @@ mod tests {
             v = v.orbit(std::f32::consts::FRAC_PI_4, 0.0);
         }
         assert!(is_close(v.eye, start.eye, 1e-5), "{:?}", v.eye);
+    }
+
+    #[test]
+    fn a_camera_a_scene_file_cannot_hold_is_never_made() {
+        let far = scene::MAX_MAGNITUDE;
+        assert_eq!(
+            view([0.0, 0.0, 5.0], [0.0; 3]).as_stored(),
+            Some((Vec3::new(0.0, 0.0, 5.0), Vec3::new(0.0, 0.0, -5.0)))
+        );
+        assert_eq!(view([0.0, 0.0, far * 1.5], [0.0; 3]).as_stored(), None);
+        assert_eq!(view([0.0, 0.0, f32::NAN], [0.0; 3]).as_stored(), None);
+        assert_eq!(view([0.0; 3], [0.0; 3]).as_stored(), None, "t = 0");
+        // An eye near the limit looking at a target past it: t shortened.
+        let (eye, toward) = view([0.0, 0.0, far], [0.0, 0.0, -far])
+            .as_stored()
+            .expect("the eye fits");
+        assert_eq!((eye.z, toward), (far, Vec3::NEG_Z));
+        // Dollying out from a far eye stops being written once past the limit.
+        let mut v = view([0.0, 0.0, 1.0e5], [0.0; 3]);
+        let mut last = None;
+        for _ in 0..40 {
+            v = v.dolly(1.5);
+            match v.as_stored() {
+                Some((eye, _)) => last = Some(eye),
+                None => break,
+            }
+        }
+        let last = last.expect("the first steps fit");
+        assert!(last.z <= far && last.z > far / 1.5, "{last}");
     }
 
     #[test]
