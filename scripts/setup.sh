@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Installs what raylab needs on a fresh Debian 12 machine that has Rust (rustup):
 # a C and C++ toolchain (linking; FLIP's C++ in `raylab chart`); Mesa's software Vulkan (lavapipe) and the X client
-# libraries the window loads at run time (no GPU needed); Xvfb and
-# ImageMagick for the end-to-end test of the real window; and the
+# libraries the window loads at run time (no GPU needed); Xvfb,
+# ImageMagick and xdotool (screenshots, resizing, keys) for the end-to-end tests of the real window; and the
 # rustfmt/clippy components the checks use.
 # Safe to run again: it installs only what is missing.
 set -euo pipefail
@@ -11,7 +11,7 @@ packages=(
   gcc g++ libc6-dev ca-certificates
   mesa-vulkan-drivers libvulkan1
   libx11-6 libx11-xcb1 libxcursor1 libxi6 libxrandr2 libxkbcommon0 libxkbcommon-x11-0
-  xvfb xauth imagemagick
+  xvfb xauth imagemagick xdotool
 )
 
 missing=()

@@ -127,6 +127,7 @@ fn the_window_resized_continuously_mid_render_then_closed_with_ctrl_q_exits_clea
     // Resizes the window 150 times while the seed scene refines toward 64 spp,
     // takes a screenshot, closes it with Ctrl+Q and records raylab's exit status.
     let script = r#"
+        command -v xdotool >/dev/null || { echo "no xdotool (scripts/setup.sh installs it)" > "$STATUS"; exit 0; }
         "$RAYLAB" "$SCENE" & pid=$!
         wid=
         for i in $(seq 120); do
