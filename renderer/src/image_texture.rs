@@ -64,7 +64,7 @@ mod tests {
         Texture {
             width: 2,
             height: 2,
-            texels: vec![w, b, b, w],
+            texels: vec![w, b, b, w].into(),
             wrap_u: wrap,
             wrap_v: wrap,
         }
@@ -78,7 +78,7 @@ mod tests {
         let grey = Texture {
             width: 1,
             height: 1,
-            texels: vec![[188, 188, 188, 255]],
+            texels: vec![[188, 188, 188, 255]].into(),
             wrap_u: Wrap::Repeat,
             wrap_v: Wrap::Repeat,
         };

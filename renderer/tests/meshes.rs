@@ -174,7 +174,7 @@ fn a_base_colour_texture_multiplies_the_albedo_at_the_interpolated_uv() {
     model.textures = vec![Arc::new(Texture {
         width: 2,
         height: 1,
-        texels: vec![[255, 0, 0, 255], [0, 0, 255, 255]],
+        texels: vec![[255, 0, 0, 255], [0, 0, 255, 255]].into(),
         wrap_u: Wrap::ClampToEdge,
         wrap_v: Wrap::ClampToEdge,
     })];

@@ -81,8 +81,9 @@ pub struct Texture {
     pub width: u32,
     /// Height in texels.
     pub height: u32,
-    /// `width × height` texels, row by row from the top.
-    pub texels: Vec<[u8; 4]>,
+    /// `width × height` texels, row by row from the top; shared by the
+    /// textures that use one image under different wrap modes.
+    pub texels: Arc<[[u8; 4]]>,
     /// Wrap mode along u (glTF wrapS).
     pub wrap_u: Wrap,
     /// Wrap mode along v (glTF wrapT).

@@ -343,7 +343,7 @@ fn a_glb_loads_its_bin_chunk_and_a_png_texture_with_its_wrap_modes() {
     assert_eq!(model.textures.len(), 1);
     let t = &model.textures[0];
     assert_eq!((t.width, t.height), (3, 2));
-    assert_eq!(t.texels, texels, "row 0 first, as stored");
+    assert_eq!(*t.texels, *texels, "row 0 first, as stored");
     assert_eq!(
         (t.wrap_u, t.wrap_v),
         (Wrap::ClampToEdge, Wrap::MirroredRepeat)

@@ -111,6 +111,16 @@ def xml_corpus():
     write(XML / "mesh_hostile_model.xml", seed.replace("</scene>", '  <mesh src="../gltf/index_out_of_range.gltf"/>\n</scene>'))
 
 
+def png_flat_1bit(width, height):
+    """A real, decodable 1-bit grey PNG of zeros: about 8,000 texels per byte."""
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+    ihdr = struct.pack(">IIBBBBB", width, height, 1, 0, 0, 0, 0)
+    row = b"\0" * (1 + (width + 7) // 8)
+    idat = zlib.compress(row * height, 9)
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", idat) + chunk(b"IEND", b"")
+
+
 def gltf_corpus():
     ok = json.dumps(triangle_gltf(), indent=1)
     write(GLTF / "empty.gltf", "")
@@ -199,6 +209,14 @@ def gltf_corpus():
     doc["accessors"] = [{"bufferView": 0, "componentType": 5126, "count": 1200, "type": "VEC3"}]
     doc["meshes"] = [{"primitives": [{"attributes": {"POSITION": 0}}] * 2000}]
     write(GLTF / "shared_accessor_read_2000_times.gltf", json.dumps(doc, separators=(",", ":")))
+    # Unlike the lying PNG above, this one decodes: 90 million texels (361 MB
+    # as RGBA8) from 14 KB.
+    doc = triangle_gltf()
+    doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png_flat_1bit(9500, 9500)).decode()}]
+    doc["textures"] = [{"source": 0}]
+    doc["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
+    doc["meshes"][0]["primitives"][0]["material"] = 0
+    write(GLTF / "image_flat_90_megapixels.gltf", json.dumps(doc))
     body = json.dumps(triangle_gltf(buffers=[{"byteLength": 48}])).encode()
     write(GLTF / "glb_claims_4gb.glb", glb(body, b"\0" * 48, total=2**32 - 1))
     write(GLTF / "glb_truncated.glb", glb(body, b"\0" * 48)[:40])

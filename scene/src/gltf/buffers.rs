@@ -15,7 +15,19 @@ pub(super) struct Buffers {
     /// How many more accessor elements this file may decode; see
     /// [`Buffers::take_elements`].
     elements_left: Cell<usize>,
+    /// How many more image texels this file may decode, before what each
+    /// image's own bytes allow; see [`Buffers::take_texels`].
+    texels_left: Cell<u64>,
 }
+
+/// Image texels any file may decode beyond [`TEXELS_PER_IMAGE_BYTE`] per
+/// byte of its images (2^26: four 4096² textures, 256 MiB as RGBA8).
+const TEXELS_ALLOWED: u64 = 1 << 26;
+
+/// Texels an image may decode to per byte of its encoded data: 256 bytes of
+/// RGBA8 per byte, far beyond what PNG or JPEG achieves on real textures,
+/// but a flat colour compresses about 1000:1.
+const TEXELS_PER_IMAGE_BYTE: u64 = 64;
 
 /// Accessor elements any file may decode beyond [`ELEMENTS_PER_BUFFER_BYTE`]
 /// per byte of its buffers (2^20: a million-vertex mesh).
@@ -75,6 +87,7 @@ pub(super) fn load(doc: &Document, base: &Path, blob: Option<Vec<u8>>) -> Result
     Ok(Buffers {
         data,
         elements_left: Cell::new(allowed),
+        texels_left: Cell::new(TEXELS_ALLOWED),
     })
 }
 
@@ -92,6 +105,22 @@ impl Buffers {
             ));
         }
         self.elements_left.set(left - count);
+        Ok(())
+    }
+
+    /// Takes `texels` from what this file may still decode, for an image of
+    /// `encoded` bytes (which adds [`TEXELS_PER_IMAGE_BYTE`] per byte), or
+    /// says why not: a small image that claims or compresses to a huge one,
+    /// or many such images, cannot make the file allocate gigabytes.
+    pub(super) fn take_texels(&self, texels: u64, encoded: usize) -> Result<(), String> {
+        let own = (encoded as u64).saturating_mul(TEXELS_PER_IMAGE_BYTE);
+        let left = self.texels_left.get();
+        let Some(rest) = left.saturating_add(own).checked_sub(texels) else {
+            return Err(format!(
+                "its {texels} texels would exceed what raylab decodes from images of this size ({left} texels left of {TEXELS_ALLOWED}, plus {TEXELS_PER_IMAGE_BYTE} per byte of each image)"
+            ));
+        };
+        self.texels_left.set(rest.min(left));
         Ok(())
     }
 
@@ -208,6 +237,42 @@ fn percent_decode(uri: &str) -> Result<String, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn no_buffers() -> Buffers {
+        Buffers {
+            data: Vec::new(),
+            elements_left: Cell::new(ELEMENTS_ALLOWED),
+            texels_left: Cell::new(TEXELS_ALLOWED),
+        }
+    }
+
+    #[test]
+    fn an_image_decodes_its_own_allowance_and_then_the_files() {
+        let b = no_buffers();
+        // 1,000 bytes allow 64,000 texels of their own; the pool is untouched.
+        b.take_texels(64_000, 1_000).expect("within its own");
+        assert_eq!(b.texels_left.get(), TEXELS_ALLOWED);
+        // Its own allowance does not carry over to the next image.
+        b.take_texels(64_000 + 5, 1_000).expect("5 from the pool");
+        assert_eq!(b.texels_left.get(), TEXELS_ALLOWED - 5);
+        b.take_texels(TEXELS_ALLOWED - 5, 0)
+            .expect("the rest of the pool");
+        let e = b.take_texels(1, 0).expect_err("the pool is empty");
+        assert!(e.contains("its 1 texels would exceed"), "{e}");
+        assert!(e.contains("(0 texels left"), "{e}");
+        b.take_texels(64, 1)
+            .expect("an image's own allowance still holds");
+        assert!(b.take_texels(u64::MAX, 1 << 30).is_err(), "no overflow");
+    }
+
+    #[test]
+    fn accessor_elements_come_from_one_pool() {
+        let b = no_buffers();
+        b.take_elements(ELEMENTS_ALLOWED - 1).expect("within");
+        b.take_elements(1).expect("the last");
+        let e = b.take_elements(1).expect_err("none left");
+        assert!(e.contains("its 1 elements would exceed"), "{e}");
+    }
 
     #[test]
     fn data_uris_decode_to_their_exact_length() {

@@ -217,7 +217,7 @@ impl Builder<'_> {
         }
         let texels = match self.images.get(&image.index()) {
             Some(None) => return Ok(None),
-            // The same image under other wrap modes: copy its texels.
+            // The same image under other wrap modes: share its texels.
             Some(Some(first)) => {
                 let t = &self.model.textures[*first as usize];
                 Some((t.width, t.height, t.texels.clone()))

@@ -8,9 +8,10 @@ use crate::model_file::{Texture, Wrap};
 use ::gltf::texture::WrappingMode;
 use image::ImageFormat;
 use std::path::Path;
+use std::sync::Arc;
 
 /// A decoded image: width, height and RGBA8 sRGB texels row by row from the top.
-pub(super) type Texels = (u32, u32, Vec<[u8; 4]>);
+pub(super) type Texels = (u32, u32, Arc<[[u8; 4]]>);
 
 /// The wrap mode raylab uses for a glTF one.
 pub(super) fn wrap(mode: WrappingMode) -> Wrap {
@@ -73,9 +74,14 @@ pub(super) fn decode(
             return Ok(None);
         }
     };
-    let decoded = image::load_from_memory_with_format(&bytes, format)
-        .map_err(|e| format!("{name}: cannot decode its {format:?} data: {e}"))?
-        .into_rgba8();
+    let cannot = |e: image::ImageError| format!("{name}: cannot decode its {format:?} data: {e}");
+    let reader = || image::ImageReader::with_format(std::io::Cursor::new(&bytes), format);
+    // The header's size is taken from the file's allowance before decoding.
+    let (width, height) = reader().into_dimensions().map_err(cannot)?;
+    buffers
+        .take_texels(u64::from(width) * u64::from(height), bytes.len())
+        .map_err(|e| format!("{name} ({width} × {height}): {e}"))?;
+    let decoded = reader().decode().map_err(cannot)?.into_rgba8();
     let (width, height) = decoded.dimensions();
     let texels = decoded
         .into_raw()
