@@ -1,5 +1,7 @@
 //! Buffer data: the GLB's BIN chunk, `data:` URIs and external files
-//! (relative to the model file), and checked slices of buffer views.
+//! (relative to the model file), and checked slices of buffer views; and
+//! what the file may decode from them (accessor elements, image texels), in
+//! proportion to its size, so a small file cannot ask for gigabytes.
 
 use super::warnings::MESHOPT;
 use ::gltf::Document;
@@ -7,8 +9,9 @@ use ::gltf::buffer::{Data, Source, View};
 use std::cell::Cell;
 use std::path::{Path, PathBuf};
 
-/// Every buffer's bytes. `None` only for a buffer without data that the
-/// meshopt extension leaves as a fallback: reading from it is skipped.
+/// Every buffer's bytes, and what the file may still decode. `None` only for
+/// a buffer without data that the meshopt extension leaves as a fallback:
+/// reading from it is skipped.
 #[derive(Debug)]
 pub(super) struct Buffers {
     data: Vec<Option<Vec<u8>>>,
