@@ -65,12 +65,16 @@ def glb(json_bytes, bin_bytes=None, total=None, version=2):
     return struct.pack("<4sII", b"glTF", version, length) + chunks
 
 
-def png_header(width, height):
-    """A PNG whose header claims width × height but whose data is one byte."""
+def png(ihdr, idat):
+    """A PNG file of the given IHDR and IDAT chunk data."""
     def chunk(kind, data):
         return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
-    ihdr = struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0)
-    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", zlib.compress(b"\0")) + chunk(b"IEND", b"")
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", idat) + chunk(b"IEND", b"")
+
+
+def png_header(width, height):
+    """A PNG whose header claims width × height but whose data is one byte."""
+    return png(struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0), zlib.compress(b"\0"))
 
 
 def xml_corpus():
@@ -113,12 +117,18 @@ def xml_corpus():
 
 def png_flat_1bit(width, height):
     """A real, decodable 1-bit grey PNG of zeros: about 8,000 texels per byte."""
-    def chunk(kind, data):
-        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
-    ihdr = struct.pack(">IIBBBBB", width, height, 1, 0, 0, 0, 0)
     row = b"\0" * (1 + (width + 7) // 8)
-    idat = zlib.compress(row * height, 9)
-    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", idat) + chunk(b"IEND", b"")
+    return png(struct.pack(">IIBBBBB", width, height, 1, 0, 0, 0, 0), zlib.compress(row * height, 9))
+
+
+def textured_gltf(png_bytes):
+    """The triangle with `png_bytes` as its base colour texture."""
+    doc = triangle_gltf()
+    doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png_bytes).decode()}]
+    doc["textures"] = [{"source": 0}]
+    doc["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
+    doc["meshes"][0]["primitives"][0]["material"] = 0
+    return doc
 
 
 def gltf_corpus():
@@ -186,12 +196,7 @@ def gltf_corpus():
     doc = triangle_gltf()
     doc["nodes"] = [{"children": [1]}, {"children": [0], "mesh": 0}]
     write(GLTF / "node_cycle.gltf", json.dumps(doc))
-    doc = triangle_gltf()
-    doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png_header(200_000, 200_000)).decode()}]
-    doc["textures"] = [{"source": 0}]
-    doc["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
-    doc["meshes"][0]["primitives"][0]["material"] = 0
-    write(GLTF / "image_claims_40_gigapixels.gltf", json.dumps(doc))
+    write(GLTF / "image_claims_40_gigapixels.gltf", json.dumps(textured_gltf(png_header(200_000, 200_000))))
     # Accessors without a bufferView are zeros, so nothing in the file bounds
     # their count: 16 meshes of 393,216 such vertices would decode 6.3M.
     doc = triangle_gltf()
@@ -211,12 +216,7 @@ def gltf_corpus():
     write(GLTF / "shared_accessor_read_2000_times.gltf", json.dumps(doc, separators=(",", ":")))
     # Unlike the lying PNG above, this one decodes: 90 million texels (361 MB
     # as RGBA8) from 14 KB.
-    doc = triangle_gltf()
-    doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png_flat_1bit(9500, 9500)).decode()}]
-    doc["textures"] = [{"source": 0}]
-    doc["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
-    doc["meshes"][0]["primitives"][0]["material"] = 0
-    write(GLTF / "image_flat_90_megapixels.gltf", json.dumps(doc))
+    write(GLTF / "image_flat_90_megapixels.gltf", json.dumps(textured_gltf(png_flat_1bit(9500, 9500))))
     body = json.dumps(triangle_gltf(buffers=[{"byteLength": 48}])).encode()
     write(GLTF / "glb_claims_4gb.glb", glb(body, b"\0" * 48, total=2**32 - 1))
     write(GLTF / "glb_truncated.glb", glb(body, b"\0" * 48)[:40])
