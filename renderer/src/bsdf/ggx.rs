@@ -1,6 +1,7 @@
 //! The GGX (Trowbridge–Reitz) microfacet distribution with Smith's
 //! shadowing, isotropic; directions are local (z along the normal).
 
+use crate::optics::reflect;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
@@ -89,36 +90,35 @@ impl Ggx {
         Vec3::new(sin * phi.cos(), sin * phi.sin(), cos)
     }
 
+    /// The half vector h = (wo + wi)/|wo + wi| of a reflection, when wo and
+    /// wi are both above the surface.
+    pub fn reflection_half(wo: Vec3, wi: Vec3) -> Option<Vec3> {
+        if wo.z <= 0.0 || wi.z <= 0.0 {
+            return None;
+        }
+        let h = (wo + wi).normalize_or_zero();
+        (h != Vec3::ZERO).then_some(h)
+    }
+
     /// f · cos θ_i of the white reflection lobe D G / (4 cos θ_o cos θ_i)
     /// (Fresnel 1), for wo and wi both above the surface.
     pub fn reflection(&self, wo: Vec3, wi: Vec3) -> f32 {
-        if wo.z <= 0.0 || wi.z <= 0.0 {
-            return 0.0;
-        }
-        let h = (wo + wi).normalize_or_zero();
-        if h == Vec3::ZERO {
-            return 0.0;
-        }
-        self.d(h) * self.g1(wo) * self.g1(wi) / (4.0 * wo.z)
+        Self::reflection_half(wo, wi).map_or(0.0, |h| {
+            self.d(h) * self.g1(wo) * self.g1(wi) / (4.0 * wo.z)
+        })
     }
 
     /// The density (solid angle) with which [`Ggx::sample_reflection`] picks wi.
     pub fn reflection_pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        if wo.z <= 0.0 || wi.z <= 0.0 {
-            return 0.0;
+        match Self::reflection_half(wo, wi) {
+            Some(h) if wo.dot(h) > 0.0 => self.d(h) * h.z / (4.0 * wo.dot(h)),
+            _ => 0.0,
         }
-        let h = (wo + wi).normalize_or_zero();
-        let cos_oh = wo.dot(h);
-        if h == Vec3::ZERO || cos_oh <= 0.0 {
-            return 0.0;
-        }
-        self.d(h) * h.z / (4.0 * cos_oh)
     }
 
     /// wi reflected about a sampled micronormal; `None` below the surface.
     pub fn sample_reflection(&self, wo: Vec3, u: Vec2) -> Option<Vec3> {
-        let h = self.sample_h(u);
-        let wi = 2.0 * wo.dot(h) * h - wo;
+        let wi = reflect(-wo, self.sample_h(u));
         (wi.z > 0.0).then_some(wi)
     }
 }

@@ -82,6 +82,17 @@ pub struct BsdfSample {
     pub radiance_scale: f32,
 }
 
+/// A conductor's reflectance where light meets it at `cos` to the normal:
+/// Schlick's rise toward white at grazing angles (metal), or `f0` at every
+/// angle (mirror).
+pub(crate) fn conductor_reflectance(f0: Vec3, schlick: bool, cos: f32) -> Vec3 {
+    if schlick {
+        fresnel_schlick(cos, f0)
+    } else {
+        f0
+    }
+}
+
 impl BsdfSample {
     /// wi drawn through a non-delta lobe with density `pdf`, where the BSDF
     /// gives f · |cos θ_i| = `f_cos`; `None` when the density is zero.
@@ -221,20 +232,13 @@ impl Bsdf {
                 };
                 BsdfSample::scattered(wi, self.eval(wo, wi), self.pdf(wo, wi), 1.0)
             }
-            Bsdf::Conductor { f0, schlick } => {
-                let reflectance = if schlick {
-                    fresnel_schlick(wo.z, f0)
-                } else {
-                    f0
-                };
-                Some(BsdfSample {
-                    wi: mirrored,
-                    weight: reflectance,
-                    pdf: 0.0,
-                    delta: true,
-                    radiance_scale: 1.0,
-                })
-            }
+            Bsdf::Conductor { f0, schlick } => Some(BsdfSample {
+                wi: mirrored,
+                weight: conductor_reflectance(f0, schlick, wo.z),
+                pdf: 0.0,
+                delta: true,
+                radiance_scale: 1.0,
+            }),
             Bsdf::Dielectric(glass) => Some(glass.sample(wo, u_lobe)),
             Bsdf::RoughConductor(c) => c.sample(wo, u),
             Bsdf::RoughDielectric(d) => d.sample(wo, u_lobe, u),

@@ -4,7 +4,7 @@
 
 use super::BsdfSample;
 use super::ggx::Ggx;
-use crate::optics::fresnel_schlick;
+use crate::optics::reflect;
 use glam::{Vec2, Vec3};
 
 /// Metal or mirror with a GGX microsurface.
@@ -22,25 +22,12 @@ pub struct RoughConductor {
 impl RoughConductor {
     /// The Fresnel reflectance of a microfacet met at `cos` = wo·h.
     fn fresnel(&self, cos: f32) -> Vec3 {
-        if self.schlick {
-            fresnel_schlick(cos, self.f0)
-        } else {
-            self.f0
-        }
-    }
-
-    /// The half vector of wo and wi, when both are above the surface.
-    fn half(wo: Vec3, wi: Vec3) -> Option<Vec3> {
-        if wo.z <= 0.0 || wi.z <= 0.0 {
-            return None;
-        }
-        let h = (wo + wi).normalize_or_zero();
-        (h != Vec3::ZERO).then_some(h)
+        super::conductor_reflectance(self.f0, self.schlick, cos)
     }
 
     /// f(wo, wi) · cos θ_i.
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
-        let Some(h) = Self::half(wo, wi) else {
+        let Some(h) = Ggx::reflection_half(wo, wi) else {
             return Vec3::ZERO;
         };
         let g = self.ggx;
@@ -50,7 +37,7 @@ impl RoughConductor {
     /// The density with which [`RoughConductor::sample`] draws wi:
     /// D_wo(h) / (4 wo·h) = G1(wo) D(h) / (4 cos θ_o).
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        let Some(h) = Self::half(wo, wi) else {
+        let Some(h) = Ggx::reflection_half(wo, wi) else {
             return 0.0;
         };
         self.ggx.g1(wo) * self.ggx.d(h) / (4.0 * wo.z)
@@ -59,7 +46,7 @@ impl RoughConductor {
     /// wi reflected about a visible micronormal; `None` below the surface.
     pub fn sample(&self, wo: Vec3, u: Vec2) -> Option<BsdfSample> {
         let h = self.ggx.sample_visible(wo, u);
-        let wi = 2.0 * wo.dot(h) * h - wo;
+        let wi = reflect(-wo, h);
         BsdfSample::scattered(wi, self.eval(wo, wi), self.pdf(wo, wi), 1.0)
     }
 }

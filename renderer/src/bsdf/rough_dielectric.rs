@@ -10,7 +10,7 @@
 
 use super::BsdfSample;
 use super::ggx::Ggx;
-use crate::optics::{fresnel_dielectric, refract};
+use crate::optics::{fresnel_dielectric, reflect, refract};
 use glam::{Vec2, Vec3};
 
 /// Rough glass as a ray meets it from one side.
@@ -118,9 +118,9 @@ impl RoughDielectric {
             return None;
         }
         let fresnel = fresnel_dielectric(cos_oh, self.eta);
-        let reflect = u_lobe < fresnel;
-        let (wi, radiance_scale) = if reflect {
-            (2.0 * cos_oh * h - wo, 1.0)
+        let reflects = u_lobe < fresnel;
+        let (wi, radiance_scale) = if reflects {
+            (reflect(-wo, h), 1.0)
         } else {
             // F = 1 on total internal reflection, so refraction exists here
             // but for rounding.
@@ -128,7 +128,7 @@ impl RoughDielectric {
         };
         // A microfacet can reflect below the surface or refract above it:
         // such a wi is lost (the other lobe's density does not describe it).
-        if (wi.z > 0.0) != reflect {
+        if (wi.z > 0.0) != reflects {
             return None;
         }
         BsdfSample::scattered(wi, self.eval(wo, wi), self.pdf(wo, wi), radiance_scale)

@@ -14,9 +14,9 @@
 use super::RenderOptions;
 use super::recorder::{NoRecorder, Note, RayKind, Recorder};
 use crate::bsdf::rough_conductor::RoughConductor;
-use crate::bsdf::{Bsdf, ShadingFrame};
+use crate::bsdf::{Bsdf, ShadingFrame, conductor_reflectance};
 use crate::offset::offset_ray_origin;
-use crate::optics::{fresnel_dielectric, fresnel_schlick, reflect, refract};
+use crate::optics::{fresnel_dielectric, reflect, refract};
 use crate::ray::Ray;
 use crate::texture::albedo_at;
 use crate::world::World;
@@ -130,12 +130,9 @@ fn trace<R: Recorder>(
                 mirrored = 1.0 - roughness;
             }
             if can_recurse {
-                let reflectance = mirrored
-                    * if material.base == BaseMaterial::Metal {
-                        fresnel_schlick(-ray.dir.dot(n), material.color)
-                    } else {
-                        material.color
-                    };
+                let metal = material.base == BaseMaterial::Metal;
+                let reflectance =
+                    mirrored * conductor_reflectance(material.color, metal, -ray.dir.dot(n));
                 if reflectance != Vec3::ZERO {
                     radiance += reflectance
                         * bounce(rec, RayKind::Reflection, reflect(ray.dir, n), reflectance);
