@@ -24,7 +24,7 @@ pub struct Autosave {
     /// The recovery file.
     file: PathBuf,
     /// The delay between a change and its autosave.
-    pub interval: Duration,
+    interval: Duration,
     /// What the file holds, when it exists.
     written: Option<Content>,
     /// When the pending change is due to be written.

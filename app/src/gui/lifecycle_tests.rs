@@ -5,13 +5,13 @@
 use super::RaylabApp;
 use super::commands::Command;
 use super::load_tests::{
-    DiscardTextures, assert_shows_the_document, harness, knot_app, wait_for_newest, wait_for_target,
+    assert_shows_the_document, harness_discarding_textures, knot_app, wait_for_newest,
 };
 use super::own_process::{in_own_process, test_path};
 use super::process_probe::{thread_count, threads_named, threads_settle_to};
+use super::tests::{harness, seed_app, seed_path, settle};
 use egui_kittest::Harness;
 use renderer::progressive::Step;
-use std::path::Path;
 use std::time::{Duration, Instant};
 
 /// The render worker's thread name.
@@ -36,19 +36,11 @@ fn wait_for_a_pass(h: &mut Harness<'static, RaylabApp>) {
     }
 }
 
-/// The knot refining to `target` spp (`None`: without end).
-fn knot_to(target: Option<u32>) -> RaylabApp {
-    let mut app = knot_app(KNOT);
-    app.doc.state.render.target_spp = target;
-    app.doc.history = super::history::History::new(&app.doc.state);
-    app
-}
-
 #[test]
 fn opening_another_scene_mid_render_shows_the_new_scene() {
-    let mut h = harness(knot_to(None));
+    let mut h = harness_discarding_textures(knot_app(KNOT, None));
     wait_for_a_pass(&mut h);
-    let seed = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/seed.xml");
+    let seed = seed_path();
     let ctx = h.ctx.clone();
     let opened = Instant::now();
     h.state_mut().run(&ctx, Command::OpenPath(seed.clone()));
@@ -63,7 +55,7 @@ fn opening_another_scene_mid_render_shows_the_new_scene() {
         opened.elapsed().as_secs_f64() * 1e3
     );
     assert_shows_the_document(&h);
-    wait_for_target(&mut h);
+    settle(&mut h);
     assert_shows_the_document(&h);
 }
 
@@ -72,7 +64,10 @@ fn resizing_the_window_every_frame_while_rendering_is_harmless() {
     let mut h = Harness::builder()
         .with_size(egui::Vec2::new(1200.0, 800.0))
         .wgpu()
-        .build_ui_state(|ui, app: &mut RaylabApp| app.show(ui), knot_to(Some(16)));
+        .build_ui_state(
+            |ui, app: &mut RaylabApp| app.show(ui),
+            knot_app(KNOT, Some(16)),
+        );
     wait_for_newest(&mut h);
     // Sizes from a tiny window to a large one, in a fixed pseudo-random order.
     let mut x: u32 = 12345;
@@ -87,7 +82,7 @@ fn resizing_the_window_every_frame_while_rendering_is_harmless() {
         }
     }
     h.set_size(egui::Vec2::new(1200.0, 800.0));
-    wait_for_target(&mut h);
+    settle(&mut h);
     assert_shows_the_document(&h);
 }
 
@@ -95,10 +90,7 @@ fn resizing_the_window_every_frame_while_rendering_is_harmless() {
 /// the harness (the app and its session) while the tracer is refining;
 /// returns how long dropping took.
 fn drop_mid_render() -> Duration {
-    let mut h = Harness::builder()
-        .with_size(egui::Vec2::new(1200.0, 800.0))
-        .renderer(DiscardTextures)
-        .build_ui_state(|ui, app: &mut RaylabApp| app.show(ui), knot_to(None));
+    let mut h = harness_discarding_textures(knot_app(KNOT, None));
     wait_for_a_pass(&mut h);
     assert_eq!(threads_named(WORKER), 1, "one render worker");
     let dropping = Instant::now();
@@ -144,13 +136,10 @@ fn triangle_glb(corners: [[f32; 3]; 3]) -> Vec<u8> {
         .flatten()
         .flat_map(|c| c.to_le_bytes())
         .collect();
-    let (min, max) = (0..3).fold(([f32::MAX; 3], [f32::MIN; 3]), |(mut lo, mut hi), k| {
-        for (a, c) in corners.iter().enumerate() {
-            lo[k] = lo[k].min(c[k]);
-            hi[k] = hi[k].max(corners[a][k]);
-        }
-        (lo, hi)
-    });
+    let min: [f32; 3] =
+        std::array::from_fn(|k| corners.iter().map(|c| c[k]).fold(f32::MAX, f32::min));
+    let max: [f32; 3] =
+        std::array::from_fn(|k| corners.iter().map(|c| c[k]).fold(f32::MIN, f32::max));
     let json = serde_json::json!({
         "asset": {"version": "2.0"},
         "scene": 0,
@@ -186,14 +175,14 @@ fn reopening_a_scene_whose_model_changed_on_disk_shows_the_new_model() {
         r#"<scene><camera eye="0 0 5" toward="0 0 -1" width="48" height="32"/><mesh src="m.glb"/></scene>"#,
     )
     .expect("write the scene");
-    let mut h = harness(knot_to(Some(1)));
+    let mut h = harness(seed_app(48, 32));
     let ctx = h.ctx.clone();
     let open = |h: &mut Harness<'static, RaylabApp>, corners| {
         std::fs::write(&model_path, triangle_glb(corners)).expect("write the model");
         h.state_mut()
             .run(&ctx, Command::OpenPath(scene_path.clone()));
         h.step();
-        wait_for_target(h);
+        settle(h);
         assert_shows_the_document(h);
     };
     open(

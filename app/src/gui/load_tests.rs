@@ -10,6 +10,7 @@ use super::edits::{Action, Selection};
 use super::history::History;
 use super::own_process::{in_own_process, test_path};
 use super::process_probe::Memory;
+use super::tests::settle;
 use egui::accesskit::Role;
 use egui::{Key, Modifiers};
 use egui_kittest::Harness;
@@ -94,12 +95,13 @@ fn jitter(rng: &mut Pcg32, r: f32) -> Vec3 {
     )
 }
 
-/// The knot scene at [`SIZE`], refining to 4 spp, with nothing to undo.
-pub(super) fn knot_app(triangles: usize) -> RaylabApp {
+/// The knot scene at [`SIZE`], refining to `target` spp (`None`: without
+/// end), with nothing to undo.
+pub(super) fn knot_app(triangles: usize, target: Option<u32>) -> RaylabApp {
     let mut scene = scene::generate::knot_scene(triangles);
     (scene.camera.width, scene.camera.height) = SIZE;
     let mut app = RaylabApp::new(scene, None);
-    app.doc.state.render.target_spp = Some(4);
+    app.doc.state.render.target_spp = target;
     app.doc.history = History::new(&app.doc.state);
     app
 }
@@ -123,7 +125,9 @@ impl egui_kittest::TestRenderer for DiscardTextures {
     }
 }
 
-pub(super) fn harness(app: RaylabApp) -> Harness<'static, RaylabApp> {
+/// A harness like [`super::tests::harness`] whose renderer discards texture
+/// updates ([`DiscardTextures`]), for runs of many frames.
+pub(super) fn harness_discarding_textures(app: RaylabApp) -> Harness<'static, RaylabApp> {
     Harness::builder()
         .with_size(egui::Vec2::new(1200.0, 800.0))
         .renderer(DiscardTextures)
@@ -152,22 +156,6 @@ pub(super) fn wait_for_newest(h: &mut Harness<'static, RaylabApp>) -> Duration {
         h.step();
     }
     started.elapsed()
-}
-
-/// Steps until the newest job has reached its target spp.
-pub(super) fn wait_for_target(h: &mut Harness<'static, RaylabApp>) {
-    let started = Instant::now();
-    let target = h.state().doc.state.render.target_spp.expect("a target");
-    while !(shows_newest(h)
-        && h.state().frame.as_ref().map(|f| f.step) == Some(Step::Passes { spp: target }))
-    {
-        assert!(
-            started.elapsed() < PREVIEW_LIMIT,
-            "the last edit never reached {target} spp"
-        );
-        std::thread::sleep(Duration::from_millis(2));
-        h.step();
-    }
 }
 
 /// Checks the frame on screen against an independent render of the
@@ -326,7 +314,7 @@ struct Figures {
 fn random_edits_while_tracing(triangles: usize, seed: u64) -> Figures {
     let started = Instant::now();
     let mut rng = Pcg32::new(seed, 0xda3e_39cb_94b9_5bdb);
-    let mut h = harness(knot_app(triangles));
+    let mut h = harness_discarding_textures(knot_app(triangles, Some(4)));
     wait_for_newest(&mut h);
     let knot_bvh = |h: &Harness<'static, RaylabApp>| {
         let world = &h.state().prepared.as_ref().expect("prepared").world;
@@ -398,7 +386,7 @@ fn random_edits_while_tracing(triangles: usize, seed: u64) -> Figures {
     wait_for_newest(&mut h);
     let last_edit_to_preview = last_edit.elapsed();
     assert_shows_the_document(&h);
-    wait_for_target(&mut h);
+    settle(&mut h);
     assert_shows_the_document(&h);
     let end = Memory::now();
     eprintln!(

@@ -649,14 +649,11 @@ impl RaylabApp {
             Pending::Open(path) => self.open(&path),
             Pending::OpenDialog => self.start_dialog(ctx, DialogKind::Open),
             Pending::New => {
-                self.doc = Document::new(Scene::default(), None, self.doc.state.render);
-                self.selection = Selection::None;
+                self.replace_document(Document::new(Scene::default(), None, self.doc.state.render));
             }
             Pending::Close => {
-                // Closing without saving discards the changes: the recovery file too.
-                if let Some(autosave) = &mut self.autosave {
-                    autosave.remove();
-                }
+                // Closing without saving discards the changes; `on_exit`
+                // removes the recovery file of a close allowed here.
                 self.allow_close = true;
                 ctx.send_viewport_cmd(egui::ViewportCommand::Close);
             }
@@ -669,13 +666,7 @@ impl RaylabApp {
         match Document::open(path, self.doc.state.render) {
             Ok(doc) => {
                 let warnings = model_warnings_text(&doc.state.scene);
-                self.doc = doc;
-                // Render what was read even when it compares equal to the
-                // scene on screen: meshes compare by file name, and the file
-                // may have changed since it was last read.
-                self.submitted = None;
-                self.selection = Selection::None;
-                self.navigation = None;
+                self.replace_document(doc);
                 self.settings.remember(path);
                 if !warnings.is_empty() {
                     self.message = Some(format!("Loaded, but raylab ignored:\n\n{warnings}"));
@@ -683,6 +674,17 @@ impl RaylabApp {
             }
             Err(e) => self.message = Some(format!("Cannot open the scene.\n\n{e}")),
         }
+    }
+
+    /// Puts `doc` in place of the current document (new, opened or
+    /// restored), with nothing selected or being dragged, and renders it
+    /// even when it compares equal to the scene on screen: meshes compare by
+    /// file name, and the file may have changed since it was last read.
+    fn replace_document(&mut self, doc: Document) {
+        self.doc = doc;
+        self.submitted = None;
+        self.selection = Selection::None;
+        self.navigation = None;
     }
 
     /// Saves the scene to `path`; true when it was saved.
@@ -1040,10 +1042,11 @@ impl RaylabApp {
     fn restore(&mut self, left: &recovery::Left) {
         match recovery::read(&left.file) {
             Ok((scene, source)) => {
-                self.doc =
-                    Document::recovered(scene.clone(), source.clone(), self.doc.state.render);
-                self.selection = Selection::None;
-                self.navigation = None;
+                self.replace_document(Document::recovered(
+                    scene.clone(),
+                    source.clone(),
+                    self.doc.state.render,
+                ));
                 if let Some(autosave) = &mut self.autosave {
                     autosave.adopt(&left.file, (scene, source));
                 }

@@ -86,7 +86,9 @@ fn started_after_a_crash(dir: &Path) -> (Harness<'static, RaylabApp>, scene::Sce
     step_shown(&mut h);
     h.get_by_label("Restore unsaved work?");
     h.get_by_label_contains("seed.xml");
-    h.get_by_label_contains("autosaved 0 s ago");
+    // The age is unit-tested in recovery.rs; here only that it is shown
+    // (a loaded machine may take over a second to get this far).
+    h.get_by_label_contains(" s ago");
     (h, edited)
 }
 
