@@ -50,15 +50,18 @@ fn first_free(base: &Path, taken: impl Fn(&Path) -> bool) -> PathBuf {
 /// (saying on stderr which files it replaces), else the first free pair
 /// `default.csv`/`default.png`, `default-2.csv`/`default-2.png`, ….
 pub fn csv_and_png(output: Option<&Path>, default: &str) -> (PathBuf, PathBuf) {
-    let stem = match output {
-        Some(output) => output.to_path_buf(),
-        None => free_stem(Path::new(default), &["csv", "png"]),
-    };
-    let (csv, png) = (stem.with_extension("csv"), stem.with_extension("png"));
-    if output.is_some() {
-        note_replacing(&[&csv, &png]);
+    match output {
+        Some(output) => {
+            let (csv, png) = (output.with_extension("csv"), output.with_extension("png"));
+            note_replacing(&[&csv, &png]);
+            (csv, png)
+        }
+        // The names free_stem found free: the extensions appended, as it checked them.
+        None => {
+            let stem = free_stem(Path::new(default), &["csv", "png"]);
+            (with_ext(&stem, "csv"), with_ext(&stem, "png"))
+        }
     }
-    (csv, png)
 }
 
 /// Says on stderr which of `paths`, named by the user, are about to be replaced.
