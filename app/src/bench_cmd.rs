@@ -96,7 +96,8 @@ fn window_scene(args: &BenchArgs, seed: &Path) -> Result<(scene::Scene, String, 
     let (mut scene, label) = scene_spec::load(&spec, seed)?;
     scene.camera.width = args.width.unwrap_or(1280);
     scene.camera.height = args.height.unwrap_or(720);
-    renderer::World::from_scene(&scene)?;
+    let world = renderer::World::from_scene(&scene)?;
+    renderer::film::image_memory::check_world_fits(&world)?;
     let path = Path::new(&spec);
     Ok((scene, label, path.exists().then(|| path.to_path_buf())))
 }

@@ -4,7 +4,7 @@
 use crate::chart_cmd::Curve;
 use anyhow::{Result, anyhow};
 use plotters::prelude::*;
-use renderer::convergence::ConvergencePoint;
+use renderer::diagnostics::convergence::ConvergencePoint;
 use std::path::Path;
 use std::sync::Once;
 

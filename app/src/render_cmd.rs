@@ -3,9 +3,9 @@
 use crate::cli::{AovArg, RenderArgs, SceneArgs};
 use crate::output::{Format, Provenance, write_exr, write_png, write_png_srgb8};
 use anyhow::Result;
-use renderer::aov::{self, Aov};
+use renderer::film::aov::{self, Aov};
 use renderer::display::Display;
-use renderer::display_image::{DisplayImage, Source, aov_image, display_image};
+use renderer::display::image::{DisplayImage, Source, aov_image, display_image};
 use renderer::{Film, RenderOptions, World};
 use std::time::{Duration, Instant};
 
@@ -26,6 +26,7 @@ pub fn prepare(args: &SceneArgs) -> Result<(World, RenderOptions)> {
         scene.camera.height = h;
     }
     let world = World::from_scene(&scene)
+        .and_then(|world| renderer::film::image_memory::check_world_fits(&world).map(|()| world))
         .map_err(|e| UserError(format!("{}: {e}", args.scene.display())))?;
     let options = RenderOptions {
         integrator: args.integrator.into(),
@@ -35,7 +36,7 @@ pub fn prepare(args: &SceneArgs) -> Result<(World, RenderOptions)> {
         sampling: args.sampler.into(),
         adaptive: match args.adaptive {
             Some(threshold) if threshold > 0.0 && threshold.is_finite() => {
-                Some(renderer::adaptive::Adaptive { threshold })
+                Some(renderer::integrator::adaptive::Adaptive { threshold })
             }
             Some(threshold) => {
                 return Err(UserError(format!(
@@ -58,7 +59,7 @@ pub fn run(args: &RenderArgs) -> Result<Duration> {
     // A bad reference is an error before the render, not after it.
     let reference = match &args.reference {
         Some(path) => {
-            let image = renderer::reference_image::read_exr_rgb(path)?;
+            let image = renderer::diagnostics::reference_image::read_exr_rgb(path)?;
             image.check_size(path, w, h)?;
             Some(image)
         }
@@ -85,8 +86,8 @@ pub fn run(args: &RenderArgs) -> Result<Duration> {
             if let (Some(path), Some(reference)) = (&args.reference, &reference) {
                 println!(
                     "relMSE {:.4e}, RMSE {:.4e} against {}",
-                    renderer::metrics::rel_mse(&pixels, &reference.pixels),
-                    renderer::metrics::rmse(&pixels, &reference.pixels),
+                    renderer::diagnostics::metrics::rel_mse(&pixels, &reference.pixels),
+                    renderer::diagnostics::metrics::rmse(&pixels, &reference.pixels),
                     path.display()
                 );
             }

@@ -1,9 +1,9 @@
 //! `raylab stability`: runs the suite of cases where numerical methods fail
-//! (renderer::stability), prints a table and writes it as CSV and a PNG chart.
+//! (renderer::diagnostics::stability), prints a table and writes it as CSV and a PNG chart.
 
 use crate::cli::StabilityArgs;
 use anyhow::{Context, Result};
-use renderer::stability::{CASES, Effort, Row};
+use renderer::diagnostics::stability::{CASES, Effort, Row};
 use std::io::Write;
 use std::path::PathBuf;
 

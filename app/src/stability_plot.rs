@@ -7,7 +7,7 @@ use crate::stability_cmd::format_value;
 use anyhow::{Result, anyhow};
 use plotters::coord::ranged1d::SegmentValue;
 use plotters::prelude::*;
-use renderer::stability::Row;
+use renderer::diagnostics::stability::Row;
 use std::path::Path;
 
 /// Panels per row of the chart.

@@ -4,8 +4,8 @@
 
 use anyhow::Result;
 use glam::Vec3;
-use renderer::ray::Ray;
-use renderer::throughput::{self, Cast};
+use renderer::geometry::ray::Ray;
+use renderer::diagnostics::throughput::{self, Cast};
 use renderer::{Film, RenderOptions, World};
 use scene::Scene;
 use serde::Serialize;
@@ -94,6 +94,7 @@ pub fn measure(
     let scene = sized(scene, width, height);
     let resolved = scene::resolve(&scene)?;
     let world = World::new(&resolved)?;
+    renderer::film::image_memory::check_world_fits(&world)?;
     let threads = rayon::current_num_threads();
     let (triangles, bytes) = throughput::mesh_bvh_footprint(&world);
     let build = || median_seconds(|| throughput::rebuild_mesh_bvhs(&world).as_secs_f64());

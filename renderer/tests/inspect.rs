@@ -1,7 +1,7 @@
 //! The pixel inspector against the image and against hand computations.
 
 use glam::Vec3;
-use renderer::aov::{Aov, aov_at};
+use renderer::film::aov::{Aov, aov_at};
 use renderer::film::sample_pixel;
 use renderer::inspect::{Inspection, RayNode, SurfaceHit};
 use renderer::integrator::RayKind;

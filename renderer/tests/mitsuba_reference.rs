@@ -5,8 +5,8 @@
 //! depth counting, Fresnel) moves every block and fails the bound.
 
 use renderer::integrator::Integrator;
-use renderer::metrics::{downsample, rel_mse};
-use renderer::reference_image::read_exr_rgb;
+use renderer::diagnostics::metrics::{downsample, rel_mse};
+use renderer::diagnostics::reference_image::read_exr_rgb;
 use renderer::{Film, RenderOptions, Sampling, World};
 use std::path::PathBuf;
 

@@ -2,7 +2,7 @@
 //! belong to, what was last saved, and the undo history.
 
 use super::history::History;
-use renderer::adaptive::Adaptive;
+use renderer::integrator::adaptive::Adaptive;
 use renderer::integrator::Integrator;
 use renderer::{Method, RenderOptions, Sampling};
 use scene::Scene;

@@ -39,7 +39,7 @@ use navigation::OrbitView;
 pub use recovery::default_dir as recovery_dir;
 use renderer::display::Display;
 use renderer::progressive::{Job, ProgressiveRenderer, RenderedFrame};
-use renderer::ray::Ray;
+use renderer::geometry::ray::Ray;
 use renderer::{RenderOptions, World};
 use scene::{ResolvedScene, Scene};
 use std::path::{Path, PathBuf};
@@ -255,6 +255,7 @@ impl RaylabApp {
             .map_err(renderer::RenderError::from)
             .and_then(|resolved| {
                 let world = World::new(&resolved)?;
+                renderer::film::image_memory::check_world_fits(&world)?;
                 Ok(Prepared {
                     resolved,
                     world: Arc::new(world),
@@ -505,11 +506,11 @@ impl RaylabApp {
             .iter()
             .enumerate()
             .map(|(k, light)| match light {
-                renderer::light::Light::Point { position, .. } => {
+                renderer::world::light::Light::Point { position, .. } => {
                     format!("point light {k} at {}", inspector_panel::v3(*position))
                 }
-                renderer::light::Light::Directional { .. } => format!("directional light {k}"),
-                renderer::light::Light::Ambient { .. } => format!("ambient light {k}"),
+                renderer::world::light::Light::Directional { .. } => format!("directional light {k}"),
+                renderer::world::light::Light::Ambient { .. } => format!("ambient light {k}"),
             })
             .collect();
         let cx = inspector_panel::Context {
@@ -802,14 +803,14 @@ impl RaylabApp {
 
     /// Loads a reference image for the live error plot; a bad file is a message.
     pub fn load_reference(&mut self, path: &Path) {
-        match renderer::reference_image::read_exr_rgb(path) {
+        match renderer::diagnostics::reference_image::read_exr_rgb(path) {
             Ok(image) => self.set_reference(path.to_path_buf(), image),
             Err(error) => self.message = Some(format!("Cannot load the reference: {error}")),
         }
     }
 
     /// Plots the live error against `image`, read from `path`.
-    pub fn set_reference(&mut self, path: PathBuf, image: renderer::reference_image::LinearImage) {
+    pub fn set_reference(&mut self, path: PathBuf, image: renderer::diagnostics::reference_image::LinearImage) {
         self.errors.set_reference(path, image);
     }
 

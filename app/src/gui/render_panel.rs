@@ -2,7 +2,7 @@
 
 use super::document::RenderSettings;
 use super::widgets;
-use renderer::adaptive::Adaptive;
+use renderer::integrator::adaptive::Adaptive;
 use renderer::integrator::Integrator;
 use renderer::{Method, Sampling};
 

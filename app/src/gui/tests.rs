@@ -7,7 +7,7 @@ use egui::{Key, Modifiers, PointerButton};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glam::Vec3;
-use renderer::adaptive::Adaptive;
+use renderer::integrator::adaptive::Adaptive;
 use renderer::progressive::Step;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -426,9 +426,9 @@ fn clicking_a_pixel_on_the_red_sphere_inspects_its_rays() {
     assert_eq!(hit.shape, "sphere");
     // The ray through P_ij is the depth AOV's ray: the same α.
     let world = &h.state().prepared.as_ref().expect("prepared").world;
-    let alpha = renderer::aov::aov_at(
+    let alpha = renderer::film::aov::aov_at(
         world,
-        renderer::aov::Aov::Depth,
+        renderer::film::aov::Aov::Depth,
         renderer::Method::Robust,
         pixel[0],
         pixel[1],

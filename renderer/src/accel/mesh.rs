@@ -16,7 +16,7 @@ use super::stack::Stack;
 use super::triangle_pack::TrianglePack;
 use super::wide::{ChildRef, WIDTH, WideNode, WideRay};
 use super::wide_build::build_wide;
-use crate::ray::Ray;
+use crate::geometry::ray::Ray;
 use crate::shapes::WatertightRay;
 use glam::{Vec3, Vec3A};
 use obvhs::BvhBuildParams;
@@ -489,7 +489,7 @@ mod tests {
 
     #[test]
     fn a_mesh_of_one_leaf_is_walked_from_its_leaf_and_matches_brute_force() {
-        let mut rng = crate::sampler::Sampler::for_sample(5, 0, 0, 0);
+        let mut rng = crate::integrator::sampler::Sampler::for_sample(5, 0, 0, 0);
         for n in 1..=10usize {
             let (p, mut t) = grid(5, 1, 0.0);
             t.truncate(n);
@@ -553,7 +553,7 @@ mod tests {
     fn widest_simd_and_baseline_code_find_the_same_hits() {
         let (p, t) = grid(30, 30, 0.0);
         let bvh = MeshBvh::build(&p, &t);
-        let mut rng = crate::sampler::Sampler::for_sample(3, 0, 0, 0);
+        let mut rng = crate::integrator::sampler::Sampler::for_sample(3, 0, 0, 0);
         for _ in 0..2000 {
             let origin = Vec3::new(30.0 * rng.next_f32(), 30.0 * rng.next_f32(), 5.0);
             let ray = Ray::new(origin, rng.next_direction());
@@ -572,7 +572,7 @@ mod tests {
     fn closest_hits_of_a_batch_equal_closest_hit_ray_by_ray() {
         let (p, t) = grid(30, 30, 0.0);
         let bvh = MeshBvh::build(&p, &t);
-        let mut rng = crate::sampler::Sampler::for_sample(5, 0, 0, 0);
+        let mut rng = crate::integrator::sampler::Sampler::for_sample(5, 0, 0, 0);
         let rays: Vec<Ray> = (0..500)
             .map(|_| {
                 let origin = Vec3::new(30.0 * rng.next_f32(), 30.0 * rng.next_f32(), 5.0);

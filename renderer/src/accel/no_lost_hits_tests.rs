@@ -7,9 +7,9 @@
 use super::mesh::{MeshBvh, MeshHit};
 use super::reference;
 use super::test_meshes::{grid, mapped, merge};
-use crate::generate::rays_at_shared_edges;
-use crate::ray::Ray;
-use crate::sampler::Sampler;
+use crate::diagnostics::generate::rays_at_shared_edges;
+use crate::geometry::ray::Ray;
+use crate::integrator::sampler::Sampler;
 use crate::shapes::WatertightRay;
 use glam::Vec3;
 use proptest::prelude::*;
@@ -358,8 +358,8 @@ fn closest_hit_equals_brute_force_on_a_torus_knot_for_primary_and_incoherent_ray
         );
     }
     let knot = world.meshes[0].bounds;
-    let mut rays = crate::throughput::primary_rays(&world);
-    rays.extend(crate::throughput::incoherent_rays(
+    let mut rays = crate::diagnostics::throughput::primary_rays(&world);
+    rays.extend(crate::diagnostics::throughput::incoherent_rays(
         knot.min, knot.max, 2_000, 7,
     ));
     let hits = assert_equals_brute_force(&mesh, &rays, "torus knot");

@@ -3,9 +3,9 @@
 
 use glam::Vec3;
 
-/// [`crate::generate::tiled_floor`] as a (positions, triangles) pair.
+/// [`crate::diagnostics::generate::tiled_floor`] as a (positions, triangles) pair.
 pub(crate) fn grid(nx: u32, ny: u32, z: f32) -> (Vec<Vec3>, Vec<[u32; 3]>) {
-    let m = crate::generate::tiled_floor(nx, ny, z);
+    let m = crate::diagnostics::generate::tiled_floor(nx, ny, z);
     (m.positions, m.triangles)
 }
 

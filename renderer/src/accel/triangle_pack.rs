@@ -111,7 +111,7 @@ impl PackHit {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ray::Ray;
+    use crate::geometry::ray::Ray;
 
     fn unit_triangle_at(z: f32) -> [Vec3; 3] {
         [

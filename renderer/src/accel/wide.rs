@@ -115,7 +115,7 @@ pub struct WideRay {
 impl WideRay {
     /// Prepares `ray`.
     #[inline(always)]
-    pub fn new(ray: &crate::ray::Ray) -> Self {
+    pub fn new(ray: &crate::geometry::ray::Ray) -> Self {
         let slab = SlabRay::new(ray);
         Self {
             near_far: std::array::from_fn(|k| {
@@ -162,7 +162,7 @@ impl WideRay {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ray::Ray;
+    use crate::geometry::ray::Ray;
     use glam::Vec3;
 
     /// A node whose child 0 is the box [lo, hi]³ and whose other slots are empty.

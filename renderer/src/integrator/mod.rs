@@ -1,15 +1,17 @@
 //! Integrators: how a ray's radiance is estimated.
 
+pub mod adaptive;
 pub mod path;
 pub mod recorder;
+pub mod sampler;
 pub mod whitted;
 
 pub use path::path;
 pub use recorder::{NoRecorder, Note, RayKind, Recorder};
 pub use whitted::{whitted, whitted_recorded};
 
-use crate::adaptive::Adaptive;
-use crate::sampler::Sampling;
+use crate::integrator::adaptive::Adaptive;
+use crate::integrator::sampler::Sampling;
 use crate::shapes::Method;
 
 /// Which estimator of a ray's radiance renders the image.

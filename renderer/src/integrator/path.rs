@@ -12,11 +12,11 @@
 //! - no ambient term: only emitters, lights and the `<sky>` bring light.
 
 use super::RenderOptions;
-use crate::bsdf::{Bsdf, ShadingFrame};
-use crate::offset::offset_ray_origin;
-use crate::ray::Ray;
-use crate::sampler::{BounceDraw, Sampler};
-use crate::texture::albedo_at;
+use crate::shading::bsdf::{Bsdf, ShadingFrame};
+use crate::geometry::offset::offset_ray_origin;
+use crate::geometry::ray::Ray;
+use crate::integrator::sampler::{BounceDraw, Sampler};
+use crate::shading::texture::albedo_at;
 use crate::world::World;
 use glam::Vec3;
 

@@ -13,12 +13,12 @@
 
 use super::RenderOptions;
 use super::recorder::{NoRecorder, Note, RayKind, Recorder};
-use crate::bsdf::rough_conductor::RoughConductor;
-use crate::bsdf::{Bsdf, ShadingFrame, conductor_reflectance};
-use crate::offset::offset_ray_origin;
-use crate::optics::{fresnel_dielectric, reflect, refract};
-use crate::ray::Ray;
-use crate::texture::albedo_at;
+use crate::shading::bsdf::rough_conductor::RoughConductor;
+use crate::shading::bsdf::{Bsdf, ShadingFrame, conductor_reflectance};
+use crate::geometry::offset::offset_ray_origin;
+use crate::shading::optics::{fresnel_dielectric, reflect, refract};
+use crate::geometry::ray::Ray;
+use crate::shading::texture::albedo_at;
 use crate::world::World;
 use glam::Vec3;
 use scene::{BaseMaterial, Material};

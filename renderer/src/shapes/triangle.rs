@@ -2,7 +2,7 @@
 //! watertight test of Woop, Benthin and Wald (JCGT 2013).
 
 use super::{AreaSample, Method, Surface};
-use crate::ray::Ray;
+use crate::geometry::ray::Ray;
 use glam::{DVec3, Vec2, Vec3};
 use serde::Serialize;
 use wide::f32x4;
