@@ -3,9 +3,10 @@
 use crate::cli::{AovArg, RenderArgs, SceneArgs};
 use crate::output::{Format, Provenance, write_exr, write_png, write_png_srgb8};
 use anyhow::Result;
-use renderer::film::aov::{self, Aov};
 use renderer::display::Display;
-use renderer::display::image::{DisplayImage, Source, aov_image, display_image};
+use renderer::display::DisplayImage;
+use renderer::display::image::{Source, aov_image, display_image};
+use renderer::film::aov::{self, Aov};
 use renderer::{Film, RenderOptions, World};
 use std::time::{Duration, Instant};
 

@@ -4,8 +4,8 @@
 
 use anyhow::Result;
 use glam::Vec3;
-use renderer::geometry::ray::Ray;
 use renderer::diagnostics::throughput::{self, Cast};
+use renderer::geometry::ray::Ray;
 use renderer::{Film, RenderOptions, World};
 use scene::Scene;
 use serde::Serialize;

@@ -2,13 +2,13 @@
 //! variance, the shape tests the BVH makes, spp that keeps growing across a
 //! display switch, and the depth legend's range.
 
-use renderer::film::aov::{Aov, render_aov};
 use renderer::display::{Display, Scale};
-use renderer::film::sample_pixel;
-use renderer::film::pixel_stats::luminance;
-use renderer::progressive::{Job, ProgressiveRenderer, RenderedFrame, Step};
+use renderer::film::aov::{Aov, render_aov};
 use renderer::geometry::counters::shape_tests_on_this_thread;
+use renderer::integrator::sample_pixel;
+use renderer::progressive::{Job, ProgressiveRenderer, RenderedFrame, Step};
 use renderer::{Film, Method, RenderOptions, World};
+use scene::color::luminance;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 

@@ -2,9 +2,9 @@
 
 use glam::Vec3;
 use renderer::film::aov::{Aov, aov_at};
-use renderer::film::sample_pixel;
 use renderer::inspect::{Inspection, RayNode, SurfaceHit};
 use renderer::integrator::RayKind;
+use renderer::integrator::sample_pixel;
 use renderer::{Film, Method, RenderOptions, World, inspect_pixel};
 use std::path::Path;
 

@@ -1,5 +1,5 @@
 //! Colours in scene files: parsing (CSS names, `#rrggbb`, three linear numbers),
-//! formatting, and the sRGB ↔ linear conversions.
+//! formatting, the sRGB ↔ linear conversions and luminance.
 //!
 //! Everything in the model is linear RGB. Names and hex codes are sRGB-encoded,
 //! as on the web, and are converted with the exact sRGB EOTF.
@@ -22,6 +22,12 @@ pub fn linear_to_srgb(c: f32) -> f32 {
     } else {
         1.055 * c.powf(1.0 / 2.4) - 0.055
     }
+}
+
+/// Rec. 709 luminance Y of linear RGB.
+#[inline]
+pub fn luminance(c: Vec3) -> f32 {
+    c.dot(Vec3::new(0.2126, 0.7152, 0.0722))
 }
 
 /// Parses a colour as written in a scene file, giving linear RGB:

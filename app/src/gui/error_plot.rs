@@ -4,8 +4,8 @@
 //! refines.
 
 use renderer::diagnostics::metrics::rel_mse;
-use renderer::progressive::{RenderedFrame, Step};
 use renderer::diagnostics::reference_image::LinearImage;
+use renderer::progressive::{RenderedFrame, Step};
 use std::path::PathBuf;
 
 /// A reference image and the error of each pass of the current render against it.

@@ -38,8 +38,8 @@ use files::{DialogKind, DialogResult, Dialogs, Settings};
 use navigation::OrbitView;
 pub use recovery::default_dir as recovery_dir;
 use renderer::display::Display;
-use renderer::progressive::{Job, ProgressiveRenderer, RenderedFrame};
 use renderer::geometry::ray::Ray;
+use renderer::progressive::{Job, ProgressiveRenderer, RenderedFrame};
 use renderer::{RenderOptions, World};
 use scene::{ResolvedScene, Scene};
 use std::path::{Path, PathBuf};
@@ -509,7 +509,9 @@ impl RaylabApp {
                 renderer::world::light::Light::Point { position, .. } => {
                     format!("point light {k} at {}", inspector_panel::v3(*position))
                 }
-                renderer::world::light::Light::Directional { .. } => format!("directional light {k}"),
+                renderer::world::light::Light::Directional { .. } => {
+                    format!("directional light {k}")
+                }
                 renderer::world::light::Light::Ambient { .. } => format!("ambient light {k}"),
             })
             .collect();
@@ -810,7 +812,11 @@ impl RaylabApp {
     }
 
     /// Plots the live error against `image`, read from `path`.
-    pub fn set_reference(&mut self, path: PathBuf, image: renderer::diagnostics::reference_image::LinearImage) {
+    pub fn set_reference(
+        &mut self,
+        path: PathBuf,
+        image: renderer::diagnostics::reference_image::LinearImage,
+    ) {
         self.errors.set_reference(path, image);
     }
 

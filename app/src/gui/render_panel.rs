@@ -2,8 +2,8 @@
 
 use super::document::RenderSettings;
 use super::widgets;
-use renderer::integrator::adaptive::Adaptive;
 use renderer::integrator::Integrator;
+use renderer::integrator::adaptive::Adaptive;
 use renderer::{Method, Sampling};
 
 /// Samples per pixel offered when the user turns a target back on.

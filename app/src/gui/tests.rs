@@ -337,7 +337,7 @@ fn saving_the_image_writes_the_tonemapped_accumulation_buffer_and_the_camera() {
     let expected: Vec<u8> = frame
         .pixels
         .iter()
-        .flat_map(|&c| renderer::film::linear_to_srgb8(c))
+        .flat_map(|&c| renderer::display::srgb::linear_to_srgb8(c))
         .collect();
     let written = image::open(&path).expect("a PNG").to_rgb8();
     assert_eq!(written.dimensions(), (48, 32));

@@ -1,9 +1,9 @@
 //! How fast a render approaches a reference: progressive passes, timed, with
 //! the error after each — one curve of a speed-against-accuracy chart.
 
+use crate::diagnostics::metrics::{rel_mse, rmse};
 use crate::film::Film;
 use crate::integrator::RenderOptions;
-use crate::diagnostics::metrics::{rel_mse, rmse};
 use crate::world::World;
 use glam::Vec3;
 use std::time::{Duration, Instant};

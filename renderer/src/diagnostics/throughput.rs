@@ -3,10 +3,10 @@
 
 use crate::World;
 use crate::accel::MeshBvh;
-use crate::world::placed_mesh::PlacedMesh;
 use crate::geometry::ray::Ray;
 use crate::integrator::sampler::Sampler;
 use crate::shapes::Method;
+use crate::world::placed_mesh::PlacedMesh;
 use glam::Vec3;
 use rayon::prelude::*;
 use std::sync::Arc;

@@ -2,9 +2,8 @@
 //! display modes: the range is the values' own (finite) minimum and maximum,
 //! linear or logarithmic; non-finite values are misses, painted black.
 
-use crate::display::colormap::Ramp;
-use crate::display::{Display, Legend, ScalarRange, Scale};
-use crate::display::image::DisplayImage;
+use super::colormap::Ramp;
+use super::{Display, DisplayImage, Legend, ScalarRange, Scale};
 use rayon::prelude::*;
 
 /// Shown for a miss in a heatmap (viridis never reaches black).

@@ -3,29 +3,20 @@
 //! [`Display`] mode and its [`Legend`]. Runs on the render thread, so that
 //! showing any mode costs the UI only a texture copy.
 
+use super::colormap::Ramp;
+use super::heatmap::heatmap;
+use super::srgb::srgba8_of_linear;
+use super::{Display, DisplayImage, Legend, ScalarRange, Scale};
+use crate::film::Film;
 use crate::film::aov::{Aov, visualize};
-use crate::display::colormap::Ramp;
-use crate::display::{Display, Legend, ScalarRange, Scale};
-use crate::film::{Film, linear_to_srgb8};
-use crate::display::heatmap::heatmap;
 use crate::film::preview::PreviewSamples;
 use glam::Vec3;
-use rayon::prelude::*;
 
 /// Shown where a mode has nothing to show yet (variance of one sample).
 const UNAVAILABLE: [u8; 4] = [48, 48, 48, 255];
 /// The span of the variance heatmap: max / min at most 10^this (relative
 /// variances below that are as good as zero on screen).
 const VARIANCE_DECADES: f32 = 4.0;
-
-/// A mode's picture: opaque 8-bit sRGB RGBA row by row from the top, and its legend.
-#[derive(Clone, Debug, PartialEq)]
-pub struct DisplayImage {
-    /// The pixels.
-    pub srgba8: Vec<[u8; 4]>,
-    /// What the colours mean.
-    pub legend: Legend,
-}
 
 /// What the render thread holds of the current job.
 #[derive(Clone, Copy, Debug)]
@@ -210,29 +201,4 @@ fn uniform(
             note,
         },
     }
-}
-
-/// Linear radiance to opaque 8-bit sRGB RGBA, in parallel; a run of equal
-/// pixels (a preview's blocks) is converted once.
-pub fn srgba8_of_linear(pixels: &[Vec3]) -> Vec<[u8; 4]> {
-    const CHUNK: usize = 4096;
-    let mut out = vec![[0u8, 0, 0, 255]; pixels.len()];
-    out.par_chunks_mut(CHUNK)
-        .zip(pixels.par_chunks(CHUNK))
-        .for_each(|(out, pixels)| {
-            let mut last: Option<(Vec3, [u8; 4])> = None;
-            for (o, &c) in out.iter_mut().zip(pixels) {
-                let rgba = match last {
-                    Some((previous, rgba)) if previous == c => rgba,
-                    _ => {
-                        let [r, g, b] = linear_to_srgb8(c);
-                        let rgba = [r, g, b, 255];
-                        last = Some((c, rgba));
-                        rgba
-                    }
-                };
-                *o = rgba;
-            }
-        });
-    out
 }

@@ -1,12 +1,18 @@
 //! What the image view shows: the final colour or one of the diagnostic
-//! modes, and the legend that explains a mode's colours.
+//! modes, and the legend that explains a mode's colours. Everything here
+//! runs on the render thread, so that showing a frame costs the UI a copy.
+//!
+//! [`image`] makes a mode's picture from a film or a preview; [`heatmap`]
+//! maps scalars through a [`colormap`]; [`srgb`] encodes linear radiance to
+//! the 8-bit sRGB of every picture raylab shows or writes.
 
 pub mod colormap;
 pub mod heatmap;
 pub mod image;
+pub mod srgb;
 
 use crate::film::aov::Aov;
-use crate::display::colormap::Ramp;
+use colormap::Ramp;
 
 /// A way of showing the render: the final colour, what the primary ray
 /// through P_ij sees, or where the tracer spends its samples and its work.
@@ -109,6 +115,15 @@ pub struct Legend {
     pub range: Option<ScalarRange>,
     /// One line explaining the colours (misses, special cases).
     pub note: String,
+}
+
+/// A mode's picture: opaque 8-bit sRGB RGBA row by row from the top, and its legend.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DisplayImage {
+    /// The pixels.
+    pub srgba8: Vec<[u8; 4]>,
+    /// What the colours mean.
+    pub legend: Legend,
 }
 
 #[cfg(test)]

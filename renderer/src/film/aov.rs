@@ -1,8 +1,8 @@
 //! Arbitrary output variables: what the primary ray through each pixel
 //! centre P_ij sees, beside the final colour.
 
-use crate::shapes::Method;
 use crate::shading::texture::albedo_at;
+use crate::shapes::Method;
 use crate::world::World;
 use glam::Vec3;
 use rayon::prelude::*;

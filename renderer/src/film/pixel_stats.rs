@@ -3,18 +3,10 @@
 //! samples' luminance (Welford's update, so that identical samples give a
 //! variance of exactly zero), and the shape tests the samples cost.
 
-use glam::Vec3;
-
 /// Below this mean luminance the relative variance divides by this floor
 /// instead, so that nearly black pixels do not blow up (their variance is
 /// shown relative to a just-visible grey).
 pub const LUMINANCE_FLOOR: f32 = 1.0e-3;
-
-/// Rec. 709 luminance Y of linear RGB.
-#[inline]
-pub fn luminance(c: Vec3) -> f32 {
-    c.dot(Vec3::new(0.2126, 0.7152, 0.0722))
-}
 
 /// One pixel's running statistics.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

@@ -5,9 +5,9 @@
 //! the very samples that finer previews and the first full pass trace again;
 //! [`PreviewSamples`] keeps them so that they are traced once per edit.
 
-use crate::film::sample_pixel;
-use crate::integrator::RenderOptions;
 use crate::geometry::counters::shape_tests_on_this_thread;
+use crate::integrator::RenderOptions;
+use crate::integrator::sample_pixel;
 use crate::world::World;
 use glam::Vec3;
 use rayon::prelude::*;

@@ -12,10 +12,10 @@
 //! - no ambient term: only emitters, lights and the `<sky>` bring light.
 
 use super::RenderOptions;
-use crate::shading::bsdf::{Bsdf, ShadingFrame};
 use crate::geometry::offset::offset_ray_origin;
 use crate::geometry::ray::Ray;
 use crate::integrator::sampler::{BounceDraw, Sampler};
+use crate::shading::bsdf::{Bsdf, ShadingFrame};
 use crate::shading::texture::albedo_at;
 use crate::world::World;
 use glam::Vec3;

@@ -13,11 +13,11 @@
 
 use super::RenderOptions;
 use super::recorder::{NoRecorder, Note, RayKind, Recorder};
+use crate::geometry::offset::offset_ray_origin;
+use crate::geometry::ray::Ray;
 use crate::shading::bsdf::rough_conductor::RoughConductor;
 use crate::shading::bsdf::{Bsdf, ShadingFrame, conductor_reflectance};
-use crate::geometry::offset::offset_ray_origin;
 use crate::shading::optics::{fresnel_dielectric, reflect, refract};
-use crate::geometry::ray::Ray;
 use crate::shading::texture::albedo_at;
 use crate::world::World;
 use glam::Vec3;

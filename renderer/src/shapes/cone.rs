@@ -3,9 +3,9 @@
 
 use super::bound::BoundingSphere;
 use super::cylinder::shift_near;
+use super::placement::Placement;
 use super::quadratic::solve_quadratic;
 use super::{AreaSample, Surface};
-use super::placement::Placement;
 use crate::geometry::ray::Ray;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;

@@ -2,8 +2,8 @@
 //! zero direction components and rays lying in a face plane never produce NaN.
 
 use super::bound::BoundingSphere;
-use super::{AreaSample, Surface};
 use super::placement::Placement;
+use super::{AreaSample, Surface};
 use crate::geometry::ray::Ray;
 use glam::{Vec2, Vec3};
 

@@ -2,9 +2,9 @@
 //! restricted to 0 ≤ y ≤ H, plus the two cap disks.
 
 use super::bound::BoundingSphere;
+use super::placement::Placement;
 use super::quadratic::solve_quadratic;
 use super::{AreaSample, Surface};
-use super::placement::Placement;
 use crate::geometry::ray::Ray;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;

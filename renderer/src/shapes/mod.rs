@@ -18,9 +18,9 @@ mod torus;
 mod triangle;
 
 pub use cone::Cone;
-pub use placement::Placement;
 pub use cuboid::Cuboid;
 pub use cylinder::Cylinder;
+pub use placement::Placement;
 pub use plane::Plane;
 pub use sphere::{Sphere, SphereQuadratic, SphereRoots};
 pub use torus::Torus;

@@ -89,7 +89,8 @@ mod tests {
 
     #[test]
     fn ray_round_trips_through_object_space() {
-        let f = Placement::from_euler_degrees(Vec3::new(1.0, 2.0, 3.0), Vec3::new(10.0, 20.0, 30.0));
+        let f =
+            Placement::from_euler_degrees(Vec3::new(1.0, 2.0, 3.0), Vec3::new(10.0, 20.0, 30.0));
         let ray = Ray::new(Vec3::new(-4.0, 5.0, 6.0), Vec3::new(0.6, 0.0, 0.8));
         let local = f.ray_to_object(&ray);
         let back = f.point_to_world(local.at(2.5));

@@ -1,8 +1,8 @@
 //! The torus (√(x² + z²) − R)² + y² = r² in object space: a quartic in α,
 //! formed in f64 from an origin first moved onto the bounding sphere.
 
-use super::{AreaSample, Surface};
 use super::placement::Placement;
+use super::{AreaSample, Surface};
 use crate::geometry::ray::Ray;
 use glam::{DVec3, Vec2, Vec3};
 
@@ -120,7 +120,8 @@ impl Torus {
         };
         let c = self.major * radial;
         let normal = (p - c).try_normalize().unwrap_or(Vec3::Y);
-        self.placement.surface_to_world(c + self.minor * normal, normal)
+        self.placement
+            .surface_to_world(c + self.minor * normal, normal)
     }
 }
 
@@ -271,7 +272,9 @@ mod tests {
             let phi = std::f32::consts::TAU * rng.next_f32();
             let radial = Vec3::new(phi.cos(), 0.0, phi.sin());
             let n_local = theta.cos() * radial + Vec3::new(0.0, theta.sin(), 0.0);
-            let p = t.placement.point_to_world(t.major * radial + t.minor * n_local);
+            let p = t
+                .placement
+                .point_to_world(t.major * radial + t.minor * n_local);
             let normal = t.placement.vector_to_world(n_local);
             let u = loop {
                 let u = rng.next_direction();

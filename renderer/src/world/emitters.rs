@@ -10,12 +10,12 @@
 //! other shape over its area. An infinite plane cannot be sampled: rays find
 //! it by BSDF sampling alone.
 
-use crate::film::pixel_stats::luminance;
-use crate::world::placed_mesh::PlacedMesh;
 use crate::geometry::ray::Ray;
 use crate::shapes::{Method, Shape, Triangle};
 use crate::world::Hit;
+use crate::world::placed_mesh::PlacedMesh;
 use glam::{Vec2, Vec3};
+use scene::color::luminance;
 use std::f32::consts::TAU;
 
 /// No emitter.

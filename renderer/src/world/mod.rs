@@ -132,9 +132,8 @@ impl World {
     /// the geometric normal elsewhere.
     pub fn shading_normal(&self, hit: Hit, surface: &Surface) -> Vec3 {
         match hit.triangle {
-            Some(t) => {
-                self.meshes[t.instance as usize].shading_normal(&t.mesh_hit(hit.alpha), surface.normal)
-            }
+            Some(t) => self.meshes[t.instance as usize]
+                .shading_normal(&t.mesh_hit(hit.alpha), surface.normal),
             None => surface.normal,
         }
     }

@@ -2,8 +2,8 @@
 //! sharing its bottom-level BVH with every other instance of the same mesh.
 
 use crate::accel::{Aabb, Instance, MeshBvh, MeshHit};
-use crate::shading::image_texture;
 use crate::geometry::ray::Ray;
+use crate::shading::image_texture;
 use crate::shapes::Surface;
 use glam::{Affine3A, Vec2, Vec3};
 use scene::{Material, Texture, TriangleMesh};

@@ -31,25 +31,44 @@ pub fn tessellate(geometry: &Geometry, focus: Vec3, plane_extent: f32, out: &mut
             center,
             size,
             rotate,
-        } => cuboid(Placement::from_euler_degrees(center, rotate), 0.5 * size, out),
+        } => cuboid(
+            Placement::from_euler_degrees(center, rotate),
+            0.5 * size,
+            out,
+        ),
         Geometry::Cylinder {
             base,
             radius,
             height,
             rotate,
-        } => cylinder(Placement::from_euler_degrees(base, rotate), radius, height, out),
+        } => cylinder(
+            Placement::from_euler_degrees(base, rotate),
+            radius,
+            height,
+            out,
+        ),
         Geometry::Cone {
             base,
             radius,
             height,
             rotate,
-        } => cone(Placement::from_euler_degrees(base, rotate), radius, height, out),
+        } => cone(
+            Placement::from_euler_degrees(base, rotate),
+            radius,
+            height,
+            out,
+        ),
         Geometry::Torus {
             center,
             major,
             minor,
             rotate,
-        } => torus(Placement::from_euler_degrees(center, rotate), major, minor, out),
+        } => torus(
+            Placement::from_euler_degrees(center, rotate),
+            major,
+            minor,
+            out,
+        ),
         Geometry::Triangle { t0, t1, t2 } => {
             let normal = (t1 - t0).cross(t2 - t0).normalize_or(Vec3::Y);
             for position in [t0, t1, t2] {

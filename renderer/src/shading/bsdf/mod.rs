@@ -10,11 +10,11 @@
 //! density in solid angle, and `sample` draws wi from the whole BSDF.
 
 pub mod dielectric;
-pub mod shading_frame;
 pub mod ggx;
 pub mod lambert;
 pub mod rough_conductor;
 pub mod rough_dielectric;
+pub mod shading_frame;
 
 pub use shading_frame::ShadingFrame;
 
