@@ -37,6 +37,7 @@ use rayon::prelude::*;
 use renderer::accel::mesh::BuildQuality;
 use renderer::accel::{Aabb, MeshBvh, SceneBvh, reference};
 use renderer::diagnostics::generate;
+use renderer::diagnostics::quantile::quantile_by;
 use renderer::diagnostics::throughput;
 use renderer::geometry::ray::Ray;
 use renderer::integrator::sampler::Sampler;
@@ -88,8 +89,7 @@ fn args() -> Args {
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
+    quantile_by(&mut v, 0.5, f64::total_cmp).expect("at least one timing")
 }
 
 fn pool(threads: usize) -> rayon::ThreadPool {

@@ -96,7 +96,7 @@ impl Instance {
 mod tests {
     use super::*;
     use crate::accel::reference;
-    use crate::accel::test_meshes::grid;
+    use crate::accel::tests::meshes::grid;
     use crate::integrator::sampler::Sampler;
     use glam::Quat;
 

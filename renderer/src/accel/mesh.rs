@@ -9,7 +9,7 @@
 
 mod packet;
 
-use super::collapse::collapse;
+use super::ploc::build_ploc;
 use super::scene::Aabb;
 use super::simd::{prefetch, with_widest_simd};
 use super::stack::Stack;
@@ -18,10 +18,8 @@ use super::wide::{ChildRef, WIDTH, WideNode, WideRay};
 use super::wide_build::build_wide;
 use crate::geometry::ray::Ray;
 use crate::shapes::WatertightRay;
-use glam::{Vec3, Vec3A};
+use glam::Vec3;
 use obvhs::BvhBuildParams;
-use obvhs::bvh2::reinsertion::ReinsertionOptimizer;
-use obvhs::ploc::PlocBuilder;
 use packet::{LANES, LaneBest, Packet};
 
 /// The closest hit of a ray with a mesh: P0 + α v = (1 − β − γ) t0 + β t1 + γ t2.
@@ -400,50 +398,11 @@ fn mesh_hit(best: LaneBest) -> Option<MeshHit> {
     })
 }
 
-/// The tree of obvhs's PLOC builder with `params`, collapsed to our nodes:
-/// (nodes, packs, the box around every triangle).
-fn build_ploc(
-    positions: &[Vec3],
-    triangles: &[[u32; 3]],
-    params: BvhBuildParams,
-) -> (Vec<WideNode>, Vec<TrianglePack>, Aabb) {
-    use rayon::prelude::*;
-    let corners = |t: &[u32; 3]| t.map(|i| positions[i as usize]);
-    let boxes: Vec<obvhs::aabb::Aabb> = triangles
-        .par_iter()
-        .map(|t| {
-            let [a, b, c] = corners(t);
-            obvhs::aabb::Aabb::new(Vec3A::from(a.min(b).min(c)), Vec3A::from(a.max(b).max(c)))
-        })
-        .collect();
-    let bounds = boxes
-        .par_iter()
-        .map(|b| Aabb {
-            min: b.min.into(),
-            max: b.max.into(),
-        })
-        .reduce(|| Aabb::EMPTY, Aabb::union);
-    if triangles.is_empty() {
-        return (Vec::new(), Vec::new(), bounds);
-    }
-    let mut bvh2 = PlocBuilder::with_capacity(boxes.len()).build(
-        params.ploc_search_distance,
-        &boxes,
-        (0..triangles.len() as u32).collect(),
-        params.sort_precision,
-        params.search_depth_threshold,
-    );
-    drop(boxes);
-    ReinsertionOptimizer::default().run(&mut bvh2, params.reinsertion_batch_ratio, None);
-    let (nodes, packs) = collapse(&bvh2, |i| corners(&triangles[i as usize]));
-    (nodes, packs, bounds)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::accel::reference;
-    use crate::accel::test_meshes::grid;
+    use crate::accel::tests::meshes::grid;
     use crate::accel::wide::LEAF_TRIANGLES;
 
     #[test]

@@ -24,10 +24,10 @@
 //! them for the widest SIMD the CPU has.
 
 mod binned_sah;
-mod collapse;
 mod huge_pages;
 pub mod instance;
 pub mod mesh;
+mod ploc;
 pub mod reference;
 pub mod scene;
 mod simd;
@@ -38,9 +38,7 @@ pub mod wide;
 mod wide_build;
 
 #[cfg(test)]
-mod no_lost_hits_tests;
-#[cfg(test)]
-pub(crate) mod test_meshes;
+mod tests;
 
 pub use self::scene::{Aabb, SceneBvh};
 pub use instance::Instance;

@@ -1,6 +1,7 @@
 //! Ray-casting throughput, measured the way other ray tracers are compared:
 //! closest-hit queries on a fixed set of rays, on one thread and on all.
 
+use super::quantile::quantile_by;
 use crate::World;
 use crate::accel::MeshBvh;
 use crate::geometry::ray::Ray;
@@ -99,8 +100,7 @@ pub fn cast_closest_batched(world: &World, rays: &[Ray]) -> Cast {
 /// shared, so one run says little.
 pub fn median_of(runs: usize, mut measure: impl FnMut() -> Cast) -> Cast {
     let mut casts: Vec<Cast> = (0..runs.max(1)).map(|_| measure()).collect();
-    casts.sort_by(|a, b| a.seconds.total_cmp(&b.seconds));
-    casts[casts.len() / 2]
+    quantile_by(&mut casts, 0.5, |a, b| a.seconds.total_cmp(&b.seconds)).expect("at least one run")
 }
 
 /// Runs `f` on a rayon pool of `threads` threads.

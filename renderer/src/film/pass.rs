@@ -1,14 +1,14 @@
 //! Accumulating a pass: one sample for every pixel that needs one, traced
 //! in parallel over bands of rows. A pixel's k-th sample is sample index k
-//! of [`sample_pixel`], so a film is the same for any number of threads and
+//! of [`sample_pixel`](crate::integrator::sample_pixel), so a film is the same for any number of threads and
 //! every sample can be re-traced exactly.
 
 use super::Film;
 use super::preview::PreviewSamples;
-use crate::geometry::counters::{rays_on_this_thread, shape_tests_on_this_thread};
+use super::reuse::{Known, for_each_with_known, trace_with_cost};
+use crate::geometry::counters::rays_on_this_thread;
 use crate::integrator::RenderOptions;
 use crate::integrator::adaptive::{Adaptive, pixels_needing_samples};
-use crate::integrator::sample_pixel;
 use crate::world::World;
 use rayon::prelude::*;
 use scene::color::luminance;
@@ -76,7 +76,7 @@ impl Film {
                 pixels_needing_samples(width, self.height as usize, &variance, adaptive.threshold)
             });
         let needing = needing.as_deref();
-        let (discarded, skipped, rays, traced): (u64, u64, u64, u64) = self
+        let (discarded, skipped, rays, samples): (u64, u64, u64, u64) = self
             .sum
             .par_chunks_mut(width * BAND_ROWS)
             .zip(self.stats.par_chunks_mut(width * BAND_ROWS))
@@ -96,48 +96,33 @@ impl Film {
                 {
                     let j = (band * BAND_ROWS + row) as u32;
                     let needing_row = needing.map(|n| &n[j as usize * width..][..width]);
-                    // Blocks of pixels whose first sample may be known (no
-                    // division per pixel): the whole row when none is.
-                    let known_row = known.and_then(|k| k.row(j));
-                    let stride = known_row.map_or(width, |row| row.stride as usize);
-                    for (block, ((accs, stats), counts)) in accs
-                        .chunks_mut(stride)
-                        .zip(stats.chunks_mut(stride))
-                        .zip(counts.chunks_mut(stride))
-                        .enumerate()
-                    {
-                        for (k, ((acc, stat), count)) in
-                            accs.iter_mut().zip(stats).zip(counts).enumerate()
-                        {
-                            let i = block * stride + k;
-                            if needing_row.is_some_and(|n| !n[i]) {
-                                continue;
-                            }
-                            let i = i as u32;
-                            let (value, tests) = match known_row {
-                                Some(row) if k == 0 => {
-                                    (row.values[block], u64::from(row.tests[block]))
-                                }
-                                _ => {
-                                    let before = shape_tests_on_this_thread();
-                                    let value = sample_pixel(world, options, i, j, *count);
-                                    (value, shape_tests_on_this_thread() - before)
-                                }
-                            };
-                            *count += 1;
-                            traced += 1;
-                            stat.add_cost(tests);
-                            // Welford's weight of this sample. A pixel that
-                            // lost a NaN sample still counts it (rare, and
-                            // the mean then treats it as black).
-                            if value.is_finite() {
-                                *acc += value;
-                                stat.add(luminance(value), 1.0 / *count as f32);
-                            } else {
-                                bad += 1;
-                            }
+                    let known_row = known.and_then(|k| k.row(j)).map(|row| Known {
+                        values: row.values,
+                        tests: row.tests,
+                        step: row.stride as usize,
+                    });
+                    for_each_with_known(width, known_row, |i, sample| {
+                        if needing_row.is_some_and(|n| !n[i]) {
+                            return;
                         }
-                    }
+                        let (acc, stat, count) = (&mut accs[i], &mut stats[i], &mut counts[i]);
+                        let (value, tests) = match sample {
+                            Some((value, tests)) => (value, u64::from(tests)),
+                            None => trace_with_cost(world, options, i as u32, j, *count),
+                        };
+                        *count += 1;
+                        traced += 1;
+                        stat.add_cost(tests);
+                        // Welford's weight of this sample. A pixel that lost
+                        // a NaN sample still counts it (rare, and the mean
+                        // then treats it as black).
+                        if value.is_finite() {
+                            *acc += value;
+                            stat.add(luminance(value), 1.0 / *count as f32);
+                        } else {
+                            bad += 1;
+                        }
+                    });
                 }
                 let rays = rays_on_this_thread() - rays_before;
                 (bad, 0, rays, traced)
@@ -148,8 +133,8 @@ impl Film {
             );
         self.discarded += discarded;
         self.rays += rays;
-        self.samples += traced;
-        self.last_pass_samples = traced;
+        self.samples += samples;
+        self.last_pass_samples = samples;
         self.passes += 1;
         skipped == 0
     }

@@ -5,15 +5,15 @@
 //! the very samples that finer previews and the first full pass trace again;
 //! [`PreviewSamples`] keeps them so that they are traced once per edit.
 
-use crate::geometry::counters::shape_tests_on_this_thread;
+use super::reuse::{Known, for_each_with_known, trace_with_cost};
 use crate::integrator::RenderOptions;
-use crate::integrator::sample_pixel;
 use crate::world::World;
 use glam::Vec3;
 use rayon::prelude::*;
 
 /// Sample 0 of pixel (i, j) for every i and j that are multiples of the
-/// stride, exactly as [`sample_pixel`] returns it (NaN and infinities kept).
+/// stride, exactly as [`sample_pixel`](crate::integrator::sample_pixel)
+/// returns it (NaN and infinities kept).
 #[derive(Clone, Debug)]
 pub struct PreviewSamples {
     stride: u32,
@@ -62,25 +62,18 @@ impl PreviewSamples {
             .enumerate()
             .for_each(|(row, (out, out_tests))| {
                 let j = row as u32 * stride;
-                // Runs of `ratio` samples whose first one may be known (no
-                // division per sample): the whole row when none is.
-                let known = coarser.and_then(|c| c.row(j));
-                let ratio = known.map_or(out.len(), |r| (r.stride / stride) as usize);
-                let runs = out.chunks_mut(ratio).zip(out_tests.chunks_mut(ratio));
-                for (run, (out, out_tests)) in runs.enumerate() {
-                    for (k, (value, cost)) in out.iter_mut().zip(out_tests).enumerate() {
-                        let i = ((run * ratio + k) as u32) * stride;
-                        (*value, *cost) = match known {
-                            Some(r) if k == 0 => (r.values[run], r.tests[run]),
-                            _ => {
-                                let before = shape_tests_on_this_thread();
-                                let value = sample_pixel(world, options, i, j, 0);
-                                let spent = shape_tests_on_this_thread() - before;
-                                (value, u32::try_from(spent).unwrap_or(u32::MAX))
-                            }
-                        };
-                    }
-                }
+                let known = coarser.and_then(|c| c.row(j)).map(|row| Known {
+                    values: row.values,
+                    tests: row.tests,
+                    step: (row.stride / stride) as usize,
+                });
+                for_each_with_known(out.len(), known, |k, sample| {
+                    let i = k as u32 * stride;
+                    (out[k], out_tests[k]) = sample.unwrap_or_else(|| {
+                        let (value, spent) = trace_with_cost(world, options, i, j, 0);
+                        (value, u32::try_from(spent).unwrap_or(u32::MAX))
+                    });
+                });
             });
         Self {
             stride,
@@ -188,6 +181,7 @@ pub fn preview(world: &World, options: &RenderOptions, stride: u32) -> Vec<Vec3>
 mod tests {
     use super::*;
     use crate::film::Film;
+    use crate::integrator::sample_pixel;
     use scene::{Object, Scene, Shape};
 
     fn world() -> World {

@@ -12,6 +12,7 @@ pub mod path;
 pub mod recorder;
 mod sample_pixel;
 pub mod sampler;
+mod shading_context;
 pub mod whitted;
 
 pub use adaptive::Adaptive;
@@ -19,4 +20,5 @@ pub use options::{Integrator, RenderOptions};
 pub use path::path;
 pub use recorder::{NoRecorder, Note, RayKind, Recorder};
 pub use sample_pixel::{sample_offset, sample_pixel};
+pub use shading_context::ShadingContext;
 pub use whitted::{whitted, whitted_recorded};

@@ -2,20 +2,14 @@
 //! sampler's wrap modes, sRGB texels decoded to linear RGB.
 
 use glam::{Vec2, Vec3};
+use scene::color::srgb_to_linear;
 use scene::{Texture, Wrap};
 use std::sync::LazyLock;
 
-/// sRGB-encoded byte → linear value, for every byte.
-static SRGB_TO_LINEAR: LazyLock<[f32; 256]> = LazyLock::new(|| {
-    std::array::from_fn(|k| {
-        let c = k as f32 / 255.0;
-        if c <= 0.04045 {
-            c / 12.92
-        } else {
-            ((c + 0.055) / 1.055).powf(2.4)
-        }
-    })
-});
+/// sRGB-encoded byte → linear value, for every byte ([`srgb_to_linear`] of
+/// byte / 255, looked up instead of a `powf` per texel).
+static SRGB_TO_LINEAR: LazyLock<[f32; 256]> =
+    LazyLock::new(|| std::array::from_fn(|k| srgb_to_linear(k as f32 / 255.0)));
 
 /// The texel index along one axis of `size` texels for integer coordinate `k`.
 fn wrap(k: i64, size: u32, mode: Wrap) -> usize {

@@ -1,17 +1,65 @@
-//! From obvhs's binary BVH to our 8-wide one: each wide node takes a binary
-//! node's two children and, while it has fewer than eight, opens the child
-//! with the largest surface area (the one rays enter most often) into its
-//! own two; a subtree of at most [`LEAF_TRIANGLES`] triangles becomes a
-//! leaf. Child boxes are the binary nodes' boxes, which obvhs computes as
-//! exact unions of the triangles' boxes. The nodes are laid out first (one
-//! pass, no triangle touched), then the leaves' triangles are copied into
-//! packs in parallel.
-
+//! The comparison builder: obvhs's PLOC (a binary tree, built bottom up in
+//! parallel) collapsed to our 8-wide nodes. [`MeshBvh::build_with`] selects
+//! it by [`BuildQuality`]; the `bvh` benchmark compares it with our binned
+//! SAH, which builds faster and gives faster trees, so nothing renders with it.
+//!
+//! The collapse: each wide node takes a binary node's two children and, while
+//! it has fewer than eight, opens the child with the largest surface area
+//! (the one rays enter most often) into its own two; a subtree of at most
+//! [`LEAF_TRIANGLES`] triangles becomes a leaf. Child boxes are the binary
+//! nodes' boxes, which obvhs computes as exact unions of the triangles'
+//! boxes. The nodes are laid out first (one pass, no triangle touched), then
+//! the leaves' triangles are copied into packs in parallel.
+//!
+//! [`MeshBvh::build_with`]: super::MeshBvh::build_with
+//! [`BuildQuality`]: super::mesh::BuildQuality
+use super::scene::Aabb;
 use super::triangle_pack::{PACK, TrianglePack};
 use super::wide::{ChildRef, LEAF_TRIANGLES, WIDTH, WideNode};
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
+use obvhs::BvhBuildParams;
 use obvhs::bvh2::Bvh2;
+use obvhs::bvh2::reinsertion::ReinsertionOptimizer;
+use obvhs::ploc::PlocBuilder;
 use rayon::prelude::*;
+
+/// The tree of obvhs's PLOC builder with `params`, collapsed to our nodes:
+/// (nodes, packs, the box around every triangle).
+pub(super) fn build_ploc(
+    positions: &[Vec3],
+    triangles: &[[u32; 3]],
+    params: BvhBuildParams,
+) -> (Vec<WideNode>, Vec<TrianglePack>, Aabb) {
+    let corners = |t: &[u32; 3]| t.map(|i| positions[i as usize]);
+    let boxes: Vec<obvhs::aabb::Aabb> = triangles
+        .par_iter()
+        .map(|t| {
+            let [a, b, c] = corners(t);
+            obvhs::aabb::Aabb::new(Vec3A::from(a.min(b).min(c)), Vec3A::from(a.max(b).max(c)))
+        })
+        .collect();
+    let bounds = boxes
+        .par_iter()
+        .map(|b| Aabb {
+            min: b.min.into(),
+            max: b.max.into(),
+        })
+        .reduce(|| Aabb::EMPTY, Aabb::union);
+    if triangles.is_empty() {
+        return (Vec::new(), Vec::new(), bounds);
+    }
+    let mut bvh2 = PlocBuilder::with_capacity(boxes.len()).build(
+        params.ploc_search_distance,
+        &boxes,
+        (0..triangles.len() as u32).collect(),
+        params.sort_precision,
+        params.search_depth_threshold,
+    );
+    drop(boxes);
+    ReinsertionOptimizer::default().run(&mut bvh2, params.reinsertion_batch_ratio, None);
+    let (nodes, packs) = collapse(&bvh2, |i| corners(&triangles[i as usize]));
+    (nodes, packs, bounds)
+}
 
 /// The wide nodes (node 0 the root) and leaf packs of `bvh2`, whose
 /// primitives are triangles with corners `corners(primitive)`. An empty
@@ -185,7 +233,7 @@ fn leaf_packs(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::accel::test_meshes::grid;
+    use crate::accel::tests::meshes::grid;
     use glam::Vec3A;
     use obvhs::ploc::PlocBuilder;
 

@@ -4,9 +4,9 @@
 //! ±0 direction components, t_min > 0), closest hits equal brute force (same
 //! α; a triangle hit at that α, with its β, γ) and any-hit agrees.
 
-use super::mesh::{MeshBvh, MeshHit};
-use super::reference;
-use super::test_meshes::{grid, mapped, merge};
+use super::meshes::{grid, mapped, merge};
+use crate::accel::mesh::{MeshBvh, MeshHit};
+use crate::accel::reference;
 use crate::diagnostics::generate::rays_at_shared_edges;
 use crate::geometry::ray::Ray;
 use crate::integrator::sampler::Sampler;
@@ -445,11 +445,11 @@ fn scene_bvh_over_triangle_boxes_equals_brute_force_at_shared_edges() {
     // testing each triangle: the Ize slab test must not lose any.
     let n = 60;
     let (p, t) = grid(n, n, 0.0);
-    let boxes: Vec<super::Aabb> = t
+    let boxes: Vec<crate::accel::Aabb> = t
         .iter()
-        .map(|tri| super::Aabb::around(tri.map(|k| p[k as usize])))
+        .map(|tri| crate::accel::Aabb::around(tri.map(|k| p[k as usize])))
         .collect();
-    let bvh = super::SceneBvh::build(&boxes);
+    let bvh = crate::accel::SceneBvh::build(&boxes);
     let rays = rays_at_shared_edges(n, 20_000, 8);
     let lost = rays
         .par_iter()
