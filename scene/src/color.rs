@@ -50,15 +50,16 @@ pub fn parse_color(text: &str) -> Result<Vec3, String> {
         return Ok(srgb_bytes_to_linear(rgb));
     }
     if t.starts_with(|c: char| c.is_ascii_alphabetic()) {
-        let hint = crate::read::suggest(t, csscolorparser::NAMED_COLORS.keys().map(|k| k.as_str()))
-            .map(|s| format!("; did you mean \"{s}\"?"))
-            .unwrap_or_default();
+        let hint =
+            crate::suggest::suggest(t, csscolorparser::NAMED_COLORS.keys().map(|k| k.as_str()))
+                .map(|s| format!("; did you mean \"{s}\"?"))
+                .unwrap_or_default();
         return Err(format!(
             "unknown colour name {text:?}{hint} (expected a CSS colour name such as \"red\", \
              \"#rrggbb\", or three linear numbers)"
         ));
     }
-    let v = crate::read::parse_triple(t).map_err(|why| {
+    let v = crate::numbers::parse_triple(t).map_err(|why| {
         format!(
             "expected a colour name such as \"red\", \"#rrggbb\", or three linear numbers \
              separated by spaces or commas, got {text:?} ({why})"

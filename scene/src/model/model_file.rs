@@ -6,9 +6,9 @@
 
 use crate::mesh::TriangleMesh;
 use crate::model::Light;
-use crate::resolved::Material;
+use crate::model::Material;
 use glam::{Mat4, Vec3};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::{Arc, OnceLock};
 
 /// Everything raylab takes from one model file. Shared through an `Arc` by
@@ -152,24 +152,4 @@ impl ModelFile {
             .map(|i| self.meshes[i.mesh as usize].triangles.len())
             .sum()
     }
-}
-
-/// Loads a `.gltf` (external or embedded buffers) or `.glb` file.
-///
-/// What raylab does not support (Draco, skins, morph targets, animations,
-/// orthographic cameras…) is listed in [`ModelFile::warnings`], once per
-/// feature, and the rest loads. A file that cannot be read, parsed or
-/// trusted (an index out of range, a non-finite position, a missing buffer…)
-/// is a [`ModelError`] naming the mesh, primitive, accessor or buffer.
-/// The material mapping is documented in `scene/src/gltf/materials.rs`.
-pub fn load_model(path: &Path) -> Result<ModelFile, ModelError> {
-    crate::gltf::load(path)
-}
-
-/// Loads a model from bytes already in memory, as though read from `path`:
-/// errors name `path`, and relative buffer and image URIs resolve beside it.
-/// The fuzz target and the hostile-file tests use it; [`load_model`] reads
-/// the file and calls it.
-pub fn load_model_bytes(bytes: Vec<u8>, path: &Path) -> Result<ModelFile, ModelError> {
-    crate::gltf::load_bytes(bytes, path)
 }

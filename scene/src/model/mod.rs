@@ -5,8 +5,10 @@
 //! fills them in. Everything else carries its fixed default, and the writer
 //! omits values equal to it, so a saved scene says no more than it needs.
 
-use crate::model_file::ModelFile;
+pub mod model_file;
+
 use glam::Vec3;
+use model_file::ModelFile;
 use std::sync::Arc;
 
 /// A whole scene: camera, lights, sky, named materials and objects, in document order.
@@ -145,6 +147,28 @@ impl BaseMaterial {
     pub fn from_name(name: &str) -> Option<Self> {
         Self::ALL.into_iter().find(|m| m.name() == name)
     }
+}
+
+/// A concrete material: a base with every parameter decided.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Material {
+    /// Which built-in behaviour.
+    pub base: BaseMaterial,
+    /// Linear RGB albedo (matte, plastic, marble), reflectance (mirror, metal) or tint (glass).
+    pub color: Vec3,
+    /// Index of refraction inside (glass).
+    pub ior: f32,
+    /// Blinn-Phong exponent.
+    pub shininess: f32,
+    /// Blinn-Phong highlight strength in [0, 1].
+    pub specular: f32,
+    /// Mirror-reflected fraction in [0, 1] (plastic, marble).
+    pub reflectivity: f32,
+    /// Microfacet roughness in [0, 1] of mirror, metal and glass (GGX α =
+    /// roughness²; 0 is perfectly smooth).
+    pub roughness: f32,
+    /// Emitted radiance from the front side.
+    pub emission: Vec3,
 }
 
 /// Material parameters that override a base material; `None` keeps the base's value.
