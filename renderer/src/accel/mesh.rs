@@ -1,7 +1,7 @@
 //! The bottom level: a BVH over one triangle mesh, built as 8-wide nodes
 //! with exact boxes by our binned-SAH builder ([`super::wide_build`]; or,
 //! for comparison, by obvhs's PLOC as a binary tree collapsed to the same
-//! nodes, [`super::collapse`]) and traversed by our conservative code
+//! nodes, [`super::ploc`]) and traversed by our conservative code
 //! ([`super::wide`]), nearest child first. Leaf triangles are copied into
 //! packs of four ([`TrianglePack`]) tested with the same watertight
 //! arithmetic as [`crate::shapes::Triangle`] ([`WatertightRay`]), so

@@ -14,7 +14,7 @@
 //!   intersects each item.
 //! - [`Instance`]: an affine placement of a mesh, mapping rays into the mesh's
 //!   space so that α is unchanged.
-//! - [`reference`]: brute force over every triangle, the oracle of the tests.
+//! - [`reference`](mod@reference): brute force over every triangle, the oracle of the tests.
 //!
 //! Why obvhs's own traversal is not used: its node test has no conservative
 //! t_far correction (Ize, "Robust BVH Ray Traversal", JCGT 2013), its CWBVH

@@ -64,7 +64,7 @@ impl ChildRef {
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(32))]
 pub struct WideNode {
-    /// planes[2k][i] is child i's min along axis k, planes[2k + 1][i] its
+    /// `planes[2k][i]` is child i's min along axis k, `planes[2k + 1][i]` its
     /// max; empty slots have min = +∞ and max = −∞ (never hit).
     planes: [[f32; WIDTH]; 6],
     /// The children; [`ChildRef::EMPTY`] for an empty slot.

@@ -1,8 +1,8 @@
 //! Integrators: how the radiance of a pixel's sample is estimated, and the
 //! sampling that drives them.
 //!
-//! [`sample_pixel`] is the one entry point of the film, the previews and the
-//! inspector: the camera ray of a sample, then [`whitted`] or [`path`] with
+//! [`sample_pixel()`] is the one entry point of the film, the previews and the
+//! inspector: the camera ray of a sample, then [`whitted()`] or [`path()`] with
 //! the sample's own random numbers ([`sampler`]). [`Recorder`] lets the
 //! pixel inspector watch every ray an integrator traces.
 

@@ -16,7 +16,7 @@ pub struct Hit {
 /// A triangle of a placed mesh, and where on it a ray hit.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TriangleRef {
-    /// Index into [`World::meshes`].
+    /// Index into [`World::meshes`](super::World::meshes).
     pub instance: u32,
     /// The triangle's index in its mesh.
     pub triangle: u32,

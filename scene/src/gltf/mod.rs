@@ -1,4 +1,4 @@
-//! glTF 2.0 import: [`load`] reads a `.gltf` (external or `data:` buffers
+//! glTF 2.0 import: [`load_model`] reads a `.gltf` (external or `data:` buffers
 //! and images) or a `.glb` into a [`ModelFile`].
 //!
 //! One job per file: `document` (GLB container, JSON, validation),

@@ -1,7 +1,7 @@
 //! The editable scene: exactly what a scene file says, nothing derived.
 //!
 //! Anchors that have context-dependent defaults (an object's position, the
-//! camera's eye and toward vector) are `Option`s here; [`crate::resolve`]
+//! camera's eye and toward vector) are `Option`s here; [`crate::resolve()`]
 //! fills them in. Everything else carries its fixed default, and the writer
 //! omits values equal to it, so a saved scene says no more than it needs.
 
