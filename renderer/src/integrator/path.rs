@@ -59,7 +59,7 @@ pub fn path(world: &World, ray: &Ray, options: &RenderOptions, sampler: &mut Sam
             radiance += throughput * world.sky;
             break;
         };
-        let at = ShadingContext::new(world, &ray, hit);
+        let at = ShadingContext::new(world, &ray, &hit);
         let material = &at.material;
         if at.front && material.emission != Vec3::ZERO {
             let weight = match (previous, world.emitters.index_of(&hit)) {

@@ -55,7 +55,7 @@ fn trace<R: Recorder>(
         rec.miss(node, background);
         return background;
     };
-    let at = ShadingContext::new(world, ray, hit);
+    let at = ShadingContext::new(world, ray, &hit);
     rec.hit(node, ray, hit, &at.surface, at.front);
     let (material, front, n, point) = (&at.material, at.front, at.shading_normal, at.point());
     let mut radiance = if front { material.emission } else { Vec3::ZERO };
