@@ -125,7 +125,7 @@ pub fn debug_view(
     path: Option<PathBuf>,
     frames: u32,
     show_debug: bool,
-    gpu: &super::headless_gpu::HeadlessGpu,
+    gpu: &crate::bench::headless_gpu::HeadlessGpu,
     size: egui::Vec2,
 ) -> anyhow::Result<DebugViewReport> {
     let ctx = egui::Context::default();

@@ -115,14 +115,14 @@ impl Document {
     }
 
     /// Writes the scene to `path` atomically, keeping the file it replaces
-    /// as `path.bak` (see [`crate::atomic_file`]), and makes it the
+    /// as `path.bak` (see [`crate::io::atomic_file`]), and makes it the
     /// document's file. A failed save changes nothing: not the file, not
     /// the document (still unsaved, still pointing where it did).
     pub fn save_as(&mut self, path: &Path) -> std::io::Result<()> {
         let mut scene = self.state.scene.clone();
         rebase_mesh_sources(&mut scene, path);
         let text = scene::write_string(&scene);
-        crate::atomic_file::replace_keeping_backup(path, text.as_bytes())?;
+        crate::io::atomic_file::replace_keeping_backup(path, text.as_bytes())?;
         self.state.scene = scene;
         self.path = Some(path.to_path_buf());
         self.saved = Some(self.state.scene.clone());

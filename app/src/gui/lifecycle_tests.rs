@@ -18,7 +18,7 @@ use std::time::{Duration, Instant};
 const WORKER: &str = "raylab-render";
 
 /// The generated knot's triangles.
-const KNOT: usize = crate::scene_spec::KNOT_TRIANGLES;
+const KNOT: usize = crate::bench::scene_spec::KNOT_TRIANGLES;
 
 /// Steps until a full pass of the newest job is on screen: the tracer is
 /// then refining, not previewing.

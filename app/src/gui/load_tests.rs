@@ -441,7 +441,7 @@ fn scene_spec_knot() -> usize {
     std::env::var("RAYLAB_STRESS_TRIANGLES")
         .ok()
         .and_then(|n| n.parse().ok())
-        .unwrap_or(crate::scene_spec::KNOT_TRIANGLES)
+        .unwrap_or(crate::bench::scene_spec::KNOT_TRIANGLES)
 }
 
 #[test]

@@ -12,7 +12,6 @@ mod document;
 mod edits;
 mod error_plot;
 mod files;
-pub mod headless_gpu;
 mod history;
 mod image_view;
 mod inspected;
@@ -29,7 +28,7 @@ mod screenshot;
 mod status_bar;
 mod widgets;
 
-use crate::output::Provenance;
+use crate::io::output::Provenance;
 use commands::Command;
 pub use document::Document;
 use document::RenderSettings;
@@ -747,8 +746,9 @@ impl RaylabApp {
             DialogKind::SaveImage => self.frame.as_ref().map(|f| {
                 let name = self.doc.display_name();
                 let name = screenshot::default_file_name(&name, f.step, f.legend.display);
-                let free =
-                    crate::output_path::free_file(&folder.unwrap_or(Path::new(".")).join(&name));
+                let free = crate::io::output_path::free_file(
+                    &folder.unwrap_or(Path::new(".")).join(&name),
+                );
                 free.file_name()
                     .map_or(name, |n| n.to_string_lossy().into_owned())
             }),

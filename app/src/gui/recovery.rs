@@ -105,7 +105,7 @@ pub fn write(file: &Path, scene: &Scene, source: Option<&Path>) -> std::io::Resu
         std::fs::create_dir_all(dir)?;
     }
     let text = format!("{}\n{text}", header(source));
-    crate::atomic_file::replace(file, text.as_bytes())
+    crate::io::atomic_file::replace(file, text.as_bytes())
 }
 
 /// Reads a recovery file: the scene and the file it belongs to. Mesh

@@ -3,7 +3,7 @@
 //! the clipboard. PNG and the clipboard take the picture as shown, in its
 //! display mode; EXR always takes the linear colour.
 
-use crate::output::{self, Format, Provenance};
+use crate::io::output::{self, Format, Provenance};
 use renderer::display::Display;
 use renderer::progressive::{RenderedFrame, Step};
 use std::path::Path;

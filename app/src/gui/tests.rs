@@ -346,7 +346,7 @@ fn saving_the_image_writes_the_tonemapped_accumulation_buffer_and_the_camera() {
         expected,
         "PNG pixels = tonemapped buffer"
     );
-    let text = crate::output::read_png_provenance(&path).expect("text chunks");
+    let text = crate::io::output::read_png_provenance(&path).expect("text chunks");
     assert!(text.get("raylab:camera").is_some_and(|c| c.contains("P0=")));
     assert!(
         text.get("raylab:scene")
@@ -643,13 +643,13 @@ fn a_loaded_reference_plots_each_pass_error_and_it_falls_as_the_image_refines() 
     let dir = std::env::temp_dir().join(format!("raylab-error-plot-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
     let reference = dir.join("reference.exr");
-    crate::output::write_exr(
+    crate::io::output::write_exr(
         &reference,
         48,
         32,
         &["R", "G", "B"],
         &values,
-        &crate::output::Provenance::default(),
+        &crate::io::output::Provenance::default(),
     )
     .expect("the reference is written");
 

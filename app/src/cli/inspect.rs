@@ -1,8 +1,8 @@
 //! `raylab inspect`: one sample of one pixel re-traced as a ray tree, printed
 //! as pretty JSON (the renderer's [`renderer::Inspection`]).
 
-use crate::cli::InspectArgs;
-use crate::render_cmd::{UserError, prepare};
+use super::args::InspectArgs;
+use super::prepare::{UserError, prepare};
 use anyhow::Result;
 use renderer::inspect_pixel;
 

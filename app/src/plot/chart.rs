@@ -1,42 +1,22 @@
-//! Drawing speed-against-accuracy curves as a log–log PNG chart (plotters,
-//! with egui's own Ubuntu font so that no system font is needed).
+//! The PNG chart of `raylab chart`: speed-against-accuracy curves, relative
+//! MSE and FLIP against render time, log–log (plotters).
 
-use crate::chart_cmd::Curve;
+use super::style::{COLORS, register_font};
 use anyhow::{Result, anyhow};
 use plotters::prelude::*;
 use renderer::convergence::ConvergencePoint;
 use std::path::Path;
-use std::sync::Once;
+
+/// One method's curve.
+pub struct Curve {
+    /// The method's name as the command line spells it.
+    pub name: &'static str,
+    /// Its passes.
+    pub points: Vec<ConvergencePoint>,
+}
 
 /// Chart size in pixels.
 const SIZE: (u32, u32) = (1600, 680);
-
-/// Line colours, distinct on white (Tableau 10's first colours).
-pub const COLORS: [RGBColor; 6] = [
-    RGBColor(31, 119, 180),
-    RGBColor(214, 39, 40),
-    RGBColor(44, 160, 44),
-    RGBColor(148, 103, 189),
-    RGBColor(255, 127, 14),
-    RGBColor(140, 86, 75),
-];
-
-/// Registers the chart font once per process.
-pub fn register_font() {
-    static ONCE: Once = Once::new();
-    ONCE.call_once(|| {
-        // The font is egui's; failing to parse it would be a bug in the build.
-        if plotters::style::register_font(
-            "sans-serif",
-            FontStyle::Normal,
-            epaint_default_fonts::UBUNTU_LIGHT,
-        )
-        .is_err()
-        {
-            eprintln!("warning: the chart font could not be loaded; labels may be missing");
-        }
-    });
-}
 
 /// The smallest and largest positive values, widened to whole decades.
 fn decades(values: impl Iterator<Item = f64>) -> Option<(f64, f64)> {

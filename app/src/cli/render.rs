@@ -1,53 +1,14 @@
 //! `raylab render`: a scene to an image file, no window.
 
-use crate::cli::{AovArg, RenderArgs, SceneArgs};
-use crate::output::{Format, Provenance, write_exr, write_png, write_png_srgb8};
+use super::args::{AovArg, RenderArgs};
+use super::prepare::{UserError, prepare};
+use crate::io::output::{Format, Provenance, write_exr, write_png, write_png_srgb8};
 use anyhow::Result;
+use renderer::Film;
 use renderer::aov::{self, Aov};
 use renderer::display::Display;
 use renderer::display_image::{DisplayImage, Source, aov_image, display_image};
-use renderer::{Film, RenderOptions, World};
 use std::time::{Duration, Instant};
-
-/// A failure the user can fix, reported as one line with exit code 2.
-#[derive(Debug, thiserror::Error)]
-#[error("{0}")]
-pub struct UserError(pub String);
-
-/// Reads the scene with the size overrides applied and prepares it, with
-/// the options to trace it by; a scene that cannot be read or rendered is a [`UserError`].
-pub fn prepare(args: &SceneArgs) -> Result<(World, RenderOptions)> {
-    let mut scene = scene::read_any(&args.scene).map_err(|e| UserError(e.to_string()))?;
-    crate::output::warn_about_models(&scene);
-    if let Some(w) = args.width {
-        scene.camera.width = w;
-    }
-    if let Some(h) = args.height {
-        scene.camera.height = h;
-    }
-    let world = World::from_scene(&scene)
-        .map_err(|e| UserError(format!("{}: {e}", args.scene.display())))?;
-    let options = RenderOptions {
-        integrator: args.integrator.into(),
-        method: args.method.into(),
-        max_depth: args.max_depth,
-        seed: args.seed,
-        sampling: args.sampler.into(),
-        adaptive: match args.adaptive {
-            Some(threshold) if threshold > 0.0 && threshold.is_finite() => {
-                Some(renderer::adaptive::Adaptive { threshold })
-            }
-            Some(threshold) => {
-                return Err(UserError(format!(
-                    "--adaptive {threshold}: the error threshold must be a positive number"
-                ))
-                .into());
-            }
-            None => None,
-        },
-    };
-    Ok((world, options))
-}
 
 /// Renders `args.scene` to `args.output`; returns the time the render took.
 pub fn run(args: &RenderArgs) -> Result<Duration> {

@@ -2,27 +2,22 @@
 //! with each method, records after every pass the time and the error against
 //! a reference, and writes the curves as CSV and as a log–log PNG chart.
 
-use crate::cli::{ChartArgs, ChartMethod};
-use crate::flip::FlipReference;
-use crate::render_cmd::UserError;
+mod flip;
+
+use super::args::{ChartArgs, ChartMethod};
+use super::prepare::UserError;
+use crate::plot::chart::{Curve, write_chart};
 use anyhow::{Context, Result};
+use flip::FlipReference;
 use glam::Vec3;
 use renderer::adaptive::Adaptive;
-use renderer::convergence::{Budget, ConvergencePoint, converge, time_to_reach};
+use renderer::convergence::{Budget, converge, time_to_reach};
 use renderer::integrator::Integrator;
 use renderer::reference_image::read_exr_rgb;
 use renderer::{Film, Method, RenderOptions, Sampling, World};
 use std::io::Write;
 use std::path::PathBuf;
 use std::time::Duration;
-
-/// One method's curve.
-pub struct Curve {
-    /// The method's name as the command line spells it.
-    pub name: &'static str,
-    /// Its passes.
-    pub points: Vec<ConvergencePoint>,
-}
 
 /// The options a method renders with.
 fn options_of(method: ChartMethod, max_depth: u32, seed: u64) -> RenderOptions {
@@ -116,7 +111,7 @@ pub fn run(args: &ChartArgs) -> Result<Vec<PathBuf>> {
         }
         curves.push(Curve { name, points });
     }
-    let (csv, png) = crate::output_path::csv_and_png(args.output.as_deref(), "chart");
+    let (csv, png) = crate::io::output_path::csv_and_png(args.output.as_deref(), "chart");
     write_csv(&csv, &curves)?;
     let title = format!(
         "{} ({w}×{h}): error against time",
@@ -125,7 +120,7 @@ pub fn run(args: &ChartArgs) -> Result<Vec<PathBuf>> {
             |n| n.to_string_lossy().into()
         )
     );
-    crate::chart_plot::write_chart(&png, &title, &curves)?;
+    write_chart(&png, &title, &curves)?;
     Ok(vec![csv, png])
 }
 

@@ -53,7 +53,7 @@ pub fn load(spec: &str, seed_path: &Path) -> Result<(Scene, String)> {
         _ => {
             let path = PathBuf::from(spec);
             let scene = scene::read_any(&path)?;
-            crate::output::warn_about_models(&scene);
+            crate::io::output::warn_about_models(&scene);
             (scene, path.display().to_string())
         }
     })

@@ -1,11 +1,10 @@
 //! `raylab bench`: ray-tracing throughput (any scene, or the suite of
 //! generated scenes), and the window's responsiveness measured headless.
 
-use crate::bench_export;
-use crate::cli::BenchArgs;
+use super::args::BenchArgs;
+use crate::bench::headless_gpu::HeadlessGpu;
+use crate::bench::{export, scene_spec, trace};
 use crate::gui::bench::{self, quantile};
-use crate::scene_spec;
-use crate::trace_bench;
 use anyhow::Result;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -29,10 +28,10 @@ pub fn run(args: &BenchArgs, default_scene: PathBuf) -> Result<()> {
         "suite" => suite(args.json, &default_scene),
         spec => {
             let (scene, label) = scene_spec::load(spec, &default_scene)?;
-            let scene = trace_bench::sized(scene, args.width, args.height);
+            let scene = trace::sized(scene, args.width, args.height);
             let exported = match &args.export {
                 Some(dir) => {
-                    let manifest = bench_export::export(&scene, &label, dir)?;
+                    let manifest = export::export(&scene, &label, dir)?;
                     eprintln!(
                         "exported {} triangles, {} primary and {} incoherent rays to {}",
                         manifest.triangles,
@@ -44,15 +43,15 @@ pub fn run(args: &BenchArgs, default_scene: PathBuf) -> Result<()> {
                 }
                 None => None,
             };
-            let figures = trace_bench::measure(scene, &label, None, None)?;
+            let figures = trace::measure(scene, &label, None, None)?;
             if let Some((dir, mut manifest)) = exported {
                 manifest.raylab = Some(figures.clone());
-                bench_export::write_manifest(dir, &manifest)?;
+                export::write_manifest(dir, &manifest)?;
             }
             if args.json {
                 println!("{}", serde_json::to_string_pretty(&figures)?);
             } else {
-                trace_bench::print_table(&figures);
+                trace::print_table(&figures);
             }
             Ok(())
         }
@@ -70,19 +69,19 @@ fn suite(json: bool, seed: &Path) -> Result<()> {
     let mut scenes = Vec::new();
     for (spec, size) in runs {
         let (scene, label) = scene_spec::load(spec, seed)?;
-        let figures = trace_bench::measure(scene, &label, size.map(|s| s.0), size.map(|s| s.1))?;
+        let figures = trace::measure(scene, &label, size.map(|s| s.0), size.map(|s| s.1))?;
         if !json {
-            trace_bench::print_table(&figures);
+            trace::print_table(&figures);
             println!();
         }
         scenes.push(figures);
     }
-    let scaling = trace_bench::scaling()?;
+    let scaling = trace::scaling()?;
     if json {
         let report = serde_json::json!({ "scenes": scenes, "scaling": scaling });
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
-        trace_bench::print_scaling(&scaling);
+        trace::print_scaling(&scaling);
     }
     Ok(())
 }
@@ -113,7 +112,7 @@ fn line(name: &str, values: &mut [Duration]) {
 fn debug_view(args: &BenchArgs, seed: &Path) -> Result<()> {
     let (scene, label, path) = window_scene(args, seed)?;
     let size = [1600u32, 900];
-    let gpu = crate::gui::headless_gpu::HeadlessGpu::new(size)?;
+    let gpu = HeadlessGpu::new(size)?;
     println!(
         "{label} at {}×{}, debug view {} in a {}×{} window drawn by {}, {} frames, {} tracer threads",
         scene.camera.width,

@@ -1,7 +1,8 @@
 //! `raylab stability`: runs the suite of cases where numerical methods fail
 //! (renderer::stability), prints a table and writes it as CSV and a PNG chart.
 
-use crate::cli::StabilityArgs;
+use super::args::StabilityArgs;
+use crate::plot::stability::{format_value, write_chart};
 use anyhow::{Context, Result};
 use renderer::stability::{CASES, Effort, Row};
 use std::io::Write;
@@ -33,9 +34,9 @@ pub fn run(args: &StabilityArgs) -> Result<Vec<PathBuf>> {
         }
         rows.extend(case_rows);
     }
-    let (csv, png) = crate::output_path::csv_and_png(args.output.as_deref(), "stability");
+    let (csv, png) = crate::io::output_path::csv_and_png(args.output.as_deref(), "stability");
     write_csv(&csv, &rows)?;
-    crate::stability_plot::write_chart(&png, &rows)?;
+    write_chart(&png, &rows)?;
     Ok(vec![csv, png])
 }
 
@@ -50,17 +51,6 @@ fn table_line(row: &Row) -> String {
         row.error_p99.map_or("-".into(), |e| format!("{e:.1e}")),
         row.ns_per_test
     )
-}
-
-/// A condition value as tables and axes show it: 1e4, 0.01, 89.9999.
-pub fn format_value(value: f64) -> String {
-    if value == 0.0 {
-        "0".into()
-    } else if (1e-2..1e3).contains(&value.abs()) {
-        format!("{value}")
-    } else {
-        format!("{value:e}")
-    }
 }
 
 /// Quotes a CSV field that holds a comma or a quote.

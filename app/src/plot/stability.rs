@@ -2,13 +2,23 @@
 //! of the condition that breaks a method, one line per method, each method's
 //! cost per test in its legend.
 
-use crate::chart_plot::{COLORS, register_font};
-use crate::stability_cmd::format_value;
+use super::style::{COLORS, register_font};
 use anyhow::{Result, anyhow};
 use plotters::coord::ranged1d::SegmentValue;
 use plotters::prelude::*;
 use renderer::stability::Row;
 use std::path::Path;
+
+/// A condition value as tables and axes show it: 1e4, 0.01, 89.9999.
+pub fn format_value(value: f64) -> String {
+    if value == 0.0 {
+        "0".into()
+    } else if (1e-2..1e3).contains(&value.abs()) {
+        format!("{value}")
+    } else {
+        format!("{value:e}")
+    }
+}
 
 /// Panels per row of the chart.
 const COLUMNS: usize = 4;

@@ -18,7 +18,7 @@
 //! hit fractions agree; the manifest gives its half-size. Other analytic
 //! shapes have no triangle form and are refused.
 
-use crate::trace_bench::{self, SceneFigures};
+use super::trace::{self, SceneFigures};
 use anyhow::{Context, Result, bail};
 use glam::Vec3;
 use renderer::World;
@@ -168,7 +168,7 @@ impl Soup {
 pub fn export(scene: &Scene, label: &str, dir: &Path) -> Result<Manifest> {
     let world = World::from_scene(scene)?;
     let primary = renderer::throughput::primary_rays(&world);
-    let incoherent = trace_bench::incoherent_rays(&world);
+    let incoherent = trace::incoherent_rays(&world);
     let all_rays = || {
         primary
             .iter()
@@ -234,7 +234,7 @@ pub fn export(scene: &Scene, label: &str, dir: &Path) -> Result<Manifest> {
                 count: rays.len(),
                 box_min: Some(lo.to_array()),
                 box_max: Some(hi.to_array()),
-                seed: Some(trace_bench::INCOHERENT_SEED),
+                seed: Some(trace::INCOHERENT_SEED),
             })
         }
         None => None,
@@ -418,8 +418,8 @@ mod tests {
 
     #[test]
     fn a_sphere_cannot_be_exported_and_says_so() {
-        let (scene, label) =
-            crate::scene_spec::load("spheres:3", Path::new("unused.xml")).expect("generates");
+        let (scene, label) = crate::bench::scene_spec::load("spheres:3", Path::new("unused.xml"))
+            .expect("generates");
         let dir = std::env::temp_dir().join(format!("raylab-export-{}", std::process::id()));
         let err = export(&scene, &label, &dir).expect_err("spheres have no triangles");
         assert!(err.to_string().contains("sphere"), "{err}");
