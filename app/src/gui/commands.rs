@@ -1,8 +1,8 @@
 //! Everything the user can ask of the window, from the menu bar or a
 //! keyboard shortcut, as one enum the app carries out in one place.
 
-use super::edits::Action;
-use super::scene_panel;
+use super::doc::edits::Action;
+use super::panels::scene_panel;
 use egui::{Key, KeyboardShortcut, Modifiers};
 use renderer::display::Display;
 use std::path::PathBuf;

@@ -3,39 +3,26 @@
 //! renders: after every edit it snapshots the scene for the progressive
 //! session and shows the newest frame the session hands back.
 
-mod autosave;
 pub mod bench;
-mod camera_panel;
 mod commands;
 mod debug_view;
-mod document;
-mod edits;
-mod error_plot;
+mod doc;
 mod files;
-mod history;
-mod image_view;
-mod inspected;
-mod inspector_panel;
-mod legend;
-mod light_editor;
-mod navigation;
-mod object_editor;
-mod recovery;
+mod inspector;
+mod panels;
 mod recovery_offer;
-mod render_panel;
-mod scene_panel;
-mod screenshot;
-mod status_bar;
-mod widgets;
+mod viewport;
 
 use crate::io::output::Provenance;
 use commands::Command;
-pub use document::Document;
-use document::RenderSettings;
-use edits::Selection;
+pub use doc::document::Document;
+use doc::document::RenderSettings;
+use doc::edits::Selection;
+pub use doc::recovery::default_dir as recovery_dir;
+use doc::{autosave, edits, recovery};
 use files::{DialogKind, DialogResult, Dialogs, Settings};
-use navigation::OrbitView;
-pub use recovery::default_dir as recovery_dir;
+use inspector::{panel as inspector_panel, pixel as inspected};
+use panels::{camera_panel, error_plot, render_panel, scene_panel, status_bar};
 use renderer::display::Display;
 use renderer::progressive::{Job, ProgressiveRenderer, RenderedFrame};
 use renderer::ray::Ray;
@@ -44,6 +31,8 @@ use scene::{ResolvedScene, Scene};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::{Instant, SystemTime};
+use viewport::navigation::{self, OrbitView};
+use viewport::{image_view, screenshot};
 
 /// Orbit speed, radians per point dragged.
 const ORBIT_SPEED: f32 = 0.008;
@@ -1182,18 +1171,6 @@ impl eframe::App for RaylabApp {
     }
 }
 
-#[cfg(test)]
-mod lifecycle_tests;
-#[cfg(test)]
-mod load_tests;
-#[cfg(test)]
-mod overwrite_tests;
-#[cfg(test)]
-mod own_process;
-#[cfg(test)]
-mod process_probe;
-#[cfg(test)]
-mod recovery_tests;
 #[cfg(test)]
 mod tests;
 

@@ -1,7 +1,7 @@
 //! The offer, on the first start after a crash, to restore the work that
 //! was autosaved: which file, when, and Restore or Discard.
 
-use super::recovery::{self, Left};
+use super::doc::recovery::{self, Left};
 use std::path::Path;
 use std::time::SystemTime;
 

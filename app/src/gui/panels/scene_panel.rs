@@ -1,8 +1,8 @@
 //! The scene panel: the objects and lights, the buttons that add, duplicate
 //! and delete them, and the editor of the selected one.
 
-use super::edits::{Action, Selection};
 use super::{light_editor, object_editor};
+use crate::gui::doc::edits::{Action, Selection};
 use scene::{BaseMaterial, LightKind, ResolvedScene, Scene, Shape};
 
 /// The light kinds offered by "Add light", with their menu labels.

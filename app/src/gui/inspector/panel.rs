@@ -4,7 +4,7 @@
 //! the hit point, the normal, β and γ or the sphere's roots, the material and
 //! the colour it contributes.
 
-use super::inspected::InspectedPixel;
+use super::pixel::InspectedPixel;
 use glam::Vec3;
 use renderer::inspect::{RayNode, SurfaceHit};
 use renderer::integrator::RayKind;

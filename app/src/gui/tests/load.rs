@@ -4,13 +4,13 @@
 //! its pixels, against an independent render), memory stays flat, and
 //! moving the mesh never rebuilds its BVH.
 
-use super::RaylabApp;
-use super::commands::Command;
-use super::edits::{Action, Selection};
-use super::history::History;
 use super::own_process::{in_own_process, test_path};
 use super::process_probe::Memory;
-use super::tests::settle;
+use super::settle;
+use crate::gui::RaylabApp;
+use crate::gui::commands::Command;
+use crate::gui::doc::edits::{Action, Selection};
+use crate::gui::doc::history::History;
 use egui::accesskit::Role;
 use egui::{Key, Modifiers};
 use egui_kittest::Harness;
@@ -125,7 +125,7 @@ impl egui_kittest::TestRenderer for DiscardTextures {
     }
 }
 
-/// A harness like [`super::tests::harness`] whose renderer discards texture
+/// A harness like [`super::harness`] whose renderer discards texture
 /// updates ([`DiscardTextures`]), for runs of many frames.
 pub(super) fn harness_discarding_textures(app: RaylabApp) -> Harness<'static, RaylabApp> {
     Harness::builder()

@@ -1,8 +1,8 @@
 //! Headless UI tests (egui_kittest): saving an image never replaces an
 //! existing file unasked.
 
-use super::files::DialogKind;
-use super::tests::{harness, seed_app, settle, step_shown};
+use super::{harness, seed_app, settle, step_shown};
+use crate::gui::files::DialogKind;
 use egui_kittest::kittest::Queryable;
 
 #[test]

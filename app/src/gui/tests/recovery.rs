@@ -2,11 +2,11 @@
 //! file follows unsaved changes, a crashed run's file is offered on the next
 //! start, and a clean close leaves nothing behind.
 
-use super::RaylabApp;
-use super::autosave::INTERVAL;
-use super::files::DialogKind;
-use super::recovery;
-use super::tests::{harness, seed_app, seed_path, step_shown};
+use super::{harness, seed_app, seed_path, step_shown};
+use crate::gui::RaylabApp;
+use crate::gui::doc::autosave::INTERVAL;
+use crate::gui::doc::recovery;
+use crate::gui::files::DialogKind;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use std::path::{Path, PathBuf};
@@ -126,7 +126,7 @@ fn closing_without_saving_removes_the_recovery_file() {
     h.step();
     advance_autosave(&mut h);
     assert!(own_file(dir.path()).exists());
-    h.state_mut().guard = Some(super::Pending::Close);
+    h.state_mut().guard = Some(crate::gui::Pending::Close);
     step_shown(&mut h);
     h.get_by_label("Don't save").click();
     h.step();

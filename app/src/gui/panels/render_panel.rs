@@ -1,7 +1,7 @@
 //! Integrator settings: integrator, intersection method, depth, samples per pixel.
 
-use super::document::RenderSettings;
 use super::widgets;
+use crate::gui::doc::document::RenderSettings;
 use renderer::adaptive::Adaptive;
 use renderer::integrator::Integrator;
 use renderer::{Method, Sampling};

@@ -2,14 +2,14 @@
 //! resizing every frame, and closing mid-render, which must leave no thread
 //! of the app behind.
 
-use super::RaylabApp;
-use super::commands::Command;
-use super::load_tests::{
+use super::load::{
     assert_shows_the_document, harness_discarding_textures, knot_app, wait_for_newest,
 };
 use super::own_process::{in_own_process, test_path};
 use super::process_probe::{thread_count, threads_named, threads_settle_to};
-use super::tests::{harness, seed_app, seed_path, settle};
+use super::{harness, seed_app, seed_path, settle};
+use crate::gui::RaylabApp;
+use crate::gui::commands::Command;
 use egui_kittest::Harness;
 use renderer::progressive::Step;
 use std::time::{Duration, Instant};
@@ -24,7 +24,7 @@ const KNOT: usize = crate::bench::scene_spec::KNOT_TRIANGLES;
 /// then refining, not previewing.
 fn wait_for_a_pass(h: &mut Harness<'static, RaylabApp>) {
     let started = Instant::now();
-    while !(super::load_tests::shows_newest(h)
+    while !(super::load::shows_newest(h)
         && matches!(
             h.state().frame.as_ref().map(|f| f.step),
             Some(Step::Passes { .. })

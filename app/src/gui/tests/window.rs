@@ -1,58 +1,17 @@
 //! Headless UI tests (egui_kittest): the window's behaviour without a display.
 
-use super::RaylabApp;
-use super::commands::Command;
-use super::edits::Selection;
+use super::{harness, seed_app, seed_path, settle, step_shown};
+use crate::gui::RaylabApp;
+use crate::gui::commands::Command;
+use crate::gui::doc::edits::Selection;
 use egui::{Key, Modifiers, PointerButton};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glam::Vec3;
 use renderer::adaptive::Adaptive;
 use renderer::progressive::Step;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::{Duration, Instant};
-
-pub(super) fn seed_path() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/seed.xml")
-}
-
-pub(super) fn seed_app(width: u32, height: u32) -> RaylabApp {
-    let path = seed_path();
-    let mut scene = scene::read_file(&path).expect("the seed scene loads");
-    scene.camera.width = width;
-    scene.camera.height = height;
-    let mut app = RaylabApp::new(scene, Some(path));
-    app.doc.state.render.target_spp = Some(2);
-    // The history starts from the adjusted state.
-    app.doc.history = super::history::History::new(&app.doc.state);
-    app
-}
-
-pub(super) fn harness(app: RaylabApp) -> Harness<'static, RaylabApp> {
-    Harness::builder()
-        .with_size(egui::Vec2::new(1200.0, 800.0))
-        .build_ui_state(|ui, app: &mut RaylabApp| app.show(ui), app)
-}
-
-/// Steps the UI until the target spp of the newest job is on screen.
-pub(super) fn settle(h: &mut Harness<'static, RaylabApp>) {
-    let deadline = Instant::now() + Duration::from_secs(60);
-    while Instant::now() < deadline {
-        h.step();
-        let target = h.state().doc.state.render.target_spp.unwrap_or(1);
-        let frame = h.state().frame.as_ref();
-        if frame.is_some_and(|f| {
-            f.generation == h.state().generation && f.step == Step::Passes { spp: target }
-        }) {
-            return;
-        }
-        std::thread::sleep(Duration::from_millis(2));
-    }
-    panic!(
-        "the render did not settle; shown {:?}",
-        h.state().frame.as_ref().map(|f| f.step)
-    );
-}
 
 /// The linear pixels on screen.
 fn pixels(h: &Harness<'static, RaylabApp>) -> Vec<Vec3> {
@@ -77,12 +36,6 @@ fn click_at(h: &mut Harness<'static, RaylabApp>, pos: egui::Pos2) {
 /// The panel's d field.
 fn d_field<'h>(h: &'h Harness<'static, RaylabApp>) -> egui_kittest::Node<'h> {
     h.get_by_role_and_label(egui::accesskit::Role::SpinButton, "d")
-}
-
-/// Steps twice: a new window, menu or modal is measured invisibly on its first frame.
-pub(super) fn step_shown(h: &mut Harness<'static, RaylabApp>) {
-    h.step();
-    h.step();
 }
 
 #[test]
@@ -316,7 +269,7 @@ fn closing_with_unsaved_changes_is_held_until_the_user_answers() {
     settle(&mut h);
     h.state_mut().doc.state.scene.objects.pop();
     h.step();
-    h.state_mut().guard = Some(super::Pending::Close);
+    h.state_mut().guard = Some(crate::gui::Pending::Close);
     step_shown(&mut h);
     h.get_by_label("Save the changes to seed.xml before closing?");
     h.get_by_label("Cancel").click();
@@ -368,7 +321,7 @@ fn saving_the_scene_and_reopening_it_gives_the_same_picture() {
     let path = dir.path().join("edited.xml");
     let ctx = h.ctx.clone();
     h.state_mut()
-        .chosen(&ctx, super::files::DialogKind::SaveScene, path.clone());
+        .chosen(&ctx, crate::gui::files::DialogKind::SaveScene, path.clone());
     assert!(!h.state().doc.is_modified());
     h.state_mut().run(&ctx, Command::OpenPath(path.clone()));
     h.step();
