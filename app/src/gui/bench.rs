@@ -57,7 +57,7 @@ pub fn interactive(scene: Scene, path: Option<PathBuf>, edits: u32) -> Report {
     // Warm up: the first job, rendered to a few passes.
     let warm_up = Instant::now() + Duration::from_secs(5);
     while Instant::now() < warm_up
-        && !matches!(app.frame.as_ref().map(|f| f.step), Some(Step::Passes { spp }) if spp >= 2)
+        && !matches!(app.session.frame.as_ref().map(|f| f.step), Some(Step::Passes { spp }) if spp >= 2)
     {
         frame(&mut app);
         std::thread::sleep(Duration::from_millis(1));
@@ -73,9 +73,10 @@ pub fn interactive(scene: Scene, path: Option<PathBuf>, edits: u32) -> Report {
             let took = frame(&mut app);
             report.frame_times.push(took);
             let shown = app
+                .session
                 .frame
                 .as_ref()
-                .filter(|f| f.generation == app.generation)
+                .filter(|f| f.generation == app.session.generation)
                 .map(|f| (f.step, f.since_submit));
             match shown.map(|(step, _)| step) {
                 Some(Step::Preview { .. }) if preview.is_none() => {
@@ -150,14 +151,14 @@ pub fn debug_view(
     let warm_up = Instant::now() + Duration::from_secs(10);
     while Instant::now() < warm_up
         && !matches!(
-            app.frame.as_ref().map(|f| f.step),
+            app.session.frame.as_ref().map(|f| f.step),
             Some(Step::Passes { .. })
         )
     {
         frame(&mut app, None)?;
         std::thread::sleep(Duration::from_millis(5));
     }
-    if let Some(prepared) = &app.prepared {
+    if let Some(prepared) = &app.session.prepared {
         let camera = &prepared.world.camera;
         app.inspect([camera.w / 2, camera.h / 2], false);
     }

@@ -11,6 +11,7 @@ mod files;
 mod inspector;
 mod panels;
 mod recovery_offer;
+mod session;
 mod viewport;
 
 use crate::io::output::Provenance;
@@ -23,11 +24,11 @@ use doc::{autosave, edits, recovery};
 use files::{DialogKind, DialogResult, Dialogs, Settings};
 use inspector::{panel as inspector_panel, pixel as inspected};
 use panels::{camera_panel, error_plot, render_panel, scene_panel, status_bar};
+use renderer::RenderOptions;
 use renderer::display::Display;
-use renderer::progressive::{Job, ProgressiveRenderer, RenderedFrame};
 use renderer::ray::Ray;
-use renderer::{RenderOptions, World};
-use scene::{ResolvedScene, Scene};
+use scene::Scene;
+use session::SessionSync;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::{Instant, SystemTime};
@@ -38,14 +39,6 @@ use viewport::{image_view, screenshot};
 const ORBIT_SPEED: f32 = 0.008;
 /// Dolly speed: the distance shrinks by e^(speed · points).
 const DOLLY_SPEED: f32 = 0.004;
-
-/// A scene snapshot and the render copy prepared from it.
-struct Prepared {
-    /// Every default decided (placement, camera, lights).
-    resolved: ResolvedScene,
-    /// The immutable render copy the session renders.
-    world: Arc<World>,
-}
 
 /// What waits for the user's answer to "save changes?".
 #[derive(Clone, Debug, PartialEq)]
@@ -66,28 +59,12 @@ pub struct RaylabApp {
     doc: Document,
     /// The selected object or light.
     selection: Selection,
-    /// The render session; started on the first frame, when a context exists.
-    session: Option<ProgressiveRenderer>,
-    /// The prepared copy of the newest valid scene.
-    prepared: Option<Prepared>,
-    /// What the session was last given: the scene and the options.
-    submitted: Option<(Scene, RenderOptions)>,
-    /// The target spp the session was last given.
-    submitted_target: Option<Option<u32>>,
-    /// The display mode the session was last given.
-    submitted_display: Display,
-    /// The generation of the newest submitted job.
-    generation: u64,
+    /// The render session: what it was given, the prepared world, the newest frame.
+    session: SessionSync,
     /// The image view (one texture, updated in place).
     image: image_view::ImageView,
-    /// The newest frame on screen.
-    frame: Option<RenderedFrame>,
     /// The reference image and the live error of each pass against it.
     errors: error_plot::ErrorPlot,
-    /// Why the scene cannot be rendered as edited, if it can't.
-    error: Option<String>,
-    /// Refinement is paused.
-    paused: bool,
     /// The camera being orbited, panned or dollied by a drag in progress.
     navigation: Option<OrbitView>,
     /// The open file dialog, if any.
@@ -148,17 +125,9 @@ impl RaylabApp {
         Self {
             doc: Document::new(scene, path, RenderSettings::default()),
             selection: Selection::None,
-            session: None,
-            prepared: None,
-            submitted: None,
-            submitted_target: None,
-            submitted_display: Display::Color,
-            generation: 0,
+            session: SessionSync::default(),
             image: image_view::ImageView::default(),
-            frame: None,
             errors: error_plot::ErrorPlot::default(),
-            error: None,
-            paused: false,
             navigation: None,
             dialogs: Dialogs::default(),
             settings: Settings::default(),
@@ -212,71 +181,30 @@ impl RaylabApp {
         app
     }
 
-    /// Hands the scene to the session when it or the options changed since
-    /// the last submit; a scene that cannot be rendered keeps the last image
-    /// and says why.
+    /// Hands the scene to the session when it changed (see
+    /// [`SessionSync::submit_if_changed`]); an unpinned inspection follows
+    /// the camera of a newly prepared world.
     fn submit_if_changed(&mut self, ctx: &egui::Context) {
-        let options = self.doc.state.render.options();
-        let target = self.doc.state.render.target_spp;
-        let unchanged = self
-            .submitted
-            .as_ref()
-            .is_some_and(|(scene, o)| *o == options && *scene == self.doc.state.scene);
-        let session = self.session.get_or_insert_with(|| {
-            let ctx = ctx.clone();
-            ProgressiveRenderer::new(move || ctx.request_repaint())
-        });
-        if self.submitted_display != self.image.display {
-            session.set_display(self.image.display);
-            self.submitted_display = self.image.display;
-        }
-        if unchanged {
-            if self.submitted_target != Some(target) {
-                session.set_target_spp(target);
-                self.submitted_target = Some(target);
-            }
-            return;
-        }
-        self.submitted = Some((self.doc.state.scene.clone(), options));
-        self.submitted_target = Some(target);
-        let prepared = scene::resolve(&self.doc.state.scene)
-            .map_err(renderer::RenderError::from)
-            .and_then(|resolved| {
-                let world = World::new(&resolved)?;
-                Ok(Prepared {
-                    resolved,
-                    world: Arc::new(world),
-                })
-            });
-        match prepared {
-            Ok(prepared) => {
-                self.generation = session.submit(Job {
-                    world: Arc::clone(&prepared.world),
-                    options,
-                    target_spp: target,
-                });
-                if let Some(inspected) = &mut self.inspected {
-                    *inspected = inspected.follow(&prepared.world.camera);
-                }
-                self.prepared = Some(prepared);
-                self.error = None;
-            }
-            Err(e) => self.error = Some(e.to_string()),
+        if self
+            .session
+            .submit_if_changed(ctx, &self.doc.state, self.image.display)
+            && let (Some(inspected), Some(prepared)) = (&mut self.inspected, &self.session.prepared)
+        {
+            *inspected = inspected.follow(&prepared.world.camera);
         }
     }
 
     /// Shows the newest finished frame, if one arrived.
     fn receive(&mut self, ctx: &egui::Context) {
-        if let Some(frame) = self.session.as_ref().and_then(|s| s.take_frame()) {
-            self.image.show_frame(ctx, &frame);
-            self.errors.add(&frame);
-            self.frame = Some(frame);
+        if let Some(frame) = self.session.receive() {
+            self.image.show_frame(ctx, frame);
+            self.errors.add(frame);
         }
     }
 
     /// The object under pixel (i, j) of the newest render, if any.
     fn pick(&self, [i, j]: [u32; 2]) -> Option<usize> {
-        let prepared = self.prepared.as_ref()?;
+        let prepared = self.session.prepared.as_ref()?;
         let world = &prepared.world;
         if i >= world.camera.w || j >= world.camera.h {
             return None;
@@ -293,14 +221,14 @@ impl RaylabApp {
             return None;
         }
         let object = self.pick(pixel?)?;
-        let names = &self.prepared.as_ref()?.world.names;
+        let names = &self.session.prepared.as_ref()?.world.names;
         names.get(object).cloned()
     }
 
     /// The camera as an eye orbiting the point the image centre shows (or,
     /// looking at nothing, the scene's centre depth).
     fn orbit_view(&self) -> Option<OrbitView> {
-        let prepared = self.prepared.as_ref()?;
+        let prepared = self.session.prepared.as_ref()?;
         let camera = &prepared.world.camera;
         let hit = prepared
             .world
@@ -358,7 +286,7 @@ impl RaylabApp {
             -gestures.orbit.y * ORBIT_SPEED,
         );
         if gestures.pan != egui::Vec2::ZERO
-            && let Some(prepared) = &self.prepared
+            && let Some(prepared) = &self.session.prepared
         {
             let camera = &prepared.world.camera;
             // World units per screen point at the target's depth.
@@ -396,7 +324,8 @@ impl RaylabApp {
     /// Records the point the inspected pixel's centre ray hits, which an
     /// unpinned inspection follows when the camera moves.
     fn remember_inspected_point(&mut self) {
-        let (Some(inspected), Some(prepared)) = (&mut self.inspected, &self.prepared) else {
+        let (Some(inspected), Some(prepared)) = (&mut self.inspected, &self.session.prepared)
+        else {
             return;
         };
         let [i, j] = inspected.pixel;
@@ -411,7 +340,7 @@ impl RaylabApp {
     /// options changed (one path: microseconds), and all its samples when the
     /// debug view draws them.
     fn refresh_inspection(&mut self) {
-        let (Some(inspected), Some(prepared)) = (self.inspected, &self.prepared) else {
+        let (Some(inspected), Some(prepared)) = (self.inspected, &self.session.prepared) else {
             self.inspection = None;
             self.drawn_rays = None;
             return;
@@ -433,7 +362,7 @@ impl RaylabApp {
         let all = self.show_debug && self.debug.options.all_samples;
         let drawn = InspectionKey {
             sample: if all {
-                Some(self.shown_spp().clamp(1, MAX_DRAWN_SAMPLES))
+                Some(self.session.shown_spp().clamp(1, MAX_DRAWN_SAMPLES))
             } else {
                 key.sample
             },
@@ -459,29 +388,20 @@ impl RaylabApp {
         self.drawn_rays = Some((drawn, all, rays));
     }
 
-    /// Samples per pixel of the frame on screen, when it shows the current scene.
-    fn shown_spp(&self) -> u32 {
-        match self.frame.as_ref().map(|f| (f.generation, f.step)) {
-            Some((generation, renderer::progressive::Step::Passes { spp }))
-                if generation == self.generation =>
-            {
-                spp
-            }
-            _ => 0,
-        }
-    }
-
     /// The pixel inspector window.
     fn inspector_window(&mut self, ctx: &egui::Context) {
-        let spp = self.shown_spp();
-        let (Some(inspected), Some((_, inspection)), Some(prepared)) =
-            (&mut self.inspected, &self.inspection, &self.prepared)
-        else {
+        let spp = self.session.shown_spp();
+        let (Some(inspected), Some((_, inspection)), Some(prepared)) = (
+            &mut self.inspected,
+            &self.inspection,
+            &self.session.prepared,
+        ) else {
             return;
         };
         let camera = &prepared.world.camera;
         let [i, j] = inspected.pixel;
         let accumulated = self
+            .session
             .frame
             .as_ref()
             .filter(|f| spp > 0 && f.width == camera.w && f.height == camera.h)
@@ -534,7 +454,7 @@ impl RaylabApp {
 
     /// The 3D debug view of the prepared scene.
     fn debug_view(&mut self, ui: &mut egui::Ui) {
-        let Some(prepared) = &self.prepared else {
+        let Some(prepared) = &self.session.prepared else {
             ui.label("Nothing to show: the scene cannot be rendered.");
             return;
         };
@@ -594,7 +514,7 @@ impl RaylabApp {
             Command::SaveAs => self.start_dialog(ctx, DialogKind::SaveScene),
             Command::SaveImage => self.start_dialog(ctx, DialogKind::SaveImage),
             Command::CopyImage => {
-                if let Some(frame) = &self.frame {
+                if let Some(frame) = &self.session.frame {
                     ctx.copy_image(screenshot::color_image(frame));
                 }
             }
@@ -608,7 +528,7 @@ impl RaylabApp {
                 self.doc.history.redo(&mut self.doc.state);
             }
             Command::Edit(action) => {
-                let resolved = self.prepared.as_ref().map(|p| &p.resolved);
+                let resolved = self.session.prepared.as_ref().map(|p| &p.resolved);
                 self.selection =
                     edits::apply(action, &mut self.doc.state.scene, resolved, self.selection);
             }
@@ -670,7 +590,7 @@ impl RaylabApp {
     /// file name, and the file may have changed since it was last read.
     fn replace_document(&mut self, doc: Document) {
         self.doc = doc;
-        self.submitted = None;
+        self.session.forget_submitted();
         self.selection = Selection::None;
         self.navigation = None;
     }
@@ -695,7 +615,7 @@ impl RaylabApp {
 
     /// Writes the image on screen to `path`.
     fn save_image(&mut self, path: &Path) {
-        let (Some(frame), Some(prepared)) = (&self.frame, &self.prepared) else {
+        let (Some(frame), Some(prepared)) = (&self.session.frame, &self.session.prepared) else {
             return;
         };
         let provenance = Provenance::of_render(
@@ -732,7 +652,7 @@ impl RaylabApp {
                     format!("{n}.xml")
                 }
             }),
-            DialogKind::SaveImage => self.frame.as_ref().map(|f| {
+            DialogKind::SaveImage => self.session.frame.as_ref().map(|f| {
                 let name = self.doc.display_name();
                 let name = screenshot::default_file_name(&name, f.step, f.legend.display);
                 let free = crate::io::output_path::free_file(
@@ -1059,26 +979,23 @@ impl RaylabApp {
                 recent: &self.settings.recent,
                 can_undo: self.doc.history.can_undo(&self.doc.state),
                 can_redo: self.doc.history.can_redo(&self.doc.state),
-                has_image: self.frame.is_some(),
+                has_image: self.session.frame.is_some(),
                 has_selection: self.selection != Selection::None,
                 display: self.image.display,
             };
             commands.extend(commands::menu_bar(ui, &state));
         });
         egui::Panel::bottom("status").show(ui, |ui| {
-            let shown = self.frame.as_ref().map(status_bar::Shown::of);
+            let shown = self.session.frame.as_ref().map(status_bar::Shown::of);
             if status_bar::show(
                 ui,
                 shown.as_ref(),
-                self.error.as_deref(),
+                self.session.error.as_deref(),
                 self.doc.state.render.target_spp,
-                self.paused,
+                self.session.paused,
                 &self.frame_times,
             ) {
-                self.paused = !self.paused;
-                if let Some(session) = &self.session {
-                    session.set_paused(self.paused);
-                }
+                self.session.toggle_pause();
             }
         });
         let mut load_reference = false;
@@ -1087,7 +1004,7 @@ impl RaylabApp {
             .default_size(330.0)
             .show(ui, |ui| {
                 egui::ScrollArea::vertical().id_salt("left").show(ui, |ui| {
-                    let camera = self.prepared.as_ref().map(|p| p.world.camera);
+                    let camera = self.session.prepared.as_ref().map(|p| p.world.camera);
                     camera_panel::show(ui, &mut self.doc.state.scene, camera.as_ref());
                     ui.separator();
                     render_panel::show(ui, &mut self.doc.state.render);
@@ -1105,7 +1022,7 @@ impl RaylabApp {
                 egui::ScrollArea::vertical()
                     .id_salt("right")
                     .show(ui, |ui| {
-                        let resolved = self.prepared.as_ref().map(|p| &p.resolved);
+                        let resolved = self.session.prepared.as_ref().map(|p| &p.resolved);
                         let (_, action) = scene_panel::show(
                             ui,
                             &mut self.doc.state.scene,

@@ -26,7 +26,7 @@ fn wait_for_a_pass(h: &mut Harness<'static, RaylabApp>) {
     let started = Instant::now();
     while !(super::load::shows_newest(h)
         && matches!(
-            h.state().frame.as_ref().map(|f| f.step),
+            h.state().session.frame.as_ref().map(|f| f.step),
             Some(Step::Passes { .. })
         ))
     {
@@ -46,9 +46,12 @@ fn opening_another_scene_mid_render_shows_the_new_scene() {
     h.state_mut().run(&ctx, Command::OpenPath(seed.clone()));
     assert_eq!(h.state().doc.path.as_deref(), Some(seed.as_path()));
     h.state_mut().doc.state.render.target_spp = Some(1);
-    let knot = h.state().generation;
+    let knot = h.state().session.generation;
     h.step();
-    assert!(h.state().generation > knot, "the opened scene is submitted");
+    assert!(
+        h.state().session.generation > knot,
+        "the opened scene is submitted"
+    );
     wait_for_newest(&mut h);
     eprintln!(
         "the opened scene's first frame after {:.0} ms",
@@ -189,11 +192,21 @@ fn reopening_a_scene_whose_model_changed_on_disk_shows_the_new_model() {
         &mut h,
         [[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [0.0, 1.0, 0.0]],
     );
-    let before = h.state().frame.as_ref().expect("a frame").pixels.clone();
+    let before = h
+        .state()
+        .session
+        .frame
+        .as_ref()
+        .expect("a frame")
+        .pixels
+        .clone();
     // The same scene file, its model re-exported with the triangle turned over.
     open(
         &mut h,
         [[-1.0, 1.0, 0.0], [1.0, 1.0, 0.0], [0.0, -1.0, 0.0]],
     );
-    assert_ne!(h.state().frame.as_ref().expect("a frame").pixels, before);
+    assert_ne!(
+        h.state().session.frame.as_ref().expect("a frame").pixels,
+        before
+    );
 }

@@ -137,9 +137,10 @@ pub(super) fn harness_discarding_textures(app: RaylabApp) -> Harness<'static, Ra
 /// True when the frame on screen belongs to the newest submitted job.
 pub(super) fn shows_newest(h: &Harness<'static, RaylabApp>) -> bool {
     h.state()
+        .session
         .frame
         .as_ref()
-        .is_some_and(|f| f.generation == h.state().generation)
+        .is_some_and(|f| f.generation == h.state().session.generation)
 }
 
 /// Steps until the newest job's first frame is on screen; panics after
@@ -150,7 +151,7 @@ pub(super) fn wait_for_newest(h: &mut Harness<'static, RaylabApp>) -> Duration {
         assert!(
             started.elapsed() < PREVIEW_LIMIT,
             "no frame of generation {} within {PREVIEW_LIMIT:?}: the renderer hangs",
-            h.state().generation
+            h.state().session.generation
         );
         std::thread::sleep(Duration::from_millis(1));
         h.step();
@@ -163,9 +164,9 @@ pub(super) fn wait_for_newest(h: &mut Harness<'static, RaylabApp>) -> Duration {
 /// scene, the same options, the same preview stride or number of passes.
 pub(super) fn assert_shows_the_document(h: &Harness<'static, RaylabApp>) {
     let app = h.state();
-    let frame = app.frame.as_ref().expect("a frame");
-    assert_eq!(frame.generation, app.generation, "a stale frame");
-    let (scene, options) = app.submitted.as_ref().expect("submitted");
+    let frame = app.session.frame.as_ref().expect("a frame");
+    assert_eq!(frame.generation, app.session.generation, "a stale frame");
+    let (scene, options) = app.session.submitted.as_ref().expect("submitted");
     assert_eq!(
         *scene, app.doc.state.scene,
         "the job is not of the document"
@@ -317,7 +318,7 @@ fn random_edits_while_tracing(triangles: usize, seed: u64) -> Figures {
     let mut h = harness_discarding_textures(knot_app(triangles, Some(4)));
     wait_for_newest(&mut h);
     let knot_bvh = |h: &Harness<'static, RaylabApp>| {
-        let world = &h.state().prepared.as_ref().expect("prepared").world;
+        let world = &h.state().session.prepared.as_ref().expect("prepared").world;
         Arc::clone(&world.meshes[0].bvh)
     };
     let bvh = knot_bvh(&h);
@@ -345,8 +346,8 @@ fn random_edits_while_tracing(triangles: usize, seed: u64) -> Figures {
         for _ in 0..=rng.next_u32() % 3 {
             h.step();
             let app = h.state();
-            if let Some(frame) = &app.frame {
-                assert!(frame.generation <= app.generation);
+            if let Some(frame) = &app.session.frame {
+                assert!(frame.generation <= app.session.generation);
                 let seen = Some((frame.generation, frame.step));
                 if seen != last_seen {
                     last_seen = seen;
@@ -375,7 +376,7 @@ fn random_edits_while_tracing(triangles: usize, seed: u64) -> Figures {
                 m.rss_mib(),
                 m.peak_mib(),
                 h.state().doc.state.scene.objects.len(),
-                h.state().generation
+                h.state().session.generation
             );
             if n == EDITS / 2 {
                 half = m;

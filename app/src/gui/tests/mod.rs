@@ -49,9 +49,9 @@ pub fn settle(h: &mut Harness<'static, RaylabApp>) {
     while Instant::now() < deadline {
         h.step();
         let target = h.state().doc.state.render.target_spp.unwrap_or(1);
-        let frame = h.state().frame.as_ref();
+        let frame = h.state().session.frame.as_ref();
         if frame.is_some_and(|f| {
-            f.generation == h.state().generation && f.step == Step::Passes { spp: target }
+            f.generation == h.state().session.generation && f.step == Step::Passes { spp: target }
         }) {
             return;
         }
@@ -59,7 +59,7 @@ pub fn settle(h: &mut Harness<'static, RaylabApp>) {
     }
     panic!(
         "the render did not settle; shown {:?}",
-        h.state().frame.as_ref().map(|f| f.step)
+        h.state().session.frame.as_ref().map(|f| f.step)
     );
 }
 

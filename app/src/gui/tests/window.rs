@@ -15,7 +15,13 @@ use std::time::{Duration, Instant};
 
 /// The linear pixels on screen.
 fn pixels(h: &Harness<'static, RaylabApp>) -> Vec<Vec3> {
-    h.state().frame.as_ref().expect("a frame").pixels.clone()
+    h.state()
+        .session
+        .frame
+        .as_ref()
+        .expect("a frame")
+        .pixels
+        .clone()
 }
 
 /// Clicks the primary button at `pos` without moving.
@@ -42,7 +48,7 @@ fn d_field<'h>(h: &'h Harness<'static, RaylabApp>) -> egui_kittest::Node<'h> {
 fn window_refines_the_seed_scene_and_shows_the_lecture_values() {
     let mut h = harness(seed_app(64, 48));
     settle(&mut h);
-    assert!(h.state().generation >= 1);
+    assert!(h.state().session.generation >= 1);
     h.get_by_label("C00");
     h.get_by_label("2 / 2 spp");
 }
@@ -51,12 +57,15 @@ fn window_refines_the_seed_scene_and_shows_the_lecture_values() {
 fn editing_theta_in_the_panel_starts_a_new_render_and_changes_the_image() {
     let mut h = harness(seed_app(64, 48));
     settle(&mut h);
-    let (before, image) = (h.state().generation, pixels(&h));
+    let (before, image) = (h.state().session.generation, pixels(&h));
     h.get_by_role_and_label(egui::accesskit::Role::Slider, "θ")
         .set_value_accesskit(40.0);
     h.step();
     assert_eq!(h.state().doc.state.scene.camera.theta_deg, 40.0);
-    assert!(h.state().generation > before, "an edit submits a new job");
+    assert!(
+        h.state().session.generation > before,
+        "an edit submits a new job"
+    );
     settle(&mut h);
     assert_ne!(pixels(&h), image, "a wider view shows a different picture");
 }
@@ -68,6 +77,7 @@ fn editing_d_changes_nothing_in_the_image() {
     let image = pixels(&h);
     let d = h
         .state()
+        .session
         .prepared
         .as_ref()
         .expect("prepared")
@@ -90,26 +100,30 @@ fn editing_d_changes_nothing_in_the_image() {
 fn a_degenerate_camera_keeps_the_last_image_and_says_why() {
     let mut h = harness(seed_app(64, 48));
     settle(&mut h);
-    let before = h.state().generation;
+    let before = h.state().session.generation;
     h.state_mut().doc.state.scene.camera.up = Vec3::ZERO;
     h.step();
-    assert_eq!(h.state().generation, before, "no job for an invalid scene");
+    assert_eq!(
+        h.state().session.generation,
+        before,
+        "no job for an invalid scene"
+    );
     h.step(); // the status bar shows the error from the next frame on
     h.get_by_label("camera: the up vector u is zero or not finite");
-    assert!(h.state().frame.is_some(), "the last image stays");
+    assert!(h.state().session.frame.is_some(), "the last image stays");
 }
 
 #[test]
 fn raising_the_target_spp_refines_the_same_image_further() {
     let mut h = harness(seed_app(48, 32));
     settle(&mut h);
-    let generation = h.state().generation;
+    let generation = h.state().session.generation;
     h.get_by_label_contains("target spp")
         .set_value_accesskit(4.0);
     h.step();
     assert_eq!(h.state().doc.state.render.target_spp, Some(4));
     settle(&mut h);
-    assert_eq!(h.state().generation, generation, "no restart");
+    assert_eq!(h.state().session.generation, generation, "no restart");
 }
 
 #[test]
@@ -126,7 +140,7 @@ fn adding_a_sphere_lists_it_and_shows_it_in_the_image() {
     settle(&mut h);
     h.get_by_label("sphere 5");
     // The new sphere covers pixels that showed something else before.
-    let world = &h.state().prepared.as_ref().expect("prepared").world;
+    let world = &h.state().session.prepared.as_ref().expect("prepared").world;
     let covered = (0..48u32)
         .flat_map(|j| (0..64u32).map(move |i| (i, j)))
         .filter(|&(i, j)| {
@@ -195,7 +209,14 @@ fn an_orbit_drag_is_one_undo_step_and_keeps_the_distance_to_the_target() {
 fn clicking_the_image_selects_the_object_under_the_pointer() {
     let mut h = harness(seed_app(64, 48));
     settle(&mut h);
-    let world = h.state().prepared.as_ref().expect("prepared").world.clone();
+    let world = h
+        .state()
+        .session
+        .prepared
+        .as_ref()
+        .expect("prepared")
+        .world
+        .clone();
     for object in 0..world.objects.len() as u32 {
         // A pixel inside the object's silhouette, away from its edge.
         let pixel = (2..46u32)
@@ -286,7 +307,7 @@ fn saving_the_image_writes_the_tonemapped_accumulation_buffer_and_the_camera() {
     let path = dir.path().join("shot.png");
     h.state_mut().save_image(&path);
     assert_eq!(h.state().message, None);
-    let frame = h.state().frame.as_ref().expect("a frame");
+    let frame = h.state().session.frame.as_ref().expect("a frame");
     let expected: Vec<u8> = frame
         .pixels
         .iter()
@@ -334,7 +355,7 @@ fn saving_the_scene_and_reopening_it_gives_the_same_picture() {
 /// A pixel of the image whose centre ray hits the object named `name`, with
 /// its four neighbours on the same object (so a click cannot miss it).
 fn pixel_on(h: &Harness<'static, RaylabApp>, name: &str) -> ([u32; 2], u32) {
-    let world = &h.state().prepared.as_ref().expect("prepared").world;
+    let world = &h.state().session.prepared.as_ref().expect("prepared").world;
     let object = world
         .names
         .iter()
@@ -359,7 +380,15 @@ fn pixel_on(h: &Harness<'static, RaylabApp>, name: &str) -> ([u32; 2], u32) {
 fn clicking_a_pixel_on_the_red_sphere_inspects_its_rays() {
     let mut h = harness(seed_app(64, 48));
     settle(&mut h);
-    let sphere = h.state().prepared.as_ref().expect("prepared").world.names[1].clone();
+    let sphere = h
+        .state()
+        .session
+        .prepared
+        .as_ref()
+        .expect("prepared")
+        .world
+        .names[1]
+        .clone();
     let (pixel, object) = pixel_on(&h, &sphere);
     let pos = h.state().image.pixel_on_screen(pixel).expect("drawn");
     click_at(&mut h, pos);
@@ -378,7 +407,7 @@ fn clicking_a_pixel_on_the_red_sphere_inspects_its_rays() {
     assert_eq!(hit.object.index, object);
     assert_eq!(hit.shape, "sphere");
     // The ray through P_ij is the depth AOV's ray: the same α.
-    let world = &h.state().prepared.as_ref().expect("prepared").world;
+    let world = &h.state().session.prepared.as_ref().expect("prepared").world;
     let alpha = renderer::aov::aov_at(
         world,
         renderer::aov::Aov::Depth,
@@ -412,7 +441,14 @@ fn stepping_to_a_sample_re_traces_the_sample_that_went_into_the_image() {
     settle(&mut h);
     let (pixel, _) = pixel_on(
         &h,
-        &h.state().prepared.as_ref().expect("prepared").world.names[1].clone(),
+        &h.state()
+            .session
+            .prepared
+            .as_ref()
+            .expect("prepared")
+            .world
+            .names[1]
+            .clone(),
     );
     let pos = h.state().image.pixel_on_screen(pixel).expect("drawn");
     click_at(&mut h, pos);
@@ -422,7 +458,7 @@ fn stepping_to_a_sample_re_traces_the_sample_that_went_into_the_image() {
     let (_, inspection) = h.state().inspection.as_ref().expect("inspected");
     assert_eq!(inspection.sample, Some(0));
     // With one pass on screen, the image's pixel is exactly sample 0.
-    let frame = h.state().frame.as_ref().expect("a frame");
+    let frame = h.state().session.frame.as_ref().expect("a frame");
     let shown = frame.pixels[(pixel[1] * frame.width + pixel[0]) as usize];
     assert_eq!(
         shown.to_array().map(f32::to_bits),
@@ -434,7 +470,15 @@ fn stepping_to_a_sample_re_traces_the_sample_that_went_into_the_image() {
 fn an_unpinned_inspection_follows_its_point_and_a_pinned_one_keeps_its_pixel() {
     let mut h = harness(seed_app(64, 48));
     settle(&mut h);
-    let sphere = h.state().prepared.as_ref().expect("prepared").world.names[1].clone();
+    let sphere = h
+        .state()
+        .session
+        .prepared
+        .as_ref()
+        .expect("prepared")
+        .world
+        .names[1]
+        .clone();
     let (pixel, _) = pixel_on(&h, &sphere);
     let pos = h.state().image.pixel_on_screen(pixel).expect("drawn");
     click_at(&mut h, pos);
@@ -442,6 +486,7 @@ fn an_unpinned_inspection_follows_its_point_and_a_pinned_one_keeps_its_pixel() {
     // Doubling d moves the view window, not the image: the pixel stays.
     let d = h
         .state()
+        .session
         .prepared
         .as_ref()
         .expect("prepared")
@@ -453,7 +498,14 @@ fn an_unpinned_inspection_follows_its_point_and_a_pinned_one_keeps_its_pixel() {
     assert_eq!(h.state().inspected.expect("inspected").pixel, pixel);
     // Moving the camera sideways moves the point across the image; the
     // unpinned pixel follows it.
-    let camera = h.state().prepared.as_ref().expect("prepared").world.camera;
+    let camera = h
+        .state()
+        .session
+        .prepared
+        .as_ref()
+        .expect("prepared")
+        .world
+        .camera;
     h.state_mut().doc.state.scene.camera.eye = Some(camera.p0 + 0.4 * camera.r);
     h.state_mut().doc.state.scene.camera.toward = Some(camera.t);
     h.run_steps(2);
@@ -509,7 +561,15 @@ fn the_window_with_debug_view_and_inspector_renders_with_wgpu() {
         .renderer(WgpuTestRenderer::from_render_state(render_state))
         .build_ui_state(|ui, app: &mut RaylabApp| app.show(ui), app);
     settle(&mut h);
-    let sphere = h.state().prepared.as_ref().expect("prepared").world.names[1].clone();
+    let sphere = h
+        .state()
+        .session
+        .prepared
+        .as_ref()
+        .expect("prepared")
+        .world
+        .names[1]
+        .clone();
     let (pixel, _) = pixel_on(&h, &sphere);
     let pos = h.state().image.pixel_on_screen(pixel).expect("drawn");
     click_at(&mut h, pos);
@@ -542,7 +602,7 @@ fn choosing_a_display_mode_shows_it_with_its_legend_and_keeps_the_render() {
     use renderer::display::Display;
     let mut h = harness(seed_app(64, 48));
     settle(&mut h);
-    let generation = h.state().generation;
+    let generation = h.state().session.generation;
     let colour = pixels(&h);
 
     // The combo in the image view's toolbar.
@@ -554,7 +614,7 @@ fn choosing_a_display_mode_shows_it_with_its_legend_and_keeps_the_render() {
     settle_display(&mut h, Display::Cost);
     step_shown(&mut h);
     h.get_by_label("shape tests / sample");
-    let frame = h.state().frame.as_ref().expect("a frame");
+    let frame = h.state().session.frame.as_ref().expect("a frame");
     assert_eq!(
         frame.step,
         Step::Passes { spp: 2 },
@@ -564,7 +624,7 @@ fn choosing_a_display_mode_shows_it_with_its_legend_and_keeps_the_render() {
         frame.pixels, colour,
         "the colour is kept beside the picture"
     );
-    assert_eq!(h.state().generation, generation, "no new render");
+    assert_eq!(h.state().session.generation, generation, "no new render");
 
     // M steps to the next mode, wrapping around to the colour.
     h.key_press(Key::M);
@@ -652,7 +712,7 @@ fn adaptive_sampling_from_the_panel_re_renders_and_the_samples_view_shows_where_
     app.doc.state.render.target_spp = Some(Adaptive::MIN_SAMPLES + 8);
     let mut h = harness(app);
     settle(&mut h);
-    let generation = h.state().generation;
+    let generation = h.state().session.generation;
 
     h.get_by_label("stop converged pixels").click();
     h.step();
@@ -661,7 +721,7 @@ fn adaptive_sampling_from_the_panel_re_renders_and_the_samples_view_shows_where_
         Some(Adaptive::default())
     );
     settle(&mut h);
-    assert!(h.state().generation > generation, "a new render");
+    assert!(h.state().session.generation > generation, "a new render");
 
     h.get_by_value("Colour").click();
     step_shown(&mut h);
@@ -684,7 +744,7 @@ fn ticking_roughness_on_the_glass_cone_sets_it_and_re_renders() {
     settle(&mut h);
     h.state_mut().selection = Selection::Object(0);
     step_shown(&mut h);
-    let generation = h.state().generation;
+    let generation = h.state().session.generation;
     // The cone's glass is smooth: ticking the row sets its own value, 0.
     h.get_by_label("roughness").click();
     h.step();
@@ -693,7 +753,7 @@ fn ticking_roughness_on_the_glass_cone_sets_it_and_re_renders() {
         Some(0.0)
     );
     settle(&mut h);
-    assert!(h.state().generation > generation, "a new render");
+    assert!(h.state().session.generation > generation, "a new render");
     h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
     h.step();
     assert_eq!(
