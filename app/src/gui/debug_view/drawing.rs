@@ -5,6 +5,7 @@
 //! [`Camera`], so the picture is the lecture's geometry, not a copy of it.
 
 use super::gpu::{GpuSegment, GpuVertex};
+use super::rays::{DrawnRay, RayKind};
 use super::tessellate::{MeshVertex, OBJECTS_DRAWN_IN_FULL, tessellate, tessellate_bounds};
 use egui::Color32;
 use glam::Vec3;
@@ -41,40 +42,6 @@ pub mod palette {
     pub const NORMAL: Color32 = Color32::from_rgb(250, 250, 250);
     /// The selected object.
     pub const SELECTED: Color32 = Color32::from_rgb(255, 160, 30);
-}
-
-/// Which kind of ray a drawn segment is.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum RayKind {
-    /// From P0 through the view window.
-    Primary,
-    /// Toward a light; `blocked` when something lies in between.
-    Shadow {
-        /// Stopped at a blocker.
-        blocked: bool,
-    },
-    /// Mirror reflection.
-    Reflection,
-    /// Refraction into or out of glass.
-    Refraction,
-}
-
-/// One ray of the selected pixel, ready to draw.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct DrawnRay {
-    /// Which kind.
-    pub kind: RayKind,
-    /// Where it starts.
-    pub from: Vec3,
-    /// Its unit direction.
-    pub dir: Vec3,
-    /// How far it goes: to its hit, its light or its blocker; `None` when it
-    /// goes on without end (a miss, or toward a directional light).
-    pub length: Option<f32>,
-    /// The unit normal at its end when the ray hit a surface there.
-    pub normal: Option<Vec3>,
-    /// For primary rays: the point on the view window it passes through.
-    pub window_point: Option<Vec3>,
 }
 
 /// Which primary rays to draw besides the selected pixel's.
