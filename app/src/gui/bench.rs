@@ -160,7 +160,9 @@ pub fn debug_view(
     }
     if let Some(prepared) = &app.session.prepared {
         let camera = &prepared.world.camera;
-        app.inspect([camera.w / 2, camera.h / 2], false);
+        let method = app.doc.state.render.method;
+        app.inspector
+            .inspect([camera.w / 2, camera.h / 2], false, Some(prepared), method);
     }
     let mut report = DebugViewReport::default();
     for _ in 0..frames {

@@ -22,15 +22,13 @@ use doc::edits::Selection;
 pub use doc::recovery::default_dir as recovery_dir;
 use doc::{autosave, edits, recovery};
 use files::{DialogKind, DialogResult, Dialogs, Settings};
-use inspector::{panel as inspector_panel, pixel as inspected};
+use inspector::Inspector;
 use panels::{camera_panel, error_plot, render_panel, scene_panel, status_bar};
-use renderer::RenderOptions;
 use renderer::display::Display;
 use renderer::ray::Ray;
 use scene::Scene;
 use session::SessionSync;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 use std::time::{Instant, SystemTime};
 use viewport::navigation::{self, OrbitView};
 use viewport::{image_view, screenshot};
@@ -93,31 +91,13 @@ pub struct RaylabApp {
     show_debug: bool,
     /// The 3D debug view's state.
     debug: debug_view::DebugView,
-    /// The pixel under inspection.
-    inspected: Option<inspected::InspectedPixel>,
-    /// Its ray tree, with what it was traced from.
-    inspection: Option<(InspectionKey, renderer::Inspection)>,
-    /// The rays the debug view draws: the inspection's, or those of all the
-    /// pixel's samples so far (then the key's sample is their count).
-    drawn_rays: Option<(InspectionKey, bool, Vec<debug_view::DrawnRay>)>,
+    /// The inspected pixel, its ray tree and the inspector window.
+    inspector: Inspector,
     /// Writes the unsaved scene to a recovery file; `None`: no recovery.
     autosave: Option<autosave::Autosave>,
     /// Recovery files of crashed runs still to offer, newest first.
     left_behind: Vec<recovery::Left>,
 }
-
-/// What an inspection was traced from: the world, the options, the pixel and
-/// the sample (or, for all samples, their count).
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct InspectionKey {
-    world: usize,
-    options: RenderOptions,
-    pixel: [u32; 2],
-    sample: Option<u32>,
-}
-
-/// At most this many samples' rays are drawn at once.
-const MAX_DRAWN_SAMPLES: u32 = 64;
 
 impl RaylabApp {
     /// An app showing `scene` (loaded from `path`).
@@ -142,9 +122,7 @@ impl RaylabApp {
             gpu: None,
             show_debug: false,
             debug: debug_view::DebugView::default(),
-            inspected: None,
-            inspection: None,
-            drawn_rays: None,
+            inspector: Inspector::default(),
             autosave: None,
             left_behind: Vec::new(),
         }
@@ -188,9 +166,8 @@ impl RaylabApp {
         if self
             .session
             .submit_if_changed(ctx, &self.doc.state, self.image.display)
-            && let (Some(inspected), Some(prepared)) = (&mut self.inspected, &self.session.prepared)
         {
-            *inspected = inspected.follow(&prepared.world.camera);
+            self.inspector.follow(self.session.prepared.as_ref());
         }
     }
 
@@ -262,12 +239,16 @@ impl RaylabApp {
                 Some(object) => Selection::Object(object),
                 None => Selection::None,
             };
-            self.inspect(pixel, false);
+            let method = self.doc.state.render.method;
+            let prepared = self.session.prepared.as_ref();
+            self.inspector.inspect(pixel, false, prepared, method);
         }
         if gestures.inspect_hover
             && let Some(pixel) = gestures.hovered_pixel
         {
-            self.inspect(pixel, true);
+            let method = self.doc.state.render.method;
+            let prepared = self.session.prepared.as_ref();
+            self.inspector.inspect(pixel, true, prepared, method);
         }
         let moved = gestures.orbit != egui::Vec2::ZERO
             || gestures.pan != egui::Vec2::ZERO
@@ -305,142 +286,6 @@ impl RaylabApp {
         self.navigation = dragging.then_some(view);
     }
 
-    /// Inspects pixel (i, j); a pinned pixel moves only on a click, not on hover.
-    fn inspect(&mut self, pixel: [u32; 2], hover: bool) {
-        let inspected = match self.inspected {
-            Some(current) if current.pixel == pixel => current,
-            Some(current) if current.pinned && hover => current,
-            Some(current) => inspected::InspectedPixel {
-                pixel,
-                point: None,
-                ..current
-            },
-            None => inspected::InspectedPixel::new(pixel),
-        };
-        self.inspected = Some(inspected);
-        self.remember_inspected_point();
-    }
-
-    /// Records the point the inspected pixel's centre ray hits, which an
-    /// unpinned inspection follows when the camera moves.
-    fn remember_inspected_point(&mut self) {
-        let (Some(inspected), Some(prepared)) = (&mut self.inspected, &self.session.prepared)
-        else {
-            return;
-        };
-        let [i, j] = inspected.pixel;
-        let ray = prepared.world.camera.center_ray(i, j);
-        inspected.point = prepared
-            .world
-            .intersect(&ray, self.doc.state.render.method)
-            .map(|hit| ray.at(hit.alpha));
-    }
-
-    /// Re-traces the inspected pixel when it, its sample, the scene or the
-    /// options changed (one path: microseconds), and all its samples when the
-    /// debug view draws them.
-    fn refresh_inspection(&mut self) {
-        let (Some(inspected), Some(prepared)) = (self.inspected, &self.session.prepared) else {
-            self.inspection = None;
-            self.drawn_rays = None;
-            return;
-        };
-        let world = &prepared.world;
-        let options = self.doc.state.render.options();
-        let key = InspectionKey {
-            world: Arc::as_ptr(world) as usize,
-            options,
-            pixel: inspected.pixel,
-            sample: inspected.sample,
-        };
-        let [i, j] = inspected.pixel;
-        if self.inspection.as_ref().is_none_or(|(k, _)| *k != key) {
-            self.inspection = renderer::inspect_pixel(world, &options, i, j, inspected.sample)
-                .ok()
-                .map(|inspection| (key, inspection));
-        }
-        let all = self.show_debug && self.debug.options.all_samples;
-        let drawn = InspectionKey {
-            sample: if all {
-                Some(self.session.shown_spp().clamp(1, MAX_DRAWN_SAMPLES))
-            } else {
-                key.sample
-            },
-            ..key
-        };
-        if self
-            .drawn_rays
-            .as_ref()
-            .is_some_and(|(k, a, _)| (*k, *a) == (drawn, all))
-        {
-            return;
-        }
-        let rays = match (all, &self.inspection) {
-            (true, _) => (0..drawn.sample.unwrap_or(1))
-                .filter_map(|k| renderer::inspect_pixel(world, &options, i, j, Some(k)).ok())
-                .flat_map(|inspection| {
-                    debug_view::rays::drawn_rays(&inspection).collect::<Vec<_>>()
-                })
-                .collect(),
-            (false, Some((_, inspection))) => debug_view::rays::drawn_rays(inspection).collect(),
-            (false, None) => Vec::new(),
-        };
-        self.drawn_rays = Some((drawn, all, rays));
-    }
-
-    /// The pixel inspector window.
-    fn inspector_window(&mut self, ctx: &egui::Context) {
-        let spp = self.session.shown_spp();
-        let (Some(inspected), Some((_, inspection)), Some(prepared)) = (
-            &mut self.inspected,
-            &self.inspection,
-            &self.session.prepared,
-        ) else {
-            return;
-        };
-        let camera = &prepared.world.camera;
-        let [i, j] = inspected.pixel;
-        let accumulated = self
-            .session
-            .frame
-            .as_ref()
-            .filter(|f| spp > 0 && f.width == camera.w && f.height == camera.h)
-            .and_then(|f| f.pixels.get(j as usize * f.width as usize + i as usize))
-            .map(|&c| (c, spp));
-        let lights: Vec<String> = prepared
-            .world
-            .lights
-            .iter()
-            .enumerate()
-            .map(|(k, light)| match light {
-                renderer::light::Light::Point { position, .. } => {
-                    format!("point light {k} at {}", inspector_panel::v3(*position))
-                }
-                renderer::light::Light::Directional { .. } => format!("directional light {k}"),
-                renderer::light::Light::Ambient { .. } => format!("ambient light {k}"),
-            })
-            .collect();
-        let cx = inspector_panel::Context {
-            camera,
-            accumulated,
-            lights: &lights,
-        };
-        let mut open = true;
-        egui::Window::new("Pixel inspector")
-            .default_pos(ctx.content_rect().right_top() + egui::vec2(-380.0, 60.0))
-            .default_width(360.0)
-            .max_width(480.0)
-            .default_height(520.0)
-            .show(ctx, |ui| {
-                egui::ScrollArea::vertical().show(ui, |ui| {
-                    open = inspector_panel::show(ui, inspected, inspection, &cx);
-                });
-            });
-        if !open {
-            self.inspected = None;
-        }
-    }
-
     /// The toolbar above the image.
     fn toolbar(&mut self, ui: &mut egui::Ui) {
         ui.horizontal(|ui| {
@@ -469,34 +314,11 @@ impl RaylabApp {
             world: &prepared.world,
             objects: &prepared.resolved.objects,
             selected_object,
-            pixel: self.inspected.map(|p| p.pixel),
-            rays: self
-                .drawn_rays
-                .as_ref()
-                .map_or(&[][..], |(_, _, rays)| rays.as_slice()),
+            pixel: self.inspector.pixel(),
+            rays: self.inspector.drawn_rays(),
             options: self.debug.options,
         };
         self.debug.show(ui, &inputs, self.gpu.is_some());
-    }
-
-    /// Outlines the inspected pixel on the image.
-    fn mark_inspected_pixel(&self, ui: &egui::Ui) {
-        if let Some(rect) = self.inspected.and_then(|p| self.image.pixel_rect(p.pixel)) {
-            let rect = rect.expand(2.0);
-            let painter = ui.painter();
-            painter.rect_stroke(
-                rect,
-                0.0,
-                egui::Stroke::new(3.0, egui::Color32::BLACK),
-                egui::StrokeKind::Outside,
-            );
-            painter.rect_stroke(
-                rect,
-                0.0,
-                egui::Stroke::new(1.5, debug_view::drawing::palette::PRIMARY),
-                egui::StrokeKind::Outside,
-            );
-        }
     }
 
     /// Carries out `command`.
@@ -1043,12 +865,12 @@ impl RaylabApp {
                     .show(ui, |ui| self.debug_view(ui));
             }
             let gestures = self.image.ui(ui);
-            self.mark_inspected_pixel(ui);
+            self.inspector.mark(ui, &self.image);
             self.image.hover_text = self.hover_text(gestures.hovered_pixel);
             let dragging = ctx.input(|i| i.pointer.any_down());
             self.navigate(&gestures, dragging);
         });
-        self.inspector_window(&ctx);
+        self.inspector.window(&ctx, &self.session);
         self.guard_modal(&ctx);
         self.recovery_modal(&ctx);
         self.message_modal(&ctx);
@@ -1064,7 +886,9 @@ impl RaylabApp {
         self.update_title(&ctx);
         self.autosave_at(&ctx, Instant::now());
         self.submit_if_changed(&ctx);
-        self.refresh_inspection();
+        let all_samples = self.show_debug && self.debug.options.all_samples;
+        let options = self.doc.state.render.options();
+        self.inspector.refresh(&self.session, options, all_samples);
         self.frame_times.record(started.elapsed());
     }
 }

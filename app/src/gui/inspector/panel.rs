@@ -16,12 +16,12 @@ pub struct Context<'a> {
     pub camera: &'a Camera,
     /// The pixel's mean colour in the image on screen, and its samples per pixel.
     pub accumulated: Option<(Vec3, u32)>,
-    /// The names of the world's point and directional lights, by index.
-    pub lights: &'a [String],
+    /// The world's lights, by index (shadow rays name theirs).
+    pub lights: &'a [renderer::light::Light],
 }
 
 /// A vector with three decimals.
-pub fn v3(v: Vec3) -> String {
+fn v3(v: Vec3) -> String {
     format!("({:.3}, {:.3}, {:.3})", v.x, v.y, v.z)
 }
 
@@ -249,7 +249,7 @@ fn title(index: usize, ray: &RayNode, cx: &Context<'_>) -> String {
             let light = cx
                 .lights
                 .get(shadow.light)
-                .cloned()
+                .map(|light| light_label(shadow.light, light))
                 .unwrap_or_else(|| format!("light {}", shadow.light));
             match &shadow.blocker {
                 Some(b) => format!(
@@ -262,6 +262,17 @@ fn title(index: usize, ray: &RayNode, cx: &Context<'_>) -> String {
             }
         }
         (None, None) => format!("#{index} {kind} -> misses (background)"),
+    }
+}
+
+/// Light `k`'s name in the ray tree: its kind, and where a point light is.
+fn light_label(k: usize, light: &renderer::light::Light) -> String {
+    match light {
+        renderer::light::Light::Point { position, .. } => {
+            format!("point light {k} at {}", v3(*position))
+        }
+        renderer::light::Light::Directional { .. } => format!("directional light {k}"),
+        renderer::light::Light::Ambient { .. } => format!("ambient light {k}"),
     }
 }
 

@@ -237,7 +237,7 @@ fn clicking_the_image_selects_the_object_under_the_pointer() {
         // Let the panels settle after the previous selection changed them.
         // The previous click opened the pixel inspector; close it so that it
         // covers nothing (the image is tiny here).
-        h.state_mut().inspected = None;
+        h.state_mut().inspector.inspected = None;
         h.run_steps(3);
         let pos = h.state().image.pixel_on_screen(pixel).expect("drawn");
         click_at(&mut h, pos);
@@ -395,6 +395,7 @@ fn clicking_a_pixel_on_the_red_sphere_inspects_its_rays() {
     step_shown(&mut h);
     let (_, inspection) = h
         .state()
+        .inspector
         .inspection
         .as_ref()
         .expect("the click inspects the pixel");
@@ -455,7 +456,7 @@ fn stepping_to_a_sample_re_traces_the_sample_that_went_into_the_image() {
     step_shown(&mut h);
     h.get_by_label("sample").click();
     step_shown(&mut h);
-    let (_, inspection) = h.state().inspection.as_ref().expect("inspected");
+    let (_, inspection) = h.state().inspector.inspection.as_ref().expect("inspected");
     assert_eq!(inspection.sample, Some(0));
     // With one pass on screen, the image's pixel is exactly sample 0.
     let frame = h.state().session.frame.as_ref().expect("a frame");
@@ -495,7 +496,10 @@ fn an_unpinned_inspection_follows_its_point_and_a_pinned_one_keeps_its_pixel() {
         .d;
     h.state_mut().doc.state.scene.camera.d = Some(2.0 * d);
     h.run_steps(2);
-    assert_eq!(h.state().inspected.expect("inspected").pixel, pixel);
+    assert_eq!(
+        h.state().inspector.inspected.expect("inspected").pixel,
+        pixel
+    );
     // Moving the camera sideways moves the point across the image; the
     // unpinned pixel follows it.
     let camera = h
@@ -509,12 +513,12 @@ fn an_unpinned_inspection_follows_its_point_and_a_pinned_one_keeps_its_pixel() {
     h.state_mut().doc.state.scene.camera.eye = Some(camera.p0 + 0.4 * camera.r);
     h.state_mut().doc.state.scene.camera.toward = Some(camera.t);
     h.run_steps(2);
-    let followed = h.state().inspected.expect("inspected").pixel;
+    let followed = h.state().inspector.inspected.expect("inspected").pixel;
     assert!(
         followed[0] < pixel[0],
         "{followed:?}: the point moves left as the camera moves right"
     );
-    let (_, inspection) = h.state().inspection.as_ref().expect("inspected");
+    let (_, inspection) = h.state().inspector.inspection.as_ref().expect("inspected");
     assert_eq!(
         inspection.primary().hit.as_ref().map(|hit| hit.shape),
         Some("sphere"),
@@ -525,7 +529,10 @@ fn an_unpinned_inspection_follows_its_point_and_a_pinned_one_keeps_its_pixel() {
     h.step();
     h.state_mut().doc.state.scene.camera.eye = Some(camera.p0);
     h.run_steps(2);
-    assert_eq!(h.state().inspected.expect("inspected").pixel, followed);
+    assert_eq!(
+        h.state().inspector.inspected.expect("inspected").pixel,
+        followed
+    );
 }
 
 #[test]
