@@ -24,19 +24,12 @@ use doc::{autosave, edits, recovery};
 use files::{DialogKind, DialogResult, Dialogs, Settings};
 use inspector::Inspector;
 use panels::{camera_panel, error_plot, render_panel, scene_panel, status_bar};
-use renderer::display::Display;
-use renderer::ray::Ray;
 use scene::Scene;
 use session::SessionSync;
 use std::path::{Path, PathBuf};
 use std::time::{Instant, SystemTime};
-use viewport::navigation::{self, OrbitView};
-use viewport::{image_view, screenshot};
-
-/// Orbit speed, radians per point dragged.
-const ORBIT_SPEED: f32 = 0.008;
-/// Dolly speed: the distance shrinks by e^(speed · points).
-const DOLLY_SPEED: f32 = 0.004;
+use viewport::camera_drag::CameraDrag;
+use viewport::{image_view, navigation, picking, screenshot};
 
 /// What waits for the user's answer to "save changes?".
 #[derive(Clone, Debug, PartialEq)]
@@ -63,8 +56,8 @@ pub struct RaylabApp {
     image: image_view::ImageView,
     /// The reference image and the live error of each pass against it.
     errors: error_plot::ErrorPlot,
-    /// The camera being orbited, panned or dollied by a drag in progress.
-    navigation: Option<OrbitView>,
+    /// The camera drag in progress on the image.
+    camera_drag: CameraDrag,
     /// The open file dialog, if any.
     dialogs: Dialogs,
     /// Remembered between runs.
@@ -108,7 +101,7 @@ impl RaylabApp {
             session: SessionSync::default(),
             image: image_view::ImageView::default(),
             errors: error_plot::ErrorPlot::default(),
-            navigation: None,
+            camera_drag: CameraDrag::default(),
             dialogs: Dialogs::default(),
             settings: Settings::default(),
             guard: None,
@@ -179,111 +172,26 @@ impl RaylabApp {
         }
     }
 
-    /// The object under pixel (i, j) of the newest render, if any.
-    fn pick(&self, [i, j]: [u32; 2]) -> Option<usize> {
-        let prepared = self.session.prepared.as_ref()?;
-        let world = &prepared.world;
-        if i >= world.camera.w || j >= world.camera.h {
-            return None;
-        }
-        let ray = world.camera.center_ray(i, j);
-        world
-            .intersect(&ray, self.doc.state.render.method)
-            .map(|hit| hit.object as usize)
-    }
-
-    /// The name of the object under the pointer, while the image shows object ids.
-    fn hover_text(&self, pixel: Option<[u32; 2]>) -> Option<String> {
-        if self.image.shown_display() != Some(Display::ObjectId) {
-            return None;
-        }
-        let object = self.pick(pixel?)?;
-        let names = &self.session.prepared.as_ref()?.world.names;
-        names.get(object).cloned()
-    }
-
-    /// The camera as an eye orbiting the point the image centre shows (or,
-    /// looking at nothing, the scene's centre depth).
-    fn orbit_view(&self) -> Option<OrbitView> {
-        let prepared = self.session.prepared.as_ref()?;
-        let camera = &prepared.world.camera;
-        let hit = prepared
-            .world
-            .intersect(&Ray::new(camera.p0, camera.t), self.doc.state.render.method)
-            .map(|h| h.alpha)
-            .filter(|a| a.is_finite() && *a > 1e-3);
-        let depth = hit.unwrap_or_else(|| {
-            let focus = prepared
-                .resolved
-                .objects
-                .iter()
-                .filter_map(|o| scene::layout::bounds(&o.geometry))
-                .fold(scene::layout::Aabb::EMPTY, scene::layout::Aabb::union);
-            if focus.is_empty() {
-                5.0
-            } else {
-                (focus.center() - camera.p0).dot(camera.t).max(1.0)
-            }
-        });
-        Some(OrbitView {
-            eye: camera.p0,
-            target: camera.p0 + camera.t * depth,
-            up: self.doc.state.scene.camera.up,
-        })
-    }
-
-    /// Turns this frame's mouse gestures on the image into a pick or a camera move.
-    fn navigate(&mut self, gestures: &image_view::Gestures, dragging: bool) {
+    /// Turns this frame's mouse gestures on the image into a pick (which
+    /// also inspects the pixel), a hover inspection or a camera move.
+    fn on_image(&mut self, gestures: &image_view::Gestures, dragging: bool) {
+        let method = self.doc.state.render.method;
+        let prepared = self.session.prepared.as_ref();
         if let Some(pixel) = gestures.clicked_pixel {
-            self.selection = match self.pick(pixel) {
+            self.selection = match prepared.and_then(|p| picking::object_at(p, method, pixel)) {
                 Some(object) => Selection::Object(object),
                 None => Selection::None,
             };
-            let method = self.doc.state.render.method;
-            let prepared = self.session.prepared.as_ref();
             self.inspector.inspect(pixel, false, prepared, method);
         }
         if gestures.inspect_hover
             && let Some(pixel) = gestures.hovered_pixel
         {
-            let method = self.doc.state.render.method;
-            let prepared = self.session.prepared.as_ref();
             self.inspector.inspect(pixel, true, prepared, method);
         }
-        let moved = gestures.orbit != egui::Vec2::ZERO
-            || gestures.pan != egui::Vec2::ZERO
-            || gestures.dolly != 0.0;
-        if !moved {
-            if !dragging {
-                self.navigation = None;
-            }
-            return;
-        }
-        let Some(mut view) = self.navigation.or_else(|| self.orbit_view()) else {
-            return;
-        };
-        view = view.orbit(
-            -gestures.orbit.x * ORBIT_SPEED,
-            -gestures.orbit.y * ORBIT_SPEED,
-        );
-        if gestures.pan != egui::Vec2::ZERO
-            && let Some(prepared) = &self.session.prepared
-        {
-            let camera = &prepared.world.camera;
-            // World units per screen point at the target's depth.
-            let per_pixel = 2.0 * view.distance() * camera.theta.tan() / camera.h as f32;
-            let scale = per_pixel * gestures.pixels_per_point;
-            view = view.pan(-gestures.pan.x * scale, gestures.pan.y * scale);
-        }
-        view = view.dolly((gestures.dolly * DOLLY_SPEED).exp());
-        // A move past what a scene file holds is not made (the camera stays).
-        let Some((eye, toward)) = view.as_stored() else {
-            return;
-        };
-        let cam = &mut self.doc.state.scene.camera;
-        cam.eye = Some(eye);
-        cam.toward = Some(toward);
-        self.navigation = dragging.then_some(view);
+        let camera = &mut self.doc.state.scene.camera;
+        self.camera_drag
+            .apply(gestures, dragging, prepared, method, camera);
     }
 
     /// The toolbar above the image.
@@ -342,11 +250,11 @@ impl RaylabApp {
             }
             Command::Quit => ctx.send_viewport_cmd(egui::ViewportCommand::Close),
             Command::Undo => {
-                self.navigation = None;
+                self.camera_drag.end();
                 self.doc.history.undo(&mut self.doc.state);
             }
             Command::Redo => {
-                self.navigation = None;
+                self.camera_drag.end();
                 self.doc.history.redo(&mut self.doc.state);
             }
             Command::Edit(action) => {
@@ -414,7 +322,7 @@ impl RaylabApp {
         self.doc = doc;
         self.session.forget_submitted();
         self.selection = Selection::None;
-        self.navigation = None;
+        self.camera_drag.end();
     }
 
     /// Saves the scene to `path`; true when it was saved.
@@ -866,9 +774,15 @@ impl RaylabApp {
             }
             let gestures = self.image.ui(ui);
             self.inspector.mark(ui, &self.image);
-            self.image.hover_text = self.hover_text(gestures.hovered_pixel);
+            let method = self.doc.state.render.method;
+            self.image.hover_text = picking::hover_text(
+                &self.image,
+                self.session.prepared.as_ref(),
+                method,
+                gestures.hovered_pixel,
+            );
             let dragging = ctx.input(|i| i.pointer.any_down());
-            self.navigate(&gestures, dragging);
+            self.on_image(&gestures, dragging);
         });
         self.inspector.window(&ctx, &self.session);
         self.guard_modal(&ctx);

@@ -192,7 +192,7 @@ fn an_orbit_drag_is_one_undo_step_and_keeps_the_distance_to_the_target() {
         h.hover_at(start + egui::vec2(6.0 * k as f32, 2.0 * k as f32));
         h.step();
     }
-    let during = h.state().navigation.expect("orbiting");
+    let during = h.state().camera_drag.view.expect("orbiting");
     h.drop_at(start + egui::vec2(60.0, 20.0));
     h.step();
     let camera = &h.state().doc.state.scene.camera;
