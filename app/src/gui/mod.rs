@@ -12,37 +12,26 @@ mod inspector;
 mod panels;
 mod recovery_offer;
 mod session;
+mod settings;
 mod viewport;
 
-use crate::io::output::Provenance;
 use commands::Command;
 pub use doc::document::Document;
 use doc::document::RenderSettings;
 use doc::edits::Selection;
 pub use doc::recovery::default_dir as recovery_dir;
 use doc::{autosave, edits, recovery};
-use files::{DialogKind, DialogResult, Dialogs, Settings};
+use files::dialogs::DialogKind;
+use files::{FileWorkflow, Files, Outcome, Pending};
 use inspector::Inspector;
 use panels::{camera_panel, error_plot, render_panel, scene_panel, status_bar};
 use scene::Scene;
 use session::SessionSync;
+use settings::Settings;
 use std::path::{Path, PathBuf};
 use std::time::{Instant, SystemTime};
 use viewport::camera_drag::CameraDrag;
 use viewport::{image_view, navigation, picking, screenshot};
-
-/// What waits for the user's answer to "save changes?".
-#[derive(Clone, Debug, PartialEq)]
-enum Pending {
-    /// Open this file.
-    Open(PathBuf),
-    /// Ask for a file to open.
-    OpenDialog,
-    /// Start a new scene.
-    New,
-    /// Close the window.
-    Close,
-}
 
 /// The application state: the document, its render session and what is shown.
 pub struct RaylabApp {
@@ -58,20 +47,10 @@ pub struct RaylabApp {
     errors: error_plot::ErrorPlot,
     /// The camera drag in progress on the image.
     camera_drag: CameraDrag,
-    /// The open file dialog, if any.
-    dialogs: Dialogs,
+    /// Dialogs, "save changes?", the path prompt and messages.
+    files: FileWorkflow,
     /// Remembered between runs.
     settings: Settings,
-    /// An action waiting for "save changes?".
-    guard: Option<Pending>,
-    /// An action to carry out once a Save As dialog has saved.
-    after_save: Option<Pending>,
-    /// Closing the window was confirmed.
-    allow_close: bool,
-    /// A message for the user (a failed open or save), shown until dismissed.
-    message: Option<String>,
-    /// A path typed by the user when no file dialog is available.
-    path_prompt: Option<(DialogKind, String)>,
     /// The help overlay is shown.
     show_help: bool,
     /// The title last sent to the window.
@@ -102,13 +81,8 @@ impl RaylabApp {
             image: image_view::ImageView::default(),
             errors: error_plot::ErrorPlot::default(),
             camera_drag: CameraDrag::default(),
-            dialogs: Dialogs::default(),
+            files: FileWorkflow::default(),
             settings: Settings::default(),
-            guard: None,
-            after_save: None,
-            allow_close: false,
-            message: None,
-            path_prompt: None,
             show_help: false,
             title: String::new(),
             frame_times: status_bar::FrameTimes::default(),
@@ -232,17 +206,14 @@ impl RaylabApp {
     /// Carries out `command`.
     fn run(&mut self, ctx: &egui::Context, command: Command) {
         match command {
-            Command::New => self.guarded(ctx, Pending::New),
-            Command::Open => self.guarded(ctx, Pending::OpenDialog),
-            Command::OpenPath(path) => self.guarded(ctx, Pending::Open(path)),
-            Command::Save => match self.doc.path.clone() {
-                Some(path) => {
-                    self.save_scene(&path);
-                }
-                None => self.start_dialog(ctx, DialogKind::SaveScene),
-            },
-            Command::SaveAs => self.start_dialog(ctx, DialogKind::SaveScene),
-            Command::SaveImage => self.start_dialog(ctx, DialogKind::SaveImage),
+            Command::New => self.with_files(|files| files.guarded(ctx, Pending::New)),
+            Command::Open => self.with_files(|files| files.guarded(ctx, Pending::OpenDialog)),
+            Command::OpenPath(path) => {
+                self.with_files(|files| files.guarded(ctx, Pending::Open(path)));
+            }
+            Command::Save => self.files().save(ctx),
+            Command::SaveAs => self.files().start_dialog(ctx, DialogKind::SaveScene),
+            Command::SaveImage => self.files().start_dialog(ctx, DialogKind::SaveImage),
             Command::CopyImage => {
                 if let Some(frame) = &self.session.frame {
                     ctx.copy_image(screenshot::color_image(frame));
@@ -272,48 +243,6 @@ impl RaylabApp {
         self.selection = self.selection.valid_in(&self.doc.state.scene);
     }
 
-    /// Carries out `pending` now, or first asks about unsaved changes.
-    fn guarded(&mut self, ctx: &egui::Context, pending: Pending) {
-        if self.doc.is_modified() {
-            self.guard = Some(pending);
-        } else {
-            self.proceed(ctx, pending);
-        }
-    }
-
-    /// Carries out an action that no longer needs to ask.
-    fn proceed(&mut self, ctx: &egui::Context, pending: Pending) {
-        match pending {
-            Pending::Open(path) => self.open(&path),
-            Pending::OpenDialog => self.start_dialog(ctx, DialogKind::Open),
-            Pending::New => {
-                self.replace_document(Document::new(Scene::default(), None, self.doc.state.render));
-            }
-            Pending::Close => {
-                // Closing without saving discards the changes; `on_exit`
-                // removes the recovery file of a close allowed here.
-                self.allow_close = true;
-                ctx.send_viewport_cmd(egui::ViewportCommand::Close);
-            }
-        }
-    }
-
-    /// Replaces the document with the scene file at `path`; a file that
-    /// cannot be read leaves the current document as it is and says why.
-    fn open(&mut self, path: &Path) {
-        match Document::open(path, self.doc.state.render) {
-            Ok(doc) => {
-                let warnings = model_warnings_text(&doc.state.scene);
-                self.replace_document(doc);
-                self.settings.remember(path);
-                if !warnings.is_empty() {
-                    self.message = Some(format!("Loaded, but raylab ignored:\n\n{warnings}"));
-                }
-            }
-            Err(e) => self.message = Some(format!("Cannot open the scene.\n\n{e}")),
-        }
-    }
-
     /// Puts `doc` in place of the current document (new, opened or
     /// restored), with nothing selected or being dragged, and renders it
     /// even when it compares equal to the scene on screen: meshes compare by
@@ -325,125 +254,36 @@ impl RaylabApp {
         self.camera_drag.end();
     }
 
-    /// Saves the scene to `path`; true when it was saved.
-    fn save_scene(&mut self, path: &Path) -> bool {
-        match self.doc.save_as(path) {
-            Ok(()) => {
-                self.settings.remember(path);
-                true
-            }
-            Err(e) => {
-                self.message = Some(format!(
-                    "Cannot save {}: {e}\n\nThe file on disk is unchanged; the changes are \
-                     still unsaved.",
-                    path.display()
-                ));
-                false
-            }
+    /// The file workflow at work on this app's document, settings and image.
+    fn files(&mut self) -> Files<'_> {
+        Files {
+            flow: &mut self.files,
+            doc: &mut self.doc,
+            settings: &mut self.settings,
+            frame: self.session.frame.as_ref(),
+            camera: self.session.prepared.as_ref().map(|p| &p.world.camera),
         }
     }
 
-    /// Writes the image on screen to `path`.
-    fn save_image(&mut self, path: &Path) {
-        let (Some(frame), Some(prepared)) = (&self.session.frame, &self.session.prepared) else {
-            return;
-        };
-        let provenance = Provenance::of_render(
-            &prepared.world.camera,
-            self.doc.path.as_deref(),
-            screenshot::spp_of(frame.step),
-        );
-        match screenshot::save(path, frame, &provenance) {
-            Ok(()) => self.settings.last_folder = path.parent().map(Path::to_path_buf),
-            Err(e) => self.message = Some(format!("Cannot save the image: {e:#}")),
+    /// Runs `step` of the file workflow, then does what it leaves for the app.
+    fn with_files(&mut self, step: impl FnOnce(&mut Files<'_>) -> Outcome) {
+        match step(&mut self.files()) {
+            Outcome::Done => {}
+            Outcome::Replace(doc) => self.replace_document(*doc),
+            Outcome::LoadReference(path) => self.load_reference(&path),
         }
-    }
-
-    /// The folder a file dialog starts in: the scene's, else the last one used.
-    fn dialog_folder(&self) -> Option<PathBuf> {
-        self.doc
-            .path
-            .as_deref()
-            .and_then(Path::parent)
-            .map(Path::to_path_buf)
-            .or_else(|| self.settings.last_folder.clone())
-    }
-
-    /// The file name a save dialog of `kind` suggests in `folder`. An
-    /// image's is free there (`seed-64spp.png`, else `seed-64spp-2.png`, …),
-    /// so accepting the suggestion never replaces an earlier image.
-    fn suggested_name(&self, kind: DialogKind, folder: Option<&Path>) -> Option<String> {
-        match kind {
-            DialogKind::Open | DialogKind::Reference => None,
-            DialogKind::SaveScene => Some(self.doc.display_name()).map(|n| {
-                if n.ends_with(".xml") {
-                    n
-                } else {
-                    format!("{n}.xml")
-                }
-            }),
-            DialogKind::SaveImage => self.session.frame.as_ref().map(|f| {
-                let name = self.doc.display_name();
-                let name = screenshot::default_file_name(&name, f.step, f.legend.display);
-                let free = crate::io::output_path::free_file(
-                    &folder.unwrap_or(Path::new(".")).join(&name),
-                );
-                free.file_name()
-                    .map_or(name, |n| n.to_string_lossy().into_owned())
-            }),
-        }
-    }
-
-    /// Opens a native file dialog of `kind` in the scene's or the last
-    /// folder. The system's save dialog (the xdg portal's, or zenity's with
-    /// --confirm-overwrite) asks before replacing a file.
-    fn start_dialog(&mut self, ctx: &egui::Context, kind: DialogKind) {
-        let folder = self.dialog_folder();
-        let name = self.suggested_name(kind, folder.as_deref());
-        self.dialogs.start(ctx, kind, folder.as_deref(), name);
-    }
-
-    /// Asks for the path of a file of `kind` by typing, where no file dialog
-    /// can be shown; a save starts from the name a dialog would suggest.
-    fn prompt_for_path(&mut self, kind: DialogKind) {
-        let start = match kind {
-            DialogKind::Open => String::new(),
-            _ => {
-                let folder = self.dialog_folder();
-                let name = self.suggested_name(kind, folder.as_deref());
-                match (folder, name) {
-                    (Some(f), Some(n)) => f.join(n).display().to_string(),
-                    (Some(f), None) => format!("{}/", f.display()),
-                    (None, n) => n.unwrap_or_default(),
-                }
-            }
-        };
-        self.path_prompt = Some((kind, start));
     }
 
     /// Acts on a file chosen in a dialog or typed into the path prompt.
     fn chosen(&mut self, ctx: &egui::Context, kind: DialogKind, path: PathBuf) {
-        match kind {
-            DialogKind::Open => self.open(&path),
-            DialogKind::SaveScene => {
-                let saved = self.save_scene(&path);
-                // What waited for this save goes ahead only if it succeeded.
-                if let Some(pending) = self.after_save.take()
-                    && saved
-                {
-                    self.proceed(ctx, pending);
-                }
-            }
-            DialogKind::SaveImage => self.save_image(&path),
-            DialogKind::Reference => self.load_reference(&path),
-        }
+        self.with_files(|files| files.chosen(ctx, kind, path));
     }
 
     /// Loads a reference image for the live error plot; a bad file is a message.
     pub fn load_reference(&mut self, path: &Path) {
         match renderer::reference_image::read_exr_rgb(path) {
             Ok(image) => self.set_reference(path.to_path_buf(), image),
-            Err(error) => self.message = Some(format!("Cannot load the reference: {error}")),
+            Err(error) => self.files.message = Some(format!("Cannot load the reference: {error}")),
         }
     }
 
@@ -451,143 +291,9 @@ impl RaylabApp {
     pub fn set_reference(&mut self, path: PathBuf, image: renderer::reference_image::LinearImage) {
         self.errors.set_reference(path, image);
     }
-
-    /// Handles a closed file dialog.
-    fn poll_dialogs(&mut self, ctx: &egui::Context) {
-        match self.dialogs.poll() {
-            Some(DialogResult::Chosen(kind, path)) => self.chosen(ctx, kind, path),
-            Some(DialogResult::Unavailable(kind)) => self.prompt_for_path(kind),
-            Some(DialogResult::Cancelled) => self.after_save = None,
-            None => {}
-        }
-    }
 }
 
 impl RaylabApp {
-    /// "Save changes?" for the action waiting in `self.guard`.
-    fn guard_modal(&mut self, ctx: &egui::Context) {
-        let Some(pending) = self.guard.clone() else {
-            return;
-        };
-        let what = match &pending {
-            Pending::Close => "closing",
-            Pending::New => "starting a new scene",
-            Pending::Open(_) | Pending::OpenDialog => "opening another scene",
-        };
-        let mut answer = None;
-        egui::Modal::new(egui::Id::unique("unsaved-changes")).show(ctx, |ui| {
-            ui.heading("Unsaved changes");
-            ui.label(format!(
-                "Save the changes to {} before {what}?",
-                self.doc.display_name()
-            ));
-            ui.horizontal(|ui| {
-                if ui.button("Save").clicked() {
-                    answer = Some("save");
-                }
-                if ui.button("Don't save").clicked() {
-                    answer = Some("discard");
-                }
-                if ui.button("Cancel").clicked() {
-                    answer = Some("cancel");
-                }
-            });
-        });
-        match answer {
-            Some("save") => {
-                self.guard = None;
-                match self.doc.path.clone() {
-                    Some(path) => {
-                        if self.save_scene(&path) {
-                            self.proceed(ctx, pending);
-                        }
-                    }
-                    None => {
-                        self.after_save = Some(pending);
-                        self.start_dialog(ctx, DialogKind::SaveScene);
-                    }
-                }
-            }
-            Some("discard") => {
-                self.guard = None;
-                self.proceed(ctx, pending);
-            }
-            Some(_) => self.guard = None,
-            None => {}
-        }
-    }
-
-    /// A message (failed open or save) until dismissed.
-    fn message_modal(&mut self, ctx: &egui::Context) {
-        let Some(message) = &self.message else {
-            return;
-        };
-        let mut dismissed = false;
-        egui::Modal::new(egui::Id::unique("message")).show(ctx, |ui| {
-            ui.set_max_width(520.0);
-            ui.label(message.as_str());
-            dismissed = ui.button("OK").clicked();
-        });
-        if dismissed {
-            self.message = None;
-        }
-    }
-
-    /// Where no native dialog is available: type the file's path.
-    fn path_prompt_modal(&mut self, ctx: &egui::Context) {
-        let Some((kind, text)) = &mut self.path_prompt else {
-            return;
-        };
-        let kind = *kind;
-        let mut answer = None;
-        egui::Modal::new(egui::Id::unique("path-prompt")).show(ctx, |ui| {
-            ui.label(match kind {
-                DialogKind::Open => "Open scene file:",
-                DialogKind::SaveScene => "Save scene as:",
-                DialogKind::SaveImage => "Save image as (.png or .exr):",
-                DialogKind::Reference => "Reference image (linear .exr):",
-            });
-            ui.weak("No file dialog is available here (xdg-desktop-portal or zenity).");
-            let edit = ui.add(egui::TextEdit::singleline(text).desired_width(480.0));
-            // No dialog to confirm it: replacing a file is said, and the button says it.
-            let saving = matches!(kind, DialogKind::SaveScene | DialogKind::SaveImage);
-            let replaces = saving && Path::new(text.trim()).is_file();
-            if replaces {
-                ui.colored_label(
-                    ui.visuals().warn_fg_color,
-                    "This file exists: Replace overwrites it.",
-                );
-            }
-            let entered =
-                edit.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter)) && !replaces;
-            ui.horizontal(|ui| {
-                let ok = if replaces { "Replace" } else { "OK" };
-                if ui.button(ok).clicked() || entered {
-                    answer = Some(true);
-                }
-                if ui.button("Cancel").clicked() {
-                    answer = Some(false);
-                }
-            });
-        });
-        match answer {
-            Some(true) => {
-                let path = self
-                    .path_prompt
-                    .take()
-                    .map(|(_, t)| PathBuf::from(t.trim()));
-                if let Some(path) = path.filter(|p| !p.as_os_str().is_empty()) {
-                    self.chosen(ctx, kind, path);
-                }
-            }
-            Some(false) => {
-                self.path_prompt = None;
-                self.after_save = None;
-            }
-            None => {}
-        }
-    }
-
     /// The mouse and keyboard bindings.
     fn help_window(&mut self, ctx: &egui::Context) {
         egui::Window::new("Mouse and keys")
@@ -623,13 +329,7 @@ impl RaylabApp {
         if let Some(path) = dropped.into_iter().next() {
             commands.push(Command::OpenPath(path));
         }
-        if ctx.input(|i| i.viewport().close_requested())
-            && !self.allow_close
-            && self.doc.is_modified()
-        {
-            ctx.send_viewport_cmd(egui::ViewportCommand::CancelClose);
-            self.guard = Some(Pending::Close);
-        }
+        self.files.hold_close(ctx, &self.doc);
         commands
     }
 
@@ -653,7 +353,7 @@ impl RaylabApp {
             ctx.request_repaint_after(delay);
         }
         if let Some(error) = poll.error {
-            self.message.get_or_insert(error);
+            self.files.message.get_or_insert(error);
         }
     }
 
@@ -691,7 +391,7 @@ impl RaylabApp {
                 }
             }
             Err(e) => {
-                self.message = Some(format!("Cannot restore the autosaved work.\n\n{e}"));
+                self.files.message = Some(format!("Cannot restore the autosaved work.\n\n{e}"));
             }
         }
     }
@@ -701,7 +401,9 @@ impl RaylabApp {
         let started = Instant::now();
         let ctx = ui.ctx().clone();
         self.receive(&ctx);
-        self.poll_dialogs(&ctx);
+        if let Some((kind, path)) = self.files().poll_dialogs() {
+            self.chosen(&ctx, kind, path);
+        }
         let mut commands = self.outside_commands(&ctx);
 
         egui::Panel::top("menu").show(ui, |ui| {
@@ -743,7 +445,7 @@ impl RaylabApp {
                 });
             });
         if load_reference {
-            self.start_dialog(&ctx, DialogKind::Reference);
+            self.files().start_dialog(&ctx, DialogKind::Reference);
         }
         egui::Panel::right("scene")
             .resizable(true)
@@ -785,10 +487,12 @@ impl RaylabApp {
             self.on_image(&gestures, dragging);
         });
         self.inspector.window(&ctx, &self.session);
-        self.guard_modal(&ctx);
+        self.with_files(|files| files.guard_modal(&ctx));
         self.recovery_modal(&ctx);
-        self.message_modal(&ctx);
-        self.path_prompt_modal(&ctx);
+        self.files.message_modal(&ctx);
+        if let Some((kind, path)) = self.files.path_prompt_modal(&ctx) {
+            self.chosen(&ctx, kind, path);
+        }
         self.help_window(&ctx);
 
         for command in commands {
@@ -819,7 +523,7 @@ impl eframe::App for RaylabApp {
     /// A clean exit (nothing unsaved, or the user chose not to save) leaves
     /// nothing to recover; an exit forced past unsaved changes keeps the file.
     fn on_exit(&mut self) {
-        let clean = self.allow_close || !self.doc.is_modified();
+        let clean = self.files.allow_close || !self.doc.is_modified();
         if let Some(autosave) = self.autosave.as_mut().filter(|_| clean) {
             autosave.remove();
         }
@@ -828,14 +532,3 @@ impl eframe::App for RaylabApp {
 
 #[cfg(test)]
 mod tests;
-
-/// What the scene's model files use that raylab ignores, one line each
-/// (empty when nothing was ignored).
-fn model_warnings_text(scene: &Scene) -> String {
-    scene
-        .model_warnings()
-        .into_iter()
-        .flat_map(|(src, warnings)| warnings.into_iter().map(move |w| format!("{src}: {w}")))
-        .collect::<Vec<_>>()
-        .join("\n")
-}

@@ -6,7 +6,7 @@ use super::{harness, seed_app, seed_path, step_shown};
 use crate::gui::RaylabApp;
 use crate::gui::doc::autosave::INTERVAL;
 use crate::gui::doc::recovery;
-use crate::gui::files::DialogKind;
+use crate::gui::files::dialogs::DialogKind;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use std::path::{Path, PathBuf};
@@ -126,11 +126,11 @@ fn closing_without_saving_removes_the_recovery_file() {
     h.step();
     advance_autosave(&mut h);
     assert!(own_file(dir.path()).exists());
-    h.state_mut().guard = Some(crate::gui::Pending::Close);
+    h.state_mut().files.guard = Some(crate::gui::files::Pending::Close);
     step_shown(&mut h);
     h.get_by_label("Don't save").click();
     h.step();
-    assert!(h.state().allow_close);
+    assert!(h.state().files.allow_close);
     eframe::App::on_exit(h.state_mut());
     assert_eq!(files(dir.path()), Vec::<PathBuf>::new());
 }

@@ -290,13 +290,13 @@ fn closing_with_unsaved_changes_is_held_until_the_user_answers() {
     settle(&mut h);
     h.state_mut().doc.state.scene.objects.pop();
     h.step();
-    h.state_mut().guard = Some(crate::gui::Pending::Close);
+    h.state_mut().files.guard = Some(crate::gui::files::Pending::Close);
     step_shown(&mut h);
     h.get_by_label("Save the changes to seed.xml before closing?");
     h.get_by_label("Cancel").click();
     h.step();
-    assert!(!h.state().allow_close);
-    assert_eq!(h.state().guard, None);
+    assert!(!h.state().files.allow_close);
+    assert_eq!(h.state().files.guard, None);
 }
 
 #[test]
@@ -305,8 +305,8 @@ fn saving_the_image_writes_the_tonemapped_accumulation_buffer_and_the_camera() {
     settle(&mut h);
     let dir = tempfile::tempdir().expect("temp dir");
     let path = dir.path().join("shot.png");
-    h.state_mut().save_image(&path);
-    assert_eq!(h.state().message, None);
+    h.state_mut().files().save_image(&path);
+    assert_eq!(h.state().files.message, None);
     let frame = h.state().session.frame.as_ref().expect("a frame");
     let expected: Vec<u8> = frame
         .pixels
@@ -341,8 +341,11 @@ fn saving_the_scene_and_reopening_it_gives_the_same_picture() {
     let dir = tempfile::tempdir().expect("temp dir");
     let path = dir.path().join("edited.xml");
     let ctx = h.ctx.clone();
-    h.state_mut()
-        .chosen(&ctx, crate::gui::files::DialogKind::SaveScene, path.clone());
+    h.state_mut().chosen(
+        &ctx,
+        crate::gui::files::dialogs::DialogKind::SaveScene,
+        path.clone(),
+    );
     assert!(!h.state().doc.is_modified());
     h.state_mut().run(&ctx, Command::OpenPath(path.clone()));
     h.step();
@@ -676,7 +679,7 @@ fn a_loaded_reference_plots_each_pass_error_and_it_falls_as_the_image_refines() 
     let mut app = app;
     app.doc.state.render.target_spp = Some(16);
     app.load_reference(&reference);
-    assert!(app.message.is_none(), "{:?}", app.message);
+    assert!(app.files.message.is_none(), "{:?}", app.files.message);
     let mut h = harness(app);
     settle(&mut h);
     h.step();
@@ -708,7 +711,7 @@ fn a_loaded_reference_plots_each_pass_error_and_it_falls_as_the_image_refines() 
 fn a_broken_reference_file_is_a_message_not_a_crash() {
     let mut app = seed_app(48, 32);
     app.load_reference(Path::new("/no/such/reference.exr"));
-    let message = app.message.clone().expect("a message");
+    let message = app.files.message.clone().expect("a message");
     assert!(message.contains("reference.exr"), "{message}");
 }
 
