@@ -5,22 +5,23 @@
 
 pub mod bench;
 mod commands;
+mod crash_recovery;
 mod debug_view;
 mod doc;
 mod files;
 mod inspector;
 mod panels;
-mod recovery_offer;
 mod session;
 mod settings;
 mod viewport;
 
 use commands::Command;
+use crash_recovery::CrashRecovery;
 pub use doc::document::Document;
 use doc::document::RenderSettings;
+use doc::edits;
 use doc::edits::Selection;
 pub use doc::recovery::default_dir as recovery_dir;
-use doc::{autosave, edits, recovery};
 use files::dialogs::DialogKind;
 use files::{FileWorkflow, Files, Outcome, Pending};
 use inspector::Inspector;
@@ -29,7 +30,7 @@ use scene::Scene;
 use session::SessionSync;
 use settings::Settings;
 use std::path::{Path, PathBuf};
-use std::time::{Instant, SystemTime};
+use std::time::Instant;
 use viewport::camera_drag::CameraDrag;
 use viewport::{image_view, navigation, picking, screenshot};
 
@@ -65,10 +66,8 @@ pub struct RaylabApp {
     debug: debug_view::DebugView,
     /// The inspected pixel, its ray tree and the inspector window.
     inspector: Inspector,
-    /// Writes the unsaved scene to a recovery file; `None`: no recovery.
-    autosave: Option<autosave::Autosave>,
-    /// Recovery files of crashed runs still to offer, newest first.
-    left_behind: Vec<recovery::Left>,
+    /// Autosave, and the offer of what crashed runs left.
+    recovery: CrashRecovery,
 }
 
 impl RaylabApp {
@@ -90,16 +89,14 @@ impl RaylabApp {
             show_debug: false,
             debug: debug_view::DebugView::default(),
             inspector: Inspector::default(),
-            autosave: None,
-            left_behind: Vec::new(),
+            recovery: CrashRecovery::default(),
         }
     }
 
-    /// Autosaves unsaved changes to a recovery file in `dir` (see
-    /// [`recovery`]) and offers to restore what crashed runs left there.
+    /// Autosaves unsaved changes to a recovery file in `dir` and offers to
+    /// restore what crashed runs left there (see [`CrashRecovery`]).
     pub fn with_recovery(mut self, dir: &Path) -> Self {
-        self.left_behind = recovery::left_behind(dir);
-        self.autosave = Some(autosave::Autosave::new(dir, autosave::INTERVAL));
+        self.recovery = CrashRecovery::in_dir(dir);
         self
     }
 
@@ -342,57 +339,19 @@ impl RaylabApp {
         }
     }
 
-    /// Autosaves the scene when due at `now`, and asks for a repaint when
-    /// the next autosave is due (nothing else may wake the UI by then).
+    /// Autosaves the scene when due at `now`; a failed write is a message.
     fn autosave_at(&mut self, ctx: &egui::Context, now: Instant) {
-        let Some(autosave) = &mut self.autosave else {
-            return;
-        };
-        let poll = autosave.poll(now, &self.doc);
-        if let Some(delay) = poll.again_in {
-            ctx.request_repaint_after(delay);
-        }
-        if let Some(error) = poll.error {
+        if let Some(error) = self.recovery.autosave_at(ctx, now, &self.doc) {
             self.files.message.get_or_insert(error);
         }
     }
 
-    /// The offer to restore a crashed run's work. After a Restore the
-    /// others wait for the next start (restoring one more would replace it).
+    /// The offer to restore a crashed run's work, if one waits.
     fn recovery_modal(&mut self, ctx: &egui::Context) {
-        let Some(left) = self.left_behind.first().cloned() else {
-            return;
-        };
-        match recovery_offer::show(ctx, &left, SystemTime::now()) {
-            Some(recovery_offer::Answer::Restore) => {
-                self.left_behind.clear();
-                self.restore(&left);
-            }
-            Some(recovery_offer::Answer::Discard) => {
-                self.left_behind.remove(0);
-                let _ = std::fs::remove_file(&left.file);
-            }
+        match self.recovery.offer(ctx, self.doc.state.render) {
+            Some(Ok(doc)) => self.replace_document(doc),
+            Some(Err(message)) => self.files.message = Some(message),
             None => {}
-        }
-    }
-
-    /// Opens the recovered scene of `left` as an unsaved document of the
-    /// file it belongs to; its recovery file becomes this run's.
-    fn restore(&mut self, left: &recovery::Left) {
-        match recovery::read(&left.file) {
-            Ok((scene, source)) => {
-                self.replace_document(Document::recovered(
-                    scene.clone(),
-                    source.clone(),
-                    self.doc.state.render,
-                ));
-                if let Some(autosave) = &mut self.autosave {
-                    autosave.adopt(&left.file, (scene, source));
-                }
-            }
-            Err(e) => {
-                self.files.message = Some(format!("Cannot restore the autosaved work.\n\n{e}"));
-            }
         }
     }
 
@@ -524,9 +483,7 @@ impl eframe::App for RaylabApp {
     /// nothing to recover; an exit forced past unsaved changes keeps the file.
     fn on_exit(&mut self) {
         let clean = self.files.allow_close || !self.doc.is_modified();
-        if let Some(autosave) = self.autosave.as_mut().filter(|_| clean) {
-            autosave.remove();
-        }
+        self.recovery.on_exit(clean);
     }
 }
 
