@@ -25,14 +25,14 @@ pub use doc::recovery::default_dir as recovery_dir;
 use files::dialogs::DialogKind;
 use files::{FileWorkflow, Files, Outcome, Pending};
 use inspector::Inspector;
-use panels::{camera_panel, error_plot, render_panel, scene_panel, status_bar};
+use panels::{camera_panel, error_plot, help, render_panel, scene_panel, status_bar};
 use scene::Scene;
 use session::SessionSync;
 use settings::Settings;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use viewport::camera_drag::CameraDrag;
-use viewport::{image_view, navigation, picking, screenshot};
+use viewport::{image_view, picking, screenshot};
 
 /// The application state: the document, its render session and what is shown.
 pub struct RaylabApp {
@@ -165,17 +165,6 @@ impl RaylabApp {
             .apply(gestures, dragging, prepared, method, camera);
     }
 
-    /// The toolbar above the image.
-    fn toolbar(&mut self, ui: &mut egui::Ui) {
-        ui.horizontal(|ui| {
-            ui.toggle_value(&mut self.show_debug, "3D debug view")
-                .on_hover_text(
-                    "The camera, the view window with C00 and its pixel grid, and the \
-                     inspected pixel's rays in 3D (G)",
-                );
-        });
-    }
-
     /// The 3D debug view of the prepared scene.
     fn debug_view(&mut self, ui: &mut egui::Ui) {
         let Some(prepared) = &self.session.prepared else {
@@ -211,6 +200,7 @@ impl RaylabApp {
             Command::Save => self.files().save(ctx),
             Command::SaveAs => self.files().start_dialog(ctx, DialogKind::SaveScene),
             Command::SaveImage => self.files().start_dialog(ctx, DialogKind::SaveImage),
+            Command::LoadReference => self.files().start_dialog(ctx, DialogKind::Reference),
             Command::CopyImage => {
                 if let Some(frame) = &self.session.frame {
                     ctx.copy_image(screenshot::color_image(frame));
@@ -234,6 +224,7 @@ impl RaylabApp {
             Command::NextDisplay => self.image.display = self.image.display.next(),
             Command::Fit => self.image.fit(),
             Command::ActualSize => self.image.actual_size(),
+            Command::TogglePause => self.session.toggle_pause(),
             Command::ToggleHelp => self.show_help = !self.show_help,
             Command::ToggleDebugView => self.show_debug = !self.show_debug,
         }
@@ -291,45 +282,6 @@ impl RaylabApp {
 }
 
 impl RaylabApp {
-    /// The mouse and keyboard bindings.
-    fn help_window(&mut self, ctx: &egui::Context) {
-        egui::Window::new("Mouse and keys")
-            .open(&mut self.show_help)
-            .collapsible(false)
-            .resizable(false)
-            .show(ctx, |ui| {
-                egui::Grid::new("help")
-                    .num_columns(2)
-                    .striped(true)
-                    .show(ui, |ui| {
-                        for (input, effect) in navigation::HELP {
-                            ui.strong(*input);
-                            ui.label(*effect);
-                            ui.end_row();
-                        }
-                    });
-            });
-    }
-
-    /// Commands from outside the widgets: shortcuts, dropped files, the
-    /// window's close button.
-    fn outside_commands(&mut self, ctx: &egui::Context) -> Vec<Command> {
-        let mut commands = commands::from_keyboard(ctx);
-        let dropped: Vec<PathBuf> = ctx.input(|i| {
-            i.raw
-                .dropped_files
-                .iter()
-                .map(|f| f.path().to_path_buf())
-                .filter(|p| !p.as_os_str().is_empty())
-                .collect()
-        });
-        if let Some(path) = dropped.into_iter().next() {
-            commands.push(Command::OpenPath(path));
-        }
-        self.files.hold_close(ctx, &self.doc);
-        commands
-    }
-
     /// Sends the window title when it changed.
     fn update_title(&mut self, ctx: &egui::Context) {
         let title = self.doc.title();
@@ -363,7 +315,9 @@ impl RaylabApp {
         if let Some((kind, path)) = self.files().poll_dialogs() {
             self.chosen(&ctx, kind, path);
         }
-        let mut commands = self.outside_commands(&ctx);
+        let mut commands = commands::from_keyboard(&ctx);
+        commands.extend(commands::from_dropped_files(&ctx));
+        self.files.hold_close(&ctx, &self.doc);
 
         egui::Panel::top("menu").show(ui, |ui| {
             let state = commands::MenuState {
@@ -378,18 +332,16 @@ impl RaylabApp {
         });
         egui::Panel::bottom("status").show(ui, |ui| {
             let shown = self.session.frame.as_ref().map(status_bar::Shown::of);
-            if status_bar::show(
+            let pause = status_bar::show(
                 ui,
                 shown.as_ref(),
                 self.session.error.as_deref(),
                 self.doc.state.render.target_spp,
                 self.session.paused,
                 &self.frame_times,
-            ) {
-                self.session.toggle_pause();
-            }
+            );
+            commands.extend(pause.then_some(Command::TogglePause));
         });
-        let mut load_reference = false;
         egui::Panel::left("camera")
             .resizable(true)
             .default_size(330.0)
@@ -400,12 +352,10 @@ impl RaylabApp {
                     ui.separator();
                     render_panel::show(ui, &mut self.doc.state.render);
                     ui.separator();
-                    load_reference = self.errors.show(ui);
+                    let load_reference = self.errors.show(ui);
+                    commands.extend(load_reference.then_some(Command::LoadReference));
                 });
             });
-        if load_reference {
-            self.files().start_dialog(&ctx, DialogKind::Reference);
-        }
         egui::Panel::right("scene")
             .resizable(true)
             .default_size(360.0)
@@ -424,7 +374,10 @@ impl RaylabApp {
                     });
             });
         egui::CentralPanel::default().show(ui, |ui| {
-            self.toolbar(ui);
+            // Carried out at once, so that the view opens in the frame of the click.
+            if let Some(command) = commands::toolbar(ui, self.show_debug) {
+                self.run(&ctx, command);
+            }
             if self.show_debug {
                 let half = 0.5 * ui.available_width();
                 egui::Panel::right("debug_view")
@@ -452,7 +405,7 @@ impl RaylabApp {
         if let Some((kind, path)) = self.files.path_prompt_modal(&ctx) {
             self.chosen(&ctx, kind, path);
         }
-        self.help_window(&ctx);
+        help::window(&ctx, &mut self.show_help);
 
         for command in commands {
             self.run(&ctx, command);

@@ -1,9 +1,10 @@
 //! The panels around the image: the camera and render settings, the scene
 //! with its object and light editors, the live error plot, the status bar,
-//! and the widgets they share.
+//! the help window, and the widgets they share.
 
 pub mod camera_panel;
 pub mod error_plot;
+pub mod help;
 pub mod light_editor;
 pub mod object_editor;
 pub mod render_panel;
