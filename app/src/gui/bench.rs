@@ -1,7 +1,12 @@
 //! `raylab bench interactive`: the window's own code driven headless by an
 //! egui context, timing what a user feels — from an edit to the first
 //! preview on screen and to the first full-resolution pass — and the UI
-//! thread's frame time while the tracer keeps every core busy.
+//! thread's frame time while the tracer keeps every core busy; and
+//! `raylab bench debug-view`, whole frames with the 3D debug view shown.
+//!
+//! These benchmarks live with the window, not in `crate::bench`, because
+//! they drive the app's own state (its session, inspector and debug view);
+//! `cli/bench.rs` runs them and prints their figures.
 
 use super::RaylabApp;
 use renderer::progressive::Step;
