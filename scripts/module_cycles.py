@@ -2,6 +2,7 @@
 """Finds import cycles between the modules of each crate of the workspace; exits 1 if there is one.
 
 Usage: scripts/module_cycles.py [--graph] [--tests] [CRATE_SRC …]   (default: scene/src renderer/src app/src)
+       scripts/module_cycles.py --self-test   (finds a planted cycle, and none in ordinary shapes)
 
 What counts as a cycle: at every level of a crate's module tree, the children of one module are the nodes,
 and child A depends on child B when any file in A's subtree names a path into B's subtree (`crate::b::…`,
@@ -310,8 +311,44 @@ def check(src, show_graph, with_tests):
     return found
 
 
+def self_test():
+    """The checker finds a planted cycle and nothing in the ordinary shapes of a module tree."""
+    import tempfile
+    crate = {
+        'lib.rs': 'mod a;\nmod b;\nmod shapes;\npub use a::A;\n',
+        # a -> b through a grouped use, b -> a through a root re-export: a cycle.
+        'a.rs': 'use crate::{b::{B, other}};\npub struct A;\n',
+        'b.rs': 'pub struct B;\npub fn other() -> crate::A { crate::A }\n',
+        # a parent naming its children and children naming the parent: no cycle.
+        'shapes/mod.rs': 'mod sphere;\nmod plane;\npub struct Hit;\npub use sphere::Sphere;\n',
+        # paths in comments and strings are not uses; a test reaching back (sphere -> plane) is a
+        # cycle only with --tests.
+        'shapes/sphere.rs': 'use super::Hit;\n/// crate::shapes::plane::Plane in a comment\npub struct Sphere;\n'
+                            'const S: &str = "crate::shapes::plane";\n'
+                            '#[cfg(test)]\nmod tests {\n    use crate::shapes::plane::Plane;\n}\n',
+        'shapes/plane.rs': 'use super::sphere::Sphere;\npub struct Plane;\n'
+                           '#[cfg(test)]\nfn helper() { let _ = crate::a::A; }\n',
+    }
+    with tempfile.TemporaryDirectory() as root:
+        for name, text in crate.items():
+            os.makedirs(os.path.dirname(os.path.join(root, name)), exist_ok=True)
+            with open(os.path.join(root, name), 'w') as f:
+                f.write(text)
+        import contextlib
+        import io
+        with contextlib.redirect_stdout(io.StringIO()):
+            found = check(root, False, False)
+            found_with_tests = check(root, False, True)
+    assert found == 1, f'expected the one planted cycle, found {found}'
+    assert found_with_tests == 2, f'expected the planted cycle and the test-only one, found {found_with_tests}'
+    print('self-test passed')
+
+
 def main():
     args = sys.argv[1:]
+    if '--self-test' in args:
+        self_test()
+        return
     show_graph = '--graph' in args
     with_tests = '--tests' in args
     crates = [a for a in args if not a.startswith('--')] or ['scene/src', 'renderer/src', 'app/src']

@@ -667,7 +667,7 @@ fn stability_writes_every_case_for_both_methods_as_csv_and_a_chart() {
         )
     );
     let rows: Vec<&str> = lines.collect();
-    for case in renderer::stability::CASES {
+    for case in renderer::diagnostics::stability::CASES {
         let mine: Vec<&&str> = rows.iter().filter(|r| r.starts_with(case.name)).collect();
         assert!(mine.len() >= 4, "{}: {} rows", case.name, mine.len());
     }

@@ -41,7 +41,9 @@ fn run_window(path: PathBuf, reference: Option<PathBuf>) -> ExitCode {
     };
     // Read once, here, so that a bad file fails before the window opens.
     let reference = match reference
-        .map(|path| renderer::reference_image::read_exr_rgb(&path).map(|image| (path, image)))
+        .map(|path| {
+            renderer::diagnostics::reference_image::read_exr_rgb(&path).map(|image| (path, image))
+        })
         .transpose()
     {
         Ok(reference) => reference,

@@ -7,7 +7,7 @@
 //! triangles on a 4-triangle floor square), flattened into one mesh in world
 //! space; 1920 × 1080 rays: primary (one per pixel centre P_ij of the
 //! scene's camera) and incoherent (origins uniform in the knot's box,
-//! uniform directions), as `renderer::throughput` makes them. Reports build
+//! uniform directions), as `renderer::diagnostics::throughput` makes them. Reports build
 //! seconds, closest-hit Mrays/s on a rayon pool of 1 thread and of all
 //! threads (median of `--repeats`), bytes per triangle, and the top level's
 //! build time over 10,000 boxes.
@@ -36,11 +36,12 @@ use glam::{Vec3, Vec3A};
 use rayon::prelude::*;
 use renderer::accel::mesh::BuildQuality;
 use renderer::accel::{Aabb, MeshBvh, SceneBvh, reference};
-use renderer::generate;
-use renderer::ray::Ray;
-use renderer::sampler::Sampler;
+use renderer::diagnostics::generate;
+use renderer::diagnostics::quantile::quantile_by;
+use renderer::diagnostics::throughput;
+use renderer::geometry::ray::Ray;
+use renderer::integrator::sampler::Sampler;
 use renderer::shapes::WatertightRay;
-use renderer::throughput;
 use scene::TriangleMesh as Mesh;
 use std::hint::black_box;
 use std::time::Instant;
@@ -88,8 +89,7 @@ fn args() -> Args {
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
+    quantile_by(&mut v, 0.5, f64::total_cmp).expect("at least one timing")
 }
 
 fn pool(threads: usize) -> rayon::ThreadPool {

@@ -5,7 +5,7 @@
 //! 8, 4, 2, then the first pass, each taking the samples of the one before).
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use renderer::preview::{PreviewSamples, preview};
+use renderer::film::preview::{PreviewSamples, preview};
 use renderer::{Film, RenderOptions, World};
 use std::path::Path;
 

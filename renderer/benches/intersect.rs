@@ -4,8 +4,8 @@
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use glam::Vec3;
-use renderer::ray::Ray;
-use renderer::sampler::Sampler;
+use renderer::geometry::ray::Ray;
+use renderer::integrator::sampler::Sampler;
 use renderer::shapes::{Method, Shape};
 use scene::Geometry;
 use std::hint::black_box;

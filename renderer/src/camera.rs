@@ -1,6 +1,6 @@
 //! The lecture's camera: P0, t, u, r, θ, d, w, h, ρ, H_d, W_d, C00, P_ij, v_ij.
 
-use crate::ray::Ray;
+use crate::geometry::ray::Ray;
 use glam::{DVec3, Vec2, Vec3};
 use scene::ResolvedCamera;
 

@@ -10,12 +10,13 @@
 //! the render thread; switching the mode re-publishes the current state at
 //! the end of the step in progress and never restarts the refinement.
 
-use crate::aov::{Aov, render_aov_unless};
+use crate::display::DisplayImage;
+use crate::display::image::{Source, display_image};
 use crate::display::{Display, Legend};
-use crate::display_image::{DisplayImage, Source, display_image};
 use crate::film::Film;
+use crate::film::aov::{Aov, render_aov_unless};
+use crate::film::preview::PreviewSamples;
 use crate::integrator::RenderOptions;
-use crate::preview::PreviewSamples;
 use crate::world::World;
 use glam::Vec3;
 use std::collections::HashMap;

@@ -3,8 +3,8 @@
 //! has stopped says it has converged.
 
 use glam::Vec3;
-use renderer::adaptive::Adaptive;
 use renderer::integrator::Integrator;
+use renderer::integrator::adaptive::Adaptive;
 use renderer::{Film, RenderOptions, World};
 use scene::{Camera, MaterialParams, Object, Scene, Shape};
 

@@ -6,7 +6,7 @@
 //! plain analytic formulas per shape (the torus by fine marching + bisection).
 
 use glam::{DMat3, DVec3, Vec3};
-use renderer::aov::{Aov, render_aov};
+use renderer::film::aov::{Aov, render_aov};
 use renderer::{Method, World};
 use scene::{Geometry, Object, ResolvedScene, Scene, Shape};
 

@@ -2,13 +2,13 @@
 //! variance, the shape tests the BVH makes, spp that keeps growing across a
 //! display switch, and the depth legend's range.
 
-use renderer::aov::{Aov, render_aov};
 use renderer::display::{Display, Scale};
-use renderer::film::sample_pixel;
-use renderer::pixel_stats::luminance;
+use renderer::film::aov::{Aov, render_aov};
+use renderer::geometry::counters::shape_tests_on_this_thread;
+use renderer::integrator::sample_pixel;
 use renderer::progressive::{Job, ProgressiveRenderer, RenderedFrame, Step};
-use renderer::shape_tests::shape_tests_on_this_thread;
 use renderer::{Film, Method, RenderOptions, World};
+use scene::color::luminance;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -94,7 +94,7 @@ fn only_shapes_whose_boxes_the_ray_enters_are_tested() {
         <sphere center="5 0 -10" radius="1"/>
       </scene>"#;
     let world = World::from_scene(&scene::read_str(xml, "t.xml").expect("parses")).expect("valid");
-    let ray = renderer::ray::Ray::new(glam::Vec3::ZERO, glam::Vec3::NEG_Z);
+    let ray = renderer::geometry::ray::Ray::new(glam::Vec3::ZERO, glam::Vec3::NEG_Z);
     let count = |f: &dyn Fn()| {
         let before = shape_tests_on_this_thread();
         f();
@@ -116,7 +116,7 @@ fn only_shapes_whose_boxes_the_ray_enters_are_tested() {
         1
     );
     // A ray passing above every box tests nothing.
-    let past = renderer::ray::Ray::new(glam::Vec3::new(0.0, 9.0, 0.0), glam::Vec3::NEG_Z);
+    let past = renderer::geometry::ray::Ray::new(glam::Vec3::new(0.0, 9.0, 0.0), glam::Vec3::NEG_Z);
     assert_eq!(
         count(&|| assert!(!world.occluded(&past, Method::Robust))),
         0

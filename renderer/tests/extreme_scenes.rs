@@ -10,7 +10,7 @@ use renderer::shapes::Method;
 use renderer::{Film, World};
 
 /// A number across the range a scene accepts (±1e6, see
-/// `scene::read::values::MAX_MAGNITUDE`), with a few just beyond it: 0, the
+/// `scene::MAX_MAGNITUDE`), with a few just beyond it: 0, the
 /// bounds, or ±m · 10^e for e in [-30, 9].
 fn extreme() -> impl Strategy<Value = f32> + Clone {
     prop_oneof![

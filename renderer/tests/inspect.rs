@@ -1,10 +1,10 @@
 //! The pixel inspector against the image and against hand computations.
 
 use glam::Vec3;
-use renderer::aov::{Aov, aov_at};
-use renderer::film::sample_pixel;
+use renderer::film::aov::{Aov, aov_at};
 use renderer::inspect::{Inspection, RayNode, SurfaceHit};
 use renderer::integrator::RayKind;
+use renderer::integrator::sample_pixel;
 use renderer::{Film, Method, RenderOptions, World, inspect_pixel};
 use std::path::Path;
 

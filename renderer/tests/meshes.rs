@@ -5,8 +5,8 @@
 
 use glam::{Mat4, Vec2, Vec3};
 use renderer::World;
-use renderer::aov::{Aov, render_aov};
-use renderer::ray::Ray;
+use renderer::film::aov::{Aov, render_aov};
+use renderer::geometry::ray::Ray;
 use renderer::shapes::Method;
 use scene::{
     MeshInstance, MeshSource, ModelFile, ModelMaterial, Object, Scene, Shape, Texture,
@@ -233,8 +233,8 @@ fn a_batch_of_rays_finds_the_same_hits_as_ray_by_ray() {
         .extend(scene::generate::spheres_scene(40).objects);
     (scene.camera.width, scene.camera.height) = (64, 36);
     let world = World::from_scene(&scene).expect("world");
-    let mut rays = renderer::throughput::primary_rays(&world);
-    rays.extend(renderer::throughput::incoherent_rays(
+    let mut rays = renderer::diagnostics::throughput::primary_rays(&world);
+    rays.extend(renderer::diagnostics::throughput::incoherent_rays(
         Vec3::splat(-4.0),
         Vec3::splat(4.0),
         3000,

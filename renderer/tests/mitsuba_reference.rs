@@ -4,9 +4,9 @@
 //! while keeping any bias: a wrong convention (light units, emitting side,
 //! depth counting, Fresnel) moves every block and fails the bound.
 
+use renderer::diagnostics::metrics::{downsample, rel_mse};
+use renderer::diagnostics::reference_image::read_exr_rgb;
 use renderer::integrator::Integrator;
-use renderer::metrics::{downsample, rel_mse};
-use renderer::reference_image::read_exr_rgb;
 use renderer::{Film, RenderOptions, Sampling, World};
 use std::path::PathBuf;
 

@@ -1,7 +1,7 @@
 //! The film counts every ray it traces: camera rays, the shadow rays of
 //! diffuse hits and the secondary rays a mirror spawns, exactly.
 
-use renderer::sampler::Sampler;
+use renderer::integrator::sampler::Sampler;
 use renderer::{Film, Method, RenderOptions, World};
 use scene::{Light, LightKind, Object, Scene, Shape};
 

@@ -1,7 +1,7 @@
 //! The fast 8-bit sRGB encoding gives exactly the bytes of the direct one.
 
 use glam::Vec3;
-use renderer::film::{encode_srgb8_direct, linear_to_srgb8};
+use renderer::display::srgb::{encode_srgb8_direct, linear_to_srgb8};
 
 fn fast(x: f32) -> u8 {
     linear_to_srgb8(Vec3::splat(x))[0]

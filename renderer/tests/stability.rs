@@ -1,15 +1,15 @@
-//! The stability suite (renderer::stability) at test effort: the robust
+//! The stability suite (renderer::diagnostics::stability) at test effort: the robust
 //! methods meet the bounds, and the lecture's (textbook) methods
 //! fail where the suite says they do — if one stopped failing, the case
 //! would no longer show anything.
 
-use renderer::stability::{CASES, Effort, Row};
+use renderer::diagnostics::stability::{CASES, Effort, Row};
 use std::sync::OnceLock;
 
 /// Every row of the suite, run once for all the tests of this file.
 fn rows() -> &'static [Row] {
     static ROWS: OnceLock<Vec<Row>> = OnceLock::new();
-    ROWS.get_or_init(|| renderer::stability::run_all(Effort::QUICK))
+    ROWS.get_or_init(|| renderer::diagnostics::stability::run_all(Effort::QUICK))
 }
 
 /// The rows of one case and method.

@@ -1,7 +1,7 @@
 //! The Whitted integrator against analytic radiance.
 
 use glam::Vec3;
-use renderer::film::sample_pixel;
+use renderer::integrator::sample_pixel;
 use renderer::{Film, RenderOptions, World};
 use scene::{Camera, Light, LightKind, MaterialParams, Object, Scene, Shape};
 use std::f32::consts::PI;

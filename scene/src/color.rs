@@ -1,5 +1,5 @@
 //! Colours in scene files: parsing (CSS names, `#rrggbb`, three linear numbers),
-//! formatting, and the sRGB ↔ linear conversions.
+//! formatting, the sRGB ↔ linear conversions and luminance.
 //!
 //! Everything in the model is linear RGB. Names and hex codes are sRGB-encoded,
 //! as on the web, and are converted with the exact sRGB EOTF.
@@ -24,6 +24,12 @@ pub fn linear_to_srgb(c: f32) -> f32 {
     }
 }
 
+/// Rec. 709 luminance Y of linear RGB.
+#[inline]
+pub fn luminance(c: Vec3) -> f32 {
+    c.dot(Vec3::new(0.2126, 0.7152, 0.0722))
+}
+
 /// Parses a colour as written in a scene file, giving linear RGB:
 /// - a CSS named colour (`red`, `gold`, `rebeccapurple`, …; case-insensitive),
 /// - `#rrggbb` or `#rgb` (sRGB, case-insensitive hex digits),
@@ -44,15 +50,16 @@ pub fn parse_color(text: &str) -> Result<Vec3, String> {
         return Ok(srgb_bytes_to_linear(rgb));
     }
     if t.starts_with(|c: char| c.is_ascii_alphabetic()) {
-        let hint = crate::read::suggest(t, csscolorparser::NAMED_COLORS.keys().map(|k| k.as_str()))
-            .map(|s| format!("; did you mean \"{s}\"?"))
-            .unwrap_or_default();
+        let hint =
+            crate::suggest::suggest(t, csscolorparser::NAMED_COLORS.keys().map(|k| k.as_str()))
+                .map(|s| format!("; did you mean \"{s}\"?"))
+                .unwrap_or_default();
         return Err(format!(
             "unknown colour name {text:?}{hint} (expected a CSS colour name such as \"red\", \
              \"#rrggbb\", or three linear numbers)"
         ));
     }
-    let v = crate::read::parse_triple(t).map_err(|why| {
+    let v = crate::numbers::parse_triple(t).map_err(|why| {
         format!(
             "expected a colour name such as \"red\", \"#rrggbb\", or three linear numbers \
              separated by spaces or commas, got {text:?} ({why})"

@@ -2,8 +2,8 @@
 //! torus-knot tube mesh of any triangle count and a field of spheres.
 
 use crate::mesh::TriangleMesh;
+use crate::model::model_file::{MeshInstance, ModelFile, ModelMaterial};
 use crate::model::{Camera, MeshSource, Object, Scene, Shape};
-use crate::model_file::{MeshInstance, ModelFile, ModelMaterial};
 use glam::{Mat4, Vec3};
 use std::f32::consts::TAU;
 use std::sync::Arc;

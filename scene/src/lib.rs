@@ -15,22 +15,24 @@ pub mod layout;
 pub mod materials;
 pub mod mesh;
 pub mod model;
-pub mod model_file;
 mod model_scene;
+mod numbers;
 mod read;
 mod resolve;
 mod resolved;
+mod suggest;
 mod write;
 
 pub use error::{InvalidScene, SceneError};
+pub use gltf::{load_model, load_model_bytes};
 pub use mesh::TriangleMesh;
-pub use model::*;
-pub use model_file::{
-    MeshInstance, ModelCamera, ModelError, ModelFile, ModelMaterial, Texture, Wrap, load_model,
-    load_model_bytes,
+pub use model::model_file::{
+    MeshInstance, ModelCamera, ModelError, ModelFile, ModelMaterial, Texture, Wrap,
 };
+pub use model::*;
 pub use model_scene::{is_model_path, read_any, read_model_scene};
-pub use read::{MAX_MAGNITUDE, read_file, read_str};
+pub use numbers::MAX_MAGNITUDE;
+pub use read::{read_file, read_str};
 pub use resolve::resolve;
 pub use resolved::*;
 pub use write::write_string;

@@ -1,8 +1,8 @@
 //! The built-in materials and how a named material with overrides resolves.
 
 use crate::InvalidScene;
+use crate::model::Material;
 use crate::model::{BaseMaterial, MaterialDef, MaterialParams};
-use crate::resolved::Material;
 use glam::Vec3;
 
 /// The parameters of a built-in material before any override.

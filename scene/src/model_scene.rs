@@ -2,8 +2,8 @@
 //! origin, the file's first camera and its lights.
 
 use crate::SceneError;
+use crate::gltf::load_model;
 use crate::model::{Camera, MeshSource, Object, Scene, Shape};
-use crate::model_file::load_model;
 use glam::Vec3;
 use std::path::Path;
 use std::sync::Arc;

@@ -1,7 +1,7 @@
 //! The scene with every default filled in: what a renderer consumes.
 
-use crate::model::{BaseMaterial, Light};
-use crate::model_file::ModelFile;
+use crate::model::model_file::ModelFile;
+use crate::model::{Light, Material};
 use glam::{Mat4, Vec3};
 use std::sync::Arc;
 
@@ -155,26 +155,4 @@ impl std::ops::Deref for ModelRef {
     fn deref(&self) -> &ModelFile {
         &self.0
     }
-}
-
-/// A concrete material: a base with every parameter decided.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Material {
-    /// Which built-in behaviour.
-    pub base: BaseMaterial,
-    /// Linear RGB albedo (matte, plastic, marble), reflectance (mirror, metal) or tint (glass).
-    pub color: Vec3,
-    /// Index of refraction inside (glass).
-    pub ior: f32,
-    /// Blinn-Phong exponent.
-    pub shininess: f32,
-    /// Blinn-Phong highlight strength in [0, 1].
-    pub specular: f32,
-    /// Mirror-reflected fraction in [0, 1] (plastic, marble).
-    pub reflectivity: f32,
-    /// Microfacet roughness in [0, 1] of mirror, metal and glass (GGX α =
-    /// roughness²; 0 is perfectly smooth).
-    pub roughness: f32,
-    /// Emitted radiance from the front side.
-    pub emission: Vec3,
 }

@@ -22,7 +22,7 @@ use super::trace::{self, SceneFigures};
 use anyhow::{Context, Result, bail};
 use glam::Vec3;
 use renderer::World;
-use renderer::ray::Ray;
+use renderer::geometry::ray::Ray;
 use renderer::shapes::{Plane, Shape};
 use renderer::world::Object;
 use scene::Scene;
@@ -167,7 +167,8 @@ impl Soup {
 /// without raylab's figures; returns that manifest.
 pub fn export(scene: &Scene, label: &str, dir: &Path) -> Result<Manifest> {
     let world = World::from_scene(scene)?;
-    let primary = renderer::throughput::primary_rays(&world);
+    renderer::film::image_memory::check_world_fits(&world)?;
+    let primary = renderer::diagnostics::throughput::primary_rays(&world);
     let incoherent = trace::incoherent_rays(&world);
     let all_rays = || {
         primary
@@ -368,7 +369,7 @@ fn write_bytes(path: &Path, chunks: impl Iterator<Item = [u8; 4]>) -> Result<()>
 #[cfg(test)]
 mod tests {
     use super::*;
-    use renderer::sampler::Sampler;
+    use renderer::integrator::sampler::Sampler;
 
     /// True when `p` (in the plane y = 0) lies inside the square `c`.
     fn inside_floor_square(c: &[Vec3; 4], p: Vec3) -> bool {

@@ -4,8 +4,9 @@
 
 use anyhow::Result;
 use glam::Vec3;
-use renderer::ray::Ray;
-use renderer::throughput::{self, Cast};
+use renderer::diagnostics::quantile::quantile_by;
+use renderer::diagnostics::throughput::{self, Cast};
+use renderer::geometry::ray::Ray;
 use renderer::{Film, RenderOptions, World};
 use scene::Scene;
 use serde::Serialize;
@@ -94,6 +95,7 @@ pub fn measure(
     let scene = sized(scene, width, height);
     let resolved = scene::resolve(&scene)?;
     let world = World::new(&resolved)?;
+    renderer::film::image_memory::check_world_fits(&world)?;
     let threads = rayon::current_num_threads();
     let (triangles, bytes) = throughput::mesh_bvh_footprint(&world);
     let build = || median_seconds(|| throughput::rebuild_mesh_bvhs(&world).as_secs_f64());
@@ -178,8 +180,7 @@ pub fn sized(mut scene: Scene, width: Option<u32>, height: Option<u32>) -> Scene
 /// The median of [`RUNS`] timings.
 fn median_seconds(mut f: impl FnMut() -> f64) -> f64 {
     let mut t: Vec<f64> = (0..RUNS).map(|_| f()).collect();
-    t.sort_by(f64::total_cmp);
-    t[t.len() / 2]
+    quantile_by(&mut t, 0.5, f64::total_cmp).expect("RUNS timings")
 }
 
 /// The figures as a readable table.

@@ -4,8 +4,9 @@
 use super::args::BenchArgs;
 use crate::bench::headless_gpu::HeadlessGpu;
 use crate::bench::{export, scene_spec, trace};
-use crate::gui::bench::{self, quantile};
+use crate::gui::bench;
 use anyhow::Result;
+use renderer::diagnostics::quantile::quantile_by;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
@@ -95,17 +96,19 @@ fn window_scene(args: &BenchArgs, seed: &Path) -> Result<(scene::Scene, String, 
     let (mut scene, label) = scene_spec::load(&spec, seed)?;
     scene.camera.width = args.width.unwrap_or(1280);
     scene.camera.height = args.height.unwrap_or(720);
-    renderer::World::from_scene(&scene)?;
+    let world = renderer::World::from_scene(&scene)?;
+    renderer::film::image_memory::check_world_fits(&world)?;
     let path = Path::new(&spec);
     Ok((scene, label, path.exists().then(|| path.to_path_buf())))
 }
 
 fn line(name: &str, values: &mut [Duration]) {
+    let mut quantile = |q| quantile_by(values, q, Duration::cmp).unwrap_or(Duration::ZERO);
     println!(
         "{name:<34} median {:>7.1} ms   p95 {:>7.1} ms   max {:>7.1} ms",
-        ms(quantile(values, 0.5)),
-        ms(quantile(values, 0.95)),
-        ms(quantile(values, 1.0)),
+        ms(quantile(0.5)),
+        ms(quantile(0.95)),
+        ms(quantile(1.0)),
     );
 }
 

@@ -22,6 +22,7 @@ pub fn prepare(args: &SceneArgs) -> Result<(World, RenderOptions)> {
         scene.camera.height = h;
     }
     let world = World::from_scene(&scene)
+        .and_then(|world| renderer::film::image_memory::check_world_fits(&world).map(|()| world))
         .map_err(|e| UserError(format!("{}: {e}", args.scene.display())))?;
     let options = RenderOptions {
         integrator: args.integrator.into(),
@@ -31,7 +32,7 @@ pub fn prepare(args: &SceneArgs) -> Result<(World, RenderOptions)> {
         sampling: args.sampler.into(),
         adaptive: match args.adaptive {
             Some(threshold) if threshold > 0.0 && threshold.is_finite() => {
-                Some(renderer::adaptive::Adaptive { threshold })
+                Some(renderer::integrator::adaptive::Adaptive { threshold })
             }
             Some(threshold) => {
                 return Err(UserError(format!(

@@ -5,9 +5,10 @@ use super::prepare::{UserError, prepare};
 use crate::io::output::{Format, Provenance, write_exr, write_png, write_png_srgb8};
 use anyhow::Result;
 use renderer::Film;
-use renderer::aov::{self, Aov};
 use renderer::display::Display;
-use renderer::display_image::{DisplayImage, Source, aov_image, display_image};
+use renderer::display::DisplayImage;
+use renderer::display::image::{Source, aov_image, display_image};
+use renderer::film::aov::{self, Aov};
 use std::time::{Duration, Instant};
 
 /// Renders `args.scene` to `args.output`; returns the time the render took.
@@ -19,7 +20,7 @@ pub fn run(args: &RenderArgs) -> Result<Duration> {
     // A bad reference is an error before the render, not after it.
     let reference = match &args.reference {
         Some(path) => {
-            let image = renderer::reference_image::read_exr_rgb(path)?;
+            let image = renderer::diagnostics::reference_image::read_exr_rgb(path)?;
             image.check_size(path, w, h)?;
             Some(image)
         }
@@ -46,8 +47,8 @@ pub fn run(args: &RenderArgs) -> Result<Duration> {
             if let (Some(path), Some(reference)) = (&args.reference, &reference) {
                 println!(
                     "relMSE {:.4e}, RMSE {:.4e} against {}",
-                    renderer::metrics::rel_mse(&pixels, &reference.pixels),
-                    renderer::metrics::rmse(&pixels, &reference.pixels),
+                    renderer::diagnostics::metrics::rel_mse(&pixels, &reference.pixels),
+                    renderer::diagnostics::metrics::rmse(&pixels, &reference.pixels),
                     path.display()
                 );
             }

@@ -1,10 +1,10 @@
 //! `raylab stability`: runs the suite of cases where numerical methods fail
-//! (renderer::stability), prints a table and writes it as CSV and a PNG chart.
+//! (renderer::diagnostics::stability), prints a table and writes it as CSV and a PNG chart.
 
 use super::args::StabilityArgs;
 use crate::plot::stability::{format_value, write_chart};
 use anyhow::{Context, Result};
-use renderer::stability::{CASES, Effort, Row};
+use renderer::diagnostics::stability::{CASES, Effort, Row};
 use std::io::Write;
 use std::path::PathBuf;
 

@@ -241,14 +241,18 @@ impl RaylabApp {
 
     /// Loads a reference image for the live error plot; a bad file is a message.
     pub fn load_reference(&mut self, path: &Path) {
-        match renderer::reference_image::read_exr_rgb(path) {
+        match renderer::diagnostics::reference_image::read_exr_rgb(path) {
             Ok(image) => self.set_reference(path.to_path_buf(), image),
             Err(error) => self.files.message = Some(format!("Cannot load the reference: {error}")),
         }
     }
 
     /// Plots the live error against `image`, read from `path`.
-    pub fn set_reference(&mut self, path: PathBuf, image: renderer::reference_image::LinearImage) {
+    pub fn set_reference(
+        &mut self,
+        path: PathBuf,
+        image: renderer::diagnostics::reference_image::LinearImage,
+    ) {
         self.errors.set_reference(path, image);
     }
 

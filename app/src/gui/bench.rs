@@ -27,15 +27,6 @@ pub struct Report {
     pub frame_times: Vec<Duration>,
 }
 
-/// The `q`-quantile of `values` (sorted in place).
-pub fn quantile(values: &mut [Duration], q: f64) -> Duration {
-    values.sort_unstable();
-    let Some(last) = values.len().checked_sub(1) else {
-        return Duration::ZERO;
-    };
-    values[((last as f64) * q).round() as usize]
-}
-
 /// How long one display frame lasts at 60 Hz: the UI loop's pace.
 const FRAME: Duration = Duration::from_micros(16_667);
 

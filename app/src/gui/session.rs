@@ -95,6 +95,7 @@ impl SessionSync {
             .map_err(renderer::RenderError::from)
             .and_then(|resolved| {
                 let world = World::new(&resolved)?;
+                renderer::film::image_memory::check_world_fits(&world)?;
                 Ok(Prepared {
                     resolved,
                     world: Arc::new(world),

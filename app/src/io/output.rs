@@ -100,7 +100,7 @@ pub fn write_png(
 ) -> Result<()> {
     let bytes: Vec<u8> = pixels
         .iter()
-        .flat_map(|&c| renderer::film::linear_to_srgb8(c))
+        .flat_map(|&c| renderer::display::srgb::linear_to_srgb8(c))
         .collect();
     write_png_srgb8(path, width, height, &bytes, provenance)
 }

@@ -4,7 +4,7 @@
 use super::style::{COLORS, register_font};
 use anyhow::{Result, anyhow};
 use plotters::prelude::*;
-use renderer::convergence::ConvergencePoint;
+use renderer::diagnostics::convergence::ConvergencePoint;
 use std::path::Path;
 
 /// One method's curve.

@@ -6,7 +6,7 @@ use super::style::{COLORS, register_font};
 use anyhow::{Result, anyhow};
 use plotters::coord::ranged1d::SegmentValue;
 use plotters::prelude::*;
-use renderer::stability::Row;
+use renderer::diagnostics::stability::Row;
 use std::path::Path;
 
 /// A condition value as tables and axes show it: 1e4, 0.01, 89.9999.

@@ -5,7 +5,7 @@
 
 use super::mesh::{MeshBvh, MeshHit};
 use super::scene::Aabb;
-use crate::ray::Ray;
+use crate::geometry::ray::Ray;
 use glam::{Affine3A, Mat3, Vec3};
 
 /// Relative padding of an instance's world box: covers the rounding of the
@@ -96,8 +96,8 @@ impl Instance {
 mod tests {
     use super::*;
     use crate::accel::reference;
-    use crate::accel::test_meshes::grid;
-    use crate::sampler::Sampler;
+    use crate::accel::tests::meshes::grid;
+    use crate::integrator::sampler::Sampler;
     use glam::Quat;
 
     fn placement() -> Affine3A {

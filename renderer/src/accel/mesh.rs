@@ -1,7 +1,7 @@
 //! The bottom level: a BVH over one triangle mesh, built as 8-wide nodes
 //! with exact boxes by our binned-SAH builder ([`super::wide_build`]; or,
 //! for comparison, by obvhs's PLOC as a binary tree collapsed to the same
-//! nodes, [`super::collapse`]) and traversed by our conservative code
+//! nodes, [`super::ploc`]) and traversed by our conservative code
 //! ([`super::wide`]), nearest child first. Leaf triangles are copied into
 //! packs of four ([`TrianglePack`]) tested with the same watertight
 //! arithmetic as [`crate::shapes::Triangle`] ([`WatertightRay`]), so
@@ -9,19 +9,17 @@
 
 mod packet;
 
-use super::collapse::collapse;
+use super::ploc::build_ploc;
 use super::scene::Aabb;
 use super::simd::{prefetch, with_widest_simd};
 use super::stack::Stack;
 use super::triangle_pack::TrianglePack;
 use super::wide::{ChildRef, WIDTH, WideNode, WideRay};
 use super::wide_build::build_wide;
-use crate::ray::Ray;
+use crate::geometry::ray::Ray;
 use crate::shapes::WatertightRay;
-use glam::{Vec3, Vec3A};
+use glam::Vec3;
 use obvhs::BvhBuildParams;
-use obvhs::bvh2::reinsertion::ReinsertionOptimizer;
-use obvhs::ploc::PlocBuilder;
 use packet::{LANES, LaneBest, Packet};
 
 /// The closest hit of a ray with a mesh: P0 + α v = (1 − β − γ) t0 + β t1 + γ t2.
@@ -400,50 +398,11 @@ fn mesh_hit(best: LaneBest) -> Option<MeshHit> {
     })
 }
 
-/// The tree of obvhs's PLOC builder with `params`, collapsed to our nodes:
-/// (nodes, packs, the box around every triangle).
-fn build_ploc(
-    positions: &[Vec3],
-    triangles: &[[u32; 3]],
-    params: BvhBuildParams,
-) -> (Vec<WideNode>, Vec<TrianglePack>, Aabb) {
-    use rayon::prelude::*;
-    let corners = |t: &[u32; 3]| t.map(|i| positions[i as usize]);
-    let boxes: Vec<obvhs::aabb::Aabb> = triangles
-        .par_iter()
-        .map(|t| {
-            let [a, b, c] = corners(t);
-            obvhs::aabb::Aabb::new(Vec3A::from(a.min(b).min(c)), Vec3A::from(a.max(b).max(c)))
-        })
-        .collect();
-    let bounds = boxes
-        .par_iter()
-        .map(|b| Aabb {
-            min: b.min.into(),
-            max: b.max.into(),
-        })
-        .reduce(|| Aabb::EMPTY, Aabb::union);
-    if triangles.is_empty() {
-        return (Vec::new(), Vec::new(), bounds);
-    }
-    let mut bvh2 = PlocBuilder::with_capacity(boxes.len()).build(
-        params.ploc_search_distance,
-        &boxes,
-        (0..triangles.len() as u32).collect(),
-        params.sort_precision,
-        params.search_depth_threshold,
-    );
-    drop(boxes);
-    ReinsertionOptimizer::default().run(&mut bvh2, params.reinsertion_batch_ratio, None);
-    let (nodes, packs) = collapse(&bvh2, |i| corners(&triangles[i as usize]));
-    (nodes, packs, bounds)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::accel::reference;
-    use crate::accel::test_meshes::grid;
+    use crate::accel::tests::meshes::grid;
     use crate::accel::wide::LEAF_TRIANGLES;
 
     #[test]
@@ -489,7 +448,7 @@ mod tests {
 
     #[test]
     fn a_mesh_of_one_leaf_is_walked_from_its_leaf_and_matches_brute_force() {
-        let mut rng = crate::sampler::Sampler::for_sample(5, 0, 0, 0);
+        let mut rng = crate::integrator::sampler::Sampler::for_sample(5, 0, 0, 0);
         for n in 1..=10usize {
             let (p, mut t) = grid(5, 1, 0.0);
             t.truncate(n);
@@ -553,7 +512,7 @@ mod tests {
     fn widest_simd_and_baseline_code_find_the_same_hits() {
         let (p, t) = grid(30, 30, 0.0);
         let bvh = MeshBvh::build(&p, &t);
-        let mut rng = crate::sampler::Sampler::for_sample(3, 0, 0, 0);
+        let mut rng = crate::integrator::sampler::Sampler::for_sample(3, 0, 0, 0);
         for _ in 0..2000 {
             let origin = Vec3::new(30.0 * rng.next_f32(), 30.0 * rng.next_f32(), 5.0);
             let ray = Ray::new(origin, rng.next_direction());
@@ -572,7 +531,7 @@ mod tests {
     fn closest_hits_of_a_batch_equal_closest_hit_ray_by_ray() {
         let (p, t) = grid(30, 30, 0.0);
         let bvh = MeshBvh::build(&p, &t);
-        let mut rng = crate::sampler::Sampler::for_sample(5, 0, 0, 0);
+        let mut rng = crate::integrator::sampler::Sampler::for_sample(5, 0, 0, 0);
         let rays: Vec<Ray> = (0..500)
             .map(|_| {
                 let origin = Vec3::new(30.0 * rng.next_f32(), 30.0 * rng.next_f32(), 5.0);

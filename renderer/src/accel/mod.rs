@@ -14,7 +14,7 @@
 //!   intersects each item.
 //! - [`Instance`]: an affine placement of a mesh, mapping rays into the mesh's
 //!   space so that α is unchanged.
-//! - [`reference`]: brute force over every triangle, the oracle of the tests.
+//! - [`reference`](mod@reference): brute force over every triangle, the oracle of the tests.
 //!
 //! Why obvhs's own traversal is not used: its node test has no conservative
 //! t_far correction (Ize, "Robust BVH Ray Traversal", JCGT 2013), its CWBVH
@@ -24,10 +24,10 @@
 //! them for the widest SIMD the CPU has.
 
 mod binned_sah;
-mod collapse;
 mod huge_pages;
 pub mod instance;
 pub mod mesh;
+mod ploc;
 pub mod reference;
 pub mod scene;
 mod simd;
@@ -38,9 +38,7 @@ pub mod wide;
 mod wide_build;
 
 #[cfg(test)]
-mod no_lost_hits_tests;
-#[cfg(test)]
-pub(crate) mod test_meshes;
+mod tests;
 
 pub use self::scene::{Aabb, SceneBvh};
 pub use instance::Instance;

@@ -2,7 +2,7 @@
 //! that [`super::MeshBvh`] must equal (and slow: O(triangles) per ray).
 
 use super::mesh::MeshHit;
-use crate::ray::Ray;
+use crate::geometry::ray::Ray;
 use crate::shapes::WatertightRay;
 use glam::Vec3;
 

@@ -7,7 +7,7 @@
 
 use super::slab::SlabRay;
 use super::stack::Stack;
-use crate::ray::Ray;
+use crate::geometry::ray::Ray;
 pub use ::scene::layout::Aabb;
 use glam::Vec3A;
 use obvhs::bvh2::node::Bvh2Node;
@@ -196,7 +196,7 @@ impl SceneBvh {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sampler::Sampler;
+    use crate::integrator::sampler::Sampler;
     use crate::shapes::{Method, Sphere};
     use glam::Vec3;
 

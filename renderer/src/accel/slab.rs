@@ -12,7 +12,7 @@
 //!   0 · ∞ = NaN; the minimum and maximum below ignore NaN, so that slab does
 //!   not reject the ray (the face counts as inside).
 
-use crate::ray::Ray;
+use crate::geometry::ray::Ray;
 use glam::Vec3;
 
 /// Enlargement factor 4ε = 2⁻²¹ ≥ 2𝛾₃ (𝛾ₙ = n u / (1 − n u), u = 2⁻²⁴),

@@ -14,7 +14,7 @@ pub const PACK: usize = 4;
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(16))]
 pub struct TrianglePack {
-    /// corners[c][k]: coordinate k of corner t_c of the four triangles.
+    /// `corners[c][k]`: coordinate k of corner t_c of the four triangles.
     corners: [[f32x4; 3]; 3],
     /// The caller's index of each triangle.
     ids: [u32; PACK],
@@ -111,7 +111,7 @@ impl PackHit {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ray::Ray;
+    use crate::geometry::ray::Ray;
 
     fn unit_triangle_at(z: f32) -> [Vec3; 3] {
         [

@@ -64,7 +64,7 @@ impl ChildRef {
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(32))]
 pub struct WideNode {
-    /// planes[2k][i] is child i's min along axis k, planes[2k + 1][i] its
+    /// `planes[2k][i]` is child i's min along axis k, `planes[2k + 1][i]` its
     /// max; empty slots have min = +∞ and max = −∞ (never hit).
     planes: [[f32; WIDTH]; 6],
     /// The children; [`ChildRef::EMPTY`] for an empty slot.
@@ -115,7 +115,7 @@ pub struct WideRay {
 impl WideRay {
     /// Prepares `ray`.
     #[inline(always)]
-    pub fn new(ray: &crate::ray::Ray) -> Self {
+    pub fn new(ray: &crate::geometry::ray::Ray) -> Self {
         let slab = SlabRay::new(ray);
         Self {
             near_far: std::array::from_fn(|k| {
@@ -162,7 +162,7 @@ impl WideRay {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ray::Ray;
+    use crate::geometry::ray::Ray;
     use glam::Vec3;
 
     /// A node whose child 0 is the box [lo, hi]³ and whose other slots are empty.

@@ -256,7 +256,7 @@ fn open(refs: &mut [PrimRef], span: &Span) -> ([Span; WIDTH], usize) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::accel::test_meshes;
+    use crate::accel::tests::meshes as test_meshes;
     use std::collections::HashMap;
 
     /// Every triangle is in exactly one leaf, and every child box is the

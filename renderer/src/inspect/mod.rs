@@ -12,7 +12,7 @@ mod tree;
 
 pub use node::{Barycentrics, Blocker, MaterialInfo, ObjectRef, RayNode, ShadowTest, SurfaceHit};
 
-use crate::film::sample_offset;
+use crate::integrator::sample_offset;
 use crate::integrator::{RenderOptions, whitted_recorded};
 use crate::shapes::Method;
 use crate::world::World;
@@ -44,7 +44,7 @@ pub struct Inspection {
     /// The bounce limit used.
     pub max_depth: u32,
     /// The traced colour: for a sample, bit for bit the value
-    /// [`sample_pixel`](crate::film::sample_pixel) adds to the film.
+    /// [`sample_pixel`](crate::integrator::sample_pixel) adds to the film.
     pub color: Vec3,
     /// Every ray traced, parents before children; `rays[0]` is the primary ray.
     pub rays: Vec<RayNode>,
@@ -89,7 +89,7 @@ pub struct PixelOutOfRange {
 }
 
 /// Re-traces pixel (i, j) as a ray tree: with `Some(k)` sample k exactly as
-/// [`sample_pixel`](crate::film::sample_pixel) traces it (same jitter, same
+/// [`sample_pixel`](crate::integrator::sample_pixel) traces it (same jitter, same
 /// ray, same colour bit for bit); with `None` the ray through the pixel
 /// centre P_ij ([`Camera::center_ray`](crate::Camera::center_ray)), the ray
 /// of the AOVs.

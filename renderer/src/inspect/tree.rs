@@ -4,8 +4,8 @@
 use super::node::{
     Barycentrics, Blocker, MaterialInfo, ObjectRef, RayNode, ShadowTest, SurfaceHit,
 };
+use crate::geometry::ray::Ray;
 use crate::integrator::{Note, RayKind, Recorder};
-use crate::ray::Ray;
 use crate::shapes::{Method, Shape, Surface};
 use crate::world::{Hit, World};
 use glam::Vec3;

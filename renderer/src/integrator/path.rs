@@ -12,11 +12,12 @@
 //! - no ambient term: only emitters, lights and the `<sky>` bring light.
 
 use super::RenderOptions;
-use crate::bsdf::{Bsdf, ShadingFrame};
-use crate::offset::offset_ray_origin;
-use crate::ray::Ray;
-use crate::sampler::{BounceDraw, Sampler};
-use crate::texture::albedo_at;
+use super::sampler::{BounceDraw, Sampler};
+use super::shading_context::ShadingContext;
+use crate::geometry::offset::offset_ray_origin;
+use crate::geometry::ray::Ray;
+use crate::shading::bsdf::{Bsdf, ShadingFrame};
+use crate::shading::texture::albedo_at;
 use crate::world::World;
 use glam::Vec3;
 
@@ -58,16 +59,15 @@ pub fn path(world: &World, ray: &Ray, options: &RenderOptions, sampler: &mut Sam
             radiance += throughput * world.sky;
             break;
         };
-        let surface = world.surface(&ray, hit);
-        let material = world.material(hit);
-        let front = ray.dir.dot(surface.normal) < 0.0;
-        if front && material.emission != Vec3::ZERO {
+        let at = ShadingContext::new(world, &ray, hit);
+        let material = &at.material;
+        if at.front && material.emission != Vec3::ZERO {
             let weight = match (previous, world.emitters.index_of(&hit)) {
                 (Some((from, bsdf_pdf)), Some(index)) => power_heuristic(
                     bsdf_pdf,
                     world
                         .emitters
-                        .pdf(from, index, surface.point, surface.normal),
+                        .pdf(from, index, at.point(), at.surface.normal),
                 ),
                 _ => 1.0,
             };
@@ -76,26 +76,18 @@ pub fn path(world: &World, ray: &Ray, options: &RenderOptions, sampler: &mut Sam
         if depth + 1 >= options.max_depth {
             break;
         }
-        let geometric = if front {
-            surface.normal
-        } else {
-            -surface.normal
-        };
-        let shading = world.shading_normal(hit, &surface);
-        let frame = ShadingFrame::new(if front { shading } else { -shading });
+        let frame = ShadingFrame::new(at.shading_normal);
         let wo = frame.to_local(-ray.dir);
-        let bsdf = Bsdf::new(&material, albedo_at(&material, surface.point), front);
-        let at = Vertex {
-            point: surface.point,
-            magnitude: world.magnitude(hit.object),
-            geometric,
+        let bsdf = Bsdf::new(material, albedo_at(material, at.point()), at.front);
+        let vertex = Vertex {
+            at: &at,
             frame,
             wo,
             bsdf,
         };
         if bsdf.has_smooth() {
             sampler.seek_bounce(depth, BounceDraw::Light);
-            radiance += throughput * direct_light(world, options, &at, sampler);
+            radiance += throughput * direct_light(world, options, &vertex, sampler);
         }
         sampler.seek_bounce(depth, BounceDraw::Scatter);
         let u_lobe = sampler.next_f32();
@@ -105,13 +97,8 @@ pub fn path(world: &World, ray: &Ray, options: &RenderOptions, sampler: &mut Sam
         let wi = frame.to_world(sample.wi);
         throughput *= sample.weight;
         eta_scale *= sample.radiance_scale;
-        previous = (!sample.delta).then_some((surface.point, sample.pdf));
-        let side = if wi.dot(geometric) >= 0.0 {
-            geometric
-        } else {
-            -geometric
-        };
-        ray = Ray::new(offset_ray_origin(surface.point, side, at.magnitude), wi);
+        previous = (!sample.delta).then_some((at.point(), sample.pdf));
+        ray = at.spawn(wi);
         depth += 1;
         if depth >= RR_DEPTH {
             let keep = (throughput.max_element() / eta_scale).min(0.95);
@@ -128,12 +115,9 @@ pub fn path(world: &World, ray: &Ray, options: &RenderOptions, sampler: &mut Sam
 }
 
 /// A scattering vertex as light sampling needs it.
-struct Vertex {
-    point: Vec3,
-    /// The largest coordinate of the object hit (see [`World::magnitude`]).
-    magnitude: f32,
-    /// The unit geometric normal on the side the ray came from.
-    geometric: Vec3,
+struct Vertex<'a> {
+    /// The hit, with its normals turned toward the ray.
+    at: &'a ShadingContext,
     frame: ShadingFrame,
     /// Toward the previous vertex, local.
     wo: Vec3,
@@ -146,17 +130,18 @@ struct Vertex {
 fn direct_light(
     world: &World,
     options: &RenderOptions,
-    at: &Vertex,
+    vertex: &Vertex,
     sampler: &mut Sampler,
 ) -> Vec3 {
+    let (at, point) = (vertex.at, vertex.at.point());
     let mut sum = Vec3::ZERO;
     // A shadow ray starts off the side its light is on; only a transmitting
     // BSDF sees lights behind the surface.
-    let above = offset_ray_origin(at.point, at.geometric, at.magnitude);
-    let below = at
+    let above = offset_ray_origin(point, at.geometric, at.magnitude);
+    let below = vertex
         .bsdf
         .transmits()
-        .then(|| offset_ray_origin(at.point, -at.geometric, at.magnitude));
+        .then(|| offset_ray_origin(point, -at.geometric, at.magnitude));
     let origin_toward = |to_light: Vec3| {
         if to_light.dot(at.geometric) > 0.0 {
             Some(above)
@@ -165,13 +150,15 @@ fn direct_light(
         }
     };
     for light in &world.lights {
-        let Some(s) = light.sample(at.point) else {
+        let Some(s) = light.sample(point) else {
             continue;
         };
         let Some(origin) = origin_toward(s.to_light) else {
             continue;
         };
-        let f = at.bsdf.eval(at.wo, at.frame.to_local(s.to_light));
+        let f = vertex
+            .bsdf
+            .eval(vertex.wo, vertex.frame.to_local(s.to_light));
         if f == Vec3::ZERO {
             continue;
         }
@@ -182,16 +169,16 @@ fn direct_light(
     }
     let u_select = sampler.next_f32();
     let u = sampler.next_2d();
-    if let Some(s) = world.emitters.sample(at.point, u_select, u)
+    if let Some(s) = world.emitters.sample(point, u_select, u)
         && let Some(origin) = origin_toward(s.to_light)
     {
-        let wi = at.frame.to_local(s.to_light);
-        let f = at.bsdf.eval(at.wo, wi);
+        let wi = vertex.frame.to_local(s.to_light);
+        let f = vertex.bsdf.eval(vertex.wo, wi);
         if f != Vec3::ZERO {
             let shadow =
                 Ray::new(origin, s.to_light).with_t_max(s.distance * (1.0 - SHADOW_SHORTENING));
             if !world.occluded(&shadow, options.method) {
-                let weight = power_heuristic(s.pdf, at.bsdf.pdf(at.wo, wi));
+                let weight = power_heuristic(s.pdf, vertex.bsdf.pdf(vertex.wo, wi));
                 sum += f * s.radiance * (weight / s.pdf);
             }
         }

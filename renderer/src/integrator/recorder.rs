@@ -3,7 +3,7 @@
 //! is traced with [`NoRecorder`], whose calls are empty and compile away, so
 //! the image and the inspector run the same integrator.
 
-use crate::ray::Ray;
+use crate::geometry::ray::Ray;
 use crate::shapes::Surface;
 use crate::world::Hit;
 use glam::Vec3;

@@ -13,15 +13,16 @@
 
 use super::RenderOptions;
 use super::recorder::{NoRecorder, Note, RayKind, Recorder};
-use crate::bsdf::rough_conductor::RoughConductor;
-use crate::bsdf::{Bsdf, ShadingFrame, conductor_reflectance};
-use crate::offset::offset_ray_origin;
-use crate::optics::{fresnel_dielectric, reflect, refract};
-use crate::ray::Ray;
-use crate::texture::albedo_at;
+use super::shading_context::ShadingContext;
+use crate::geometry::offset::offset_ray_origin;
+use crate::geometry::ray::Ray;
+use crate::shading::bsdf::rough_conductor::RoughConductor;
+use crate::shading::bsdf::{Bsdf, ShadingFrame, conductor_reflectance};
+use crate::shading::optics::{fresnel_dielectric, reflect, refract};
+use crate::shading::texture::albedo_at;
 use crate::world::World;
 use glam::Vec3;
-use scene::{BaseMaterial, Material};
+use scene::BaseMaterial;
 use std::f32::consts::PI;
 
 /// The radiance arriving along `ray`, recursing at most `options.max_depth` bounces.
@@ -54,52 +55,24 @@ fn trace<R: Recorder>(
         rec.miss(node, background);
         return background;
     };
-    let surface = world.surface(ray, hit);
-    let material = &world.material(hit);
-    // Which side the ray came from follows the geometric normal; shading
-    // uses the (interpolated, on meshes) shading normal turned to that side.
-    let front = ray.dir.dot(surface.normal) < 0.0;
-    rec.hit(node, ray, hit, &surface, front);
-    let shading_normal = world.shading_normal(hit, &surface);
-    let n = if front {
-        shading_normal
-    } else {
-        -shading_normal
-    };
-    let geometric_side = if front {
-        surface.normal
-    } else {
-        -surface.normal
-    };
-    let point = surface.point;
-    let magnitude = world.magnitude(hit.object);
+    let at = ShadingContext::new(world, ray, hit);
+    rec.hit(node, ray, hit, &at.surface, at.front);
+    let (material, front, n, point) = (&at.material, at.front, at.shading_normal, at.point());
     let mut radiance = if front { material.emission } else { Vec3::ZERO };
     rec.local(node, radiance);
 
     let can_recurse = depth < options.max_depth;
-    let spawn = |dir: Vec3| {
-        let side = if dir.dot(geometric_side) >= 0.0 {
-            geometric_side
-        } else {
-            -geometric_side
-        };
-        Ray::new(offset_ray_origin(point, side, magnitude), dir)
-    };
     // A reflected or refracted ray, recorded as `node`'s child carrying `factor`.
     let bounce = |rec: &mut R, kind: RayKind, dir: Vec3, factor: Vec3| {
-        let next = spawn(dir);
+        let next = at.spawn(dir);
         let child = rec.bounce(node, kind, &next, depth + 1, factor);
         trace(world, &next, options, depth + 1, rec, child)
     };
 
     // The hit as light from the point and directional lights shades it.
     let shading = |albedo| Shading {
-        material,
+        hit: &at,
         albedo,
-        point,
-        magnitude,
-        n,
-        geometric_side,
         to_eye: -ray.dir,
     };
     match material.base {
@@ -172,17 +145,12 @@ fn trace<R: Recorder>(
     radiance
 }
 
-/// A diffuse hit as [`direct`] shades it.
+/// A hit as [`direct`] shades it.
 struct Shading<'a> {
-    material: &'a Material,
+    /// The hit, with its normals turned toward the ray (shadow rays start
+    /// off the geometric one).
+    hit: &'a ShadingContext,
     albedo: Vec3,
-    point: Vec3,
-    /// The largest coordinate of the object hit (see [`World::magnitude`]).
-    magnitude: f32,
-    /// The unit shading normal on the side the ray came from.
-    n: Vec3,
-    /// The unit geometric normal on that side (shadow rays start off it).
-    geometric_side: Vec3,
     to_eye: Vec3,
 }
 
@@ -198,7 +166,7 @@ fn direct<R: Recorder>(
     rec: &mut R,
     node: R::Node,
 ) -> Vec3 {
-    let (material, albedo, n) = (at.material, at.albedo, at.n);
+    let (material, albedo, n) = (&at.hit.material, at.albedo, at.hit.shading_normal);
     let ambient = albedo * world.ambient;
     ambient
         + lights(
@@ -235,12 +203,13 @@ fn lights<R: Recorder>(
     shade: impl Fn(Vec3, Vec3) -> Vec3,
 ) -> Vec3 {
     let mut radiance = Vec3::ZERO;
-    let origin = offset_ray_origin(at.point, at.geometric_side, at.magnitude);
+    let (point, n) = (at.hit.point(), at.hit.shading_normal);
+    let origin = offset_ray_origin(point, at.hit.geometric, at.hit.magnitude);
     for (index, light) in world.lights.iter().enumerate() {
-        let Some(sample) = light.sample(at.point) else {
+        let Some(sample) = light.sample(point) else {
             continue;
         };
-        let cos = at.n.dot(sample.to_light);
+        let cos = n.dot(sample.to_light);
         if cos <= 0.0 {
             continue;
         }
@@ -269,7 +238,8 @@ fn rough_conductor_direct<R: Recorder>(
     rec: &mut R,
     node: R::Node,
 ) -> Vec3 {
-    let frame = ShadingFrame::new(at.n);
+    let n = at.hit.shading_normal;
+    let frame = ShadingFrame::new(n);
     let wo = frame.to_local(at.to_eye);
     let ambient = roughness * (conductor.f0 * world.ambient);
     rec.local(node, ambient);
@@ -283,7 +253,7 @@ fn rough_conductor_direct<R: Recorder>(
             node,
             |to_light, irradiance| {
                 // eval includes cos θ_i; the irradiance passed in does too.
-                let cos = at.n.dot(to_light);
+                let cos = n.dot(to_light);
                 conductor.eval(wo, frame.to_local(to_light)) * irradiance / cos
             },
         )

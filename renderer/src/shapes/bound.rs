@@ -2,7 +2,7 @@
 //! skip its object-space transform and exact intersection for rays that
 //! clearly pass it by, without ever changing which rays hit it.
 
-use crate::ray::Ray;
+use crate::geometry::ray::Ray;
 use glam::Vec3;
 
 /// Relative slack on the shape's enclosing radius.
@@ -73,7 +73,7 @@ impl BoundingSphere {
 #[cfg(test)]
 pub(super) mod testing {
     use super::*;
-    use crate::sampler::Sampler;
+    use crate::integrator::sampler::Sampler;
 
     /// Calls `check` on 20 000 rays around the bound `b` (its slack
     /// included): from inside it, just outside and up to 10⁴ radii away,

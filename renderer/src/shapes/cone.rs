@@ -3,10 +3,10 @@
 
 use super::bound::BoundingSphere;
 use super::cylinder::shift_near;
+use super::placement::Placement;
 use super::quadratic::solve_quadratic;
 use super::{AreaSample, Surface};
-use crate::frame::Frame;
-use crate::ray::Ray;
+use crate::geometry::ray::Ray;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
@@ -15,7 +15,7 @@ use std::f32::consts::PI;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Cone {
     /// Object space: the base centre at the origin, the apex on +y.
-    frame: Frame,
+    placement: Placement,
     /// R, the base radius.
     radius: f32,
     /// H, the height of the apex above the base.
@@ -29,7 +29,7 @@ impl Cone {
     /// it along +y, rotated by `rotate_deg` degrees (x, then y, then z) about `base`.
     pub fn new(base: Vec3, radius: f32, height: f32, rotate_deg: Vec3) -> Self {
         debug_assert!(radius >= 0.0 && height >= 0.0, "r {radius} h {height}");
-        let frame = Frame::from_euler_degrees(base, rotate_deg);
+        let placement = Placement::from_euler_degrees(base, rotate_deg);
         let (radius, height) = (radius.abs(), height.abs());
         // The smallest enclosing sphere: through the apex and the base rim
         // when the cone is taller than wide, else the base disk's own sphere.
@@ -40,11 +40,11 @@ impl Cone {
             (0.0, radius)
         };
         Self {
-            frame,
+            placement,
             radius,
             height,
             bound: BoundingSphere::new(
-                frame.point_to_world(Vec3::new(0.0, centre_y, 0.0)),
+                placement.point_to_world(Vec3::new(0.0, centre_y, 0.0)),
                 enclosing,
             ),
         }
@@ -69,7 +69,7 @@ impl Cone {
 
     /// [`Cone::intersect`] without the bounding-sphere test.
     fn intersect_exact(&self, ray: &Ray) -> Option<f32> {
-        let local = self.frame.ray_to_object(ray);
+        let local = self.placement.ray_to_object(ray);
         let (r2, h) = (self.radius * self.radius, self.height);
         let (shift, o, d) = shift_near(&local, Vec3::new(0.0, 0.5 * h, 0.0));
         let h2 = h * h;
@@ -106,7 +106,7 @@ impl Cone {
     /// generator in its half-plane through the axis; base: snapped to y = 0),
     /// with that part's outward normal.
     pub fn surface(&self, ray: &Ray, alpha: f32) -> Surface {
-        let p = self.frame.ray_to_object(ray).at(alpha);
+        let p = self.placement.ray_to_object(ray).at(alpha);
         let (r, h) = (self.radius, self.height);
         let rho = (p.x * p.x + p.z * p.z).sqrt();
         // The generator from (ρ, y) = (R, 0) to (0, H), and its outward normal (H, R).
@@ -130,7 +130,7 @@ impl Cone {
             let scale = if rho > r { r / rho } else { 1.0 };
             (Vec3::new(p.x * scale, 0.0, p.z * scale), -Vec3::Y)
         };
-        self.frame.surface_to_world(point, normal)
+        self.placement.surface_to_world(point, normal)
     }
 }
 
@@ -160,10 +160,10 @@ impl Cone {
             (r * s * radial + Vec3::new(0.0, h * (1.0 - s), 0.0), n)
         } else {
             let t = (u.x - lateral) / (1.0 - lateral);
-            let d = r * crate::bsdf::lambert::concentric_disk(Vec2::new(t, u.y));
+            let d = r * crate::geometry::warp::concentric_disk(Vec2::new(t, u.y));
             (Vec3::new(d.x, 0.0, d.y), -Vec3::Y)
         };
-        let s = self.frame.surface_to_world(p, n);
+        let s = self.placement.surface_to_world(p, n);
         Some(AreaSample {
             point: s.point,
             normal: s.normal,
@@ -333,20 +333,20 @@ mod tests {
             let (s, phi, v) = target;
             let rho = s * radius * (1.0 - v);
             let local = Vec3::new(rho * phi.cos(), v * height, rho * phi.sin());
-            let target = c.frame.point_to_world(local);
+            let target = c.placement.point_to_world(local);
             let origin = target + distance * from.try_normalize().unwrap_or(Vec3::X);
             let ray = Ray::new(origin, (target - origin).normalize());
             let alpha = c.intersect(&ray).expect("aimed inside");
             prop_assert!(ray.contains(alpha) && alpha < distance);
             let hit = c.surface(&ray, alpha);
             prop_assert!((hit.point - ray.at(alpha)).length() < 1e-4 * distance);
-            let p = c.frame.world_from_object.transpose() * (hit.point - base);
+            let p = c.placement.world_from_object.transpose() * (hit.point - base);
             let rho = (p.x * p.x + p.z * p.z).sqrt();
             let len = (radius * radius + height * height).sqrt();
             let residual = ((height * rho + radius * p.y - radius * height) / len).max(-p.y);
             prop_assert!(residual.abs() < 1e-5, "residual {residual}");
             prop_assert!((hit.normal.length() - 1.0).abs() < 1e-5);
-            let centre = c.frame.point_to_world(Vec3::new(0.0, 0.25 * height, 0.0));
+            let centre = c.placement.point_to_world(Vec3::new(0.0, 0.25 * height, 0.0));
             prop_assert!(hit.normal.dot(hit.point - centre) > 0.0);
             let away = Ray::new(hit.point + 1e-3 * hit.normal, hit.normal);
             prop_assert_eq!(c.intersect(&away), None);

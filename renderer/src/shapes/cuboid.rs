@@ -2,16 +2,16 @@
 //! zero direction components and rays lying in a face plane never produce NaN.
 
 use super::bound::BoundingSphere;
+use super::placement::Placement;
 use super::{AreaSample, Surface};
-use crate::frame::Frame;
-use crate::ray::Ray;
+use crate::geometry::ray::Ray;
 use glam::{Vec2, Vec3};
 
 /// An oriented box: centre, half edge lengths along its own axes, rotation.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Cuboid {
     /// Object space: the box's centre at the origin, its edges along x, y, z.
-    frame: Frame,
+    placement: Placement,
     /// Half the edge lengths, ≥ 0.
     half: Vec3,
     /// Rays that miss it skip the exact test.
@@ -25,7 +25,7 @@ impl Cuboid {
         debug_assert!(size.is_finite() && size.min_element() >= 0.0, "size {size}");
         let half = 0.5 * size.abs();
         Self {
-            frame: Frame::from_euler_degrees(center, rotate_deg),
+            placement: Placement::from_euler_degrees(center, rotate_deg),
             half,
             bound: BoundingSphere::new(center, half.length()),
         }
@@ -49,7 +49,7 @@ impl Cuboid {
 
     /// [`Cuboid::intersect`] without the bounding-sphere test.
     fn intersect_exact(&self, ray: &Ray) -> Option<f32> {
-        let local = self.frame.ray_to_object(ray);
+        let local = self.placement.ray_to_object(ray);
         let (o, d) = (local.origin.to_array(), local.dir.to_array());
         let h = self.half.to_array();
         let mut t_near = f32::NEG_INFINITY;
@@ -85,7 +85,7 @@ impl Cuboid {
     /// The hit point with the hit face's coordinate snapped to ±half-size
     /// (the others clamped onto the face), and the face's outward normal.
     pub fn surface(&self, ray: &Ray, alpha: f32) -> Surface {
-        let local = self.frame.ray_to_object(ray);
+        let local = self.placement.ray_to_object(ray);
         let mut p = local.at(alpha);
         // The face is the one whose plane the point is closest to.
         let excess = p.abs() - self.half;
@@ -100,7 +100,7 @@ impl Cuboid {
         p[axis] = self.half[axis].copysign(p[axis]);
         let mut normal = Vec3::ZERO;
         normal[axis] = 1.0f32.copysign(p[axis]);
-        self.frame.surface_to_world(p, normal)
+        self.placement.surface_to_world(p, normal)
     }
 }
 
@@ -145,7 +145,7 @@ impl Cuboid {
         p[b] = (2.0 * u.y - 1.0) * h[b];
         let mut n = Vec3::ZERO;
         n[axis] = sign;
-        let s = self.frame.surface_to_world(p, n);
+        let s = self.placement.surface_to_world(p, n);
         Some(AreaSample {
             point: s.point,
             normal: s.normal,
@@ -333,7 +333,7 @@ mod tests {
         ) {
             let size = Vec3::new(size.0, size.1, size.2);
             let b = Cuboid::new(center, size, rotate);
-            let target = center + b.frame.vector_to_world(target * size);
+            let target = center + b.placement.vector_to_world(target * size);
             let origin = target + distance * from.try_normalize().unwrap_or(Vec3::X);
             let ray = Ray::new(origin, (target - origin).normalize()).with_t_max(t_max);
             let Some(alpha) = b.intersect(&ray) else {
@@ -343,7 +343,7 @@ mod tests {
             prop_assert!(ray.contains(alpha));
             let s = b.surface(&ray, alpha);
             prop_assert!((s.point - ray.at(alpha)).length() < 1e-4 * distance.max(1.0));
-            let local = b.frame.world_from_object.transpose() * (s.point - center);
+            let local = b.placement.world_from_object.transpose() * (s.point - center);
             let residual = (local.abs() - b.half).max_element();
             prop_assert!(residual.abs() < 1e-5, "residual {residual}");
             prop_assert!((s.normal.length() - 1.0).abs() < 1e-5);

@@ -2,10 +2,10 @@
 //! restricted to 0 ≤ y ≤ H, plus the two cap disks.
 
 use super::bound::BoundingSphere;
+use super::placement::Placement;
 use super::quadratic::solve_quadratic;
 use super::{AreaSample, Surface};
-use crate::frame::Frame;
-use crate::ray::Ray;
+use crate::geometry::ray::Ray;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
@@ -14,7 +14,7 @@ use std::f32::consts::PI;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Cylinder {
     /// Object space: the base centre at the origin, the axis along +y.
-    frame: Frame,
+    placement: Placement,
     /// R, the radius.
     radius: f32,
     /// H, the height.
@@ -28,14 +28,14 @@ impl Cylinder {
     /// along +y, rotated by `rotate_deg` degrees (x, then y, then z) about `base`.
     pub fn new(base: Vec3, radius: f32, height: f32, rotate_deg: Vec3) -> Self {
         debug_assert!(radius >= 0.0 && height >= 0.0, "r {radius} h {height}");
-        let frame = Frame::from_euler_degrees(base, rotate_deg);
+        let placement = Placement::from_euler_degrees(base, rotate_deg);
         let (radius, height) = (radius.abs(), height.abs());
         Self {
-            frame,
+            placement,
             radius,
             height,
             bound: BoundingSphere::new(
-                frame.point_to_world(Vec3::new(0.0, 0.5 * height, 0.0)),
+                placement.point_to_world(Vec3::new(0.0, 0.5 * height, 0.0)),
                 radius.hypot(0.5 * height),
             ),
         }
@@ -59,7 +59,7 @@ impl Cylinder {
 
     /// [`Cylinder::intersect`] without the bounding-sphere test.
     fn intersect_exact(&self, ray: &Ray) -> Option<f32> {
-        let local = self.frame.ray_to_object(ray);
+        let local = self.placement.ray_to_object(ray);
         let (r2, h) = (self.radius * self.radius, self.height);
         let (shift, o, d) = shift_near(&local, Vec3::new(0.0, 0.5 * h, 0.0));
         let mut best = f32::INFINITY;
@@ -94,7 +94,7 @@ impl Cylinder {
     /// The hit point placed on the nearest part (side: reprojected radially
     /// to ρ = R; cap: snapped to its plane), with that part's outward normal.
     pub fn surface(&self, ray: &Ray, alpha: f32) -> Surface {
-        let p = self.frame.ray_to_object(ray).at(alpha);
+        let p = self.placement.ray_to_object(ray).at(alpha);
         let (r, h) = (self.radius, self.height);
         let rho = (p.x * p.x + p.z * p.z).sqrt();
         let side = (rho - r).abs();
@@ -112,7 +112,7 @@ impl Cylinder {
             let scale = if rho > r { r / rho } else { 1.0 };
             (Vec3::new(p.x * scale, y, p.z * scale), n)
         };
-        self.frame.surface_to_world(point, normal)
+        self.placement.surface_to_world(point, normal)
     }
 }
 
@@ -159,10 +159,10 @@ impl Cylinder {
             } else {
                 (2.0 * t - 1.0, h, Vec3::Y)
             };
-            let d = r * crate::bsdf::lambert::concentric_disk(Vec2::new(t, u.y));
+            let d = r * crate::geometry::warp::concentric_disk(Vec2::new(t, u.y));
             (Vec3::new(d.x, y, d.y), n)
         };
-        let s = self.frame.surface_to_world(p, n);
+        let s = self.placement.surface_to_world(p, n);
         Some(AreaSample {
             point: s.point,
             normal: s.normal,
@@ -301,20 +301,20 @@ mod tests {
             let c = Cylinder::new(base, radius, height, rotate);
             let (s, phi, v) = target;
             let local = Vec3::new(s * radius * phi.cos(), v * height, s * radius * phi.sin());
-            let target = c.frame.point_to_world(local);
+            let target = c.placement.point_to_world(local);
             let origin = target + distance * from.try_normalize().unwrap_or(Vec3::X);
             let ray = Ray::new(origin, (target - origin).normalize());
             let alpha = c.intersect(&ray).expect("aimed inside");
             prop_assert!(ray.contains(alpha) && alpha < distance);
             let hit = c.surface(&ray, alpha);
             prop_assert!((hit.point - ray.at(alpha)).length() < 1e-4 * distance);
-            let p = c.frame.world_from_object.transpose() * (hit.point - base);
+            let p = c.placement.world_from_object.transpose() * (hit.point - base);
             let rho = (p.x * p.x + p.z * p.z).sqrt();
             // Distance to the solid's boundary: zero on the surface.
             let residual = (rho - radius).max(-p.y).max(p.y - height);
             prop_assert!(residual.abs() < 1e-5, "residual {residual}");
             prop_assert!((hit.normal.length() - 1.0).abs() < 1e-5);
-            let centre = c.frame.point_to_world(Vec3::new(0.0, 0.5 * height, 0.0));
+            let centre = c.placement.point_to_world(Vec3::new(0.0, 0.5 * height, 0.0));
             prop_assert!(hit.normal.dot(hit.point - centre) > 0.0);
             let away = Ray::new(hit.point + 1e-3 * hit.normal, hit.normal);
             prop_assert_eq!(c.intersect(&away), None);

@@ -10,6 +10,7 @@ mod bound;
 mod cone;
 mod cuboid;
 mod cylinder;
+pub mod placement;
 mod plane;
 pub mod quadratic;
 mod sphere;
@@ -19,12 +20,13 @@ mod triangle;
 pub use cone::Cone;
 pub use cuboid::Cuboid;
 pub use cylinder::Cylinder;
+pub use placement::Placement;
 pub use plane::Plane;
 pub use sphere::{Sphere, SphereQuadratic, SphereRoots};
 pub use torus::Torus;
 pub use triangle::{Triangle, TriangleHit, WatertightRay};
 
-use crate::ray::Ray;
+use crate::geometry::ray::Ray;
 use glam::Vec3;
 use scene::Geometry;
 
@@ -83,7 +85,7 @@ pub enum Shape {
 
 impl Shape {
     /// The renderable shape for a resolved scene geometry; `None` for a mesh
-    /// (meshes are triangles in a BVH, see [`crate::placed_mesh`]).
+    /// (meshes are triangles in a BVH, see [`crate::world::placed_mesh`]).
     pub fn from_geometry(geometry: &Geometry) -> Option<Shape> {
         Some(match *geometry {
             Geometry::Sphere { center, radius } => Shape::Sphere(Sphere::new(center, radius)),

@@ -1,7 +1,7 @@
 //! The infinite plane: the lecture's ray–plane step on its own.
 
 use super::Surface;
-use crate::ray::Ray;
+use crate::geometry::ray::Ray;
 use glam::Vec3;
 
 /// The plane of points q with n · (q − s) = 0.

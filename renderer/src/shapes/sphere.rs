@@ -1,7 +1,7 @@
 //! The sphere: the lecture's quadratic in α, and the Ray Tracing Gems ch. 7 form.
 
 use super::{AreaSample, Method, Surface};
-use crate::ray::Ray;
+use crate::geometry::ray::Ray;
 use glam::{Vec2, Vec3};
 use serde::Serialize;
 

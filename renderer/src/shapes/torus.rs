@@ -1,9 +1,9 @@
 //! The torus (√(x² + z²) − R)² + y² = r² in object space: a quartic in α,
 //! formed in f64 from an origin first moved onto the bounding sphere.
 
+use super::placement::Placement;
 use super::{AreaSample, Surface};
-use crate::frame::Frame;
-use crate::ray::Ray;
+use crate::geometry::ray::Ray;
 use glam::{DVec3, Vec2, Vec3};
 
 /// A torus around its centre in the local xz-plane: major radius R (centre
@@ -11,7 +11,7 @@ use glam::{DVec3, Vec2, Vec3};
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Torus {
     /// Object space: the centre at the origin, the axis of symmetry along +y.
-    frame: Frame,
+    placement: Placement,
     /// R, the major radius.
     major: f32,
     /// r, the minor radius.
@@ -34,7 +34,7 @@ impl Torus {
     pub fn new(center: Vec3, major: f32, minor: f32, rotate_deg: Vec3) -> Self {
         debug_assert!(major >= 0.0 && minor >= 0.0, "R {major} r {minor}");
         Self {
-            frame: Frame::from_euler_degrees(center, rotate_deg),
+            placement: Placement::from_euler_degrees(center, rotate_deg),
             major: major.abs(),
             minor: minor.abs(),
         }
@@ -49,7 +49,7 @@ impl Torus {
     /// roots from `roots::find_roots_quartic` are polished by two Newton steps
     /// on f(P0 + α v) and shifted back by α_s.
     pub fn intersect(&self, ray: &Ray) -> Option<f32> {
-        let local = self.frame.ray_to_object(ray);
+        let local = self.placement.ray_to_object(ray);
         let (o, d) = (local.origin.as_dvec3(), local.dir.as_dvec3());
         let (big, small) = (f64::from(self.major), f64::from(self.minor));
         let dd = d.length_squared();
@@ -111,7 +111,7 @@ impl Torus {
     /// outward normal (p − c)/‖p − c‖, which on the surface is the unit
     /// gradient of the implicit function.
     pub fn surface(&self, ray: &Ray, alpha: f32) -> Surface {
-        let p = self.frame.ray_to_object(ray).at(alpha);
+        let p = self.placement.ray_to_object(ray).at(alpha);
         let rho = (p.x * p.x + p.z * p.z).sqrt();
         let radial = if rho > 0.0 {
             Vec3::new(p.x / rho, 0.0, p.z / rho)
@@ -120,7 +120,8 @@ impl Torus {
         };
         let c = self.major * radial;
         let normal = (p - c).try_normalize().unwrap_or(Vec3::Y);
-        self.frame.surface_to_world(c + self.minor * normal, normal)
+        self.placement
+            .surface_to_world(c + self.minor * normal, normal)
     }
 }
 
@@ -142,7 +143,7 @@ impl Torus {
         let radial = Vec3::new(phi.cos(), 0.0, phi.sin());
         let n = psi.cos() * radial + psi.sin() * Vec3::Y;
         let p = big * radial + small * n;
-        let s = self.frame.surface_to_world(p, n);
+        let s = self.placement.surface_to_world(p, n);
         Some(AreaSample {
             point: s.point,
             normal: s.normal,
@@ -152,7 +153,7 @@ impl Torus {
 
     /// The area density of [`Torus::sample_area`] at a point on the torus.
     pub fn pdf_area(&self, point: Vec3) -> f32 {
-        let p = self.frame.point_to_object(point);
+        let p = self.placement.point_to_object(point);
         let rho = (p.x * p.x + p.z * p.z).sqrt();
         // R + r cos ψ is the distance from the axis.
         let tau = 2.0 * std::f32::consts::PI;
@@ -164,7 +165,7 @@ impl Torus {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sampler::Sampler;
+    use crate::integrator::sampler::Sampler;
     use proptest::prelude::*;
 
     fn ring() -> Torus {
@@ -271,8 +272,10 @@ mod tests {
             let phi = std::f32::consts::TAU * rng.next_f32();
             let radial = Vec3::new(phi.cos(), 0.0, phi.sin());
             let n_local = theta.cos() * radial + Vec3::new(0.0, theta.sin(), 0.0);
-            let p = t.frame.point_to_world(t.major * radial + t.minor * n_local);
-            let normal = t.frame.vector_to_world(n_local);
+            let p = t
+                .placement
+                .point_to_world(t.major * radial + t.minor * n_local);
+            let normal = t.placement.vector_to_world(n_local);
             let u = loop {
                 let u = rng.next_direction();
                 if u.dot(normal) > 0.1 {
@@ -351,7 +354,7 @@ mod tests {
             let ray = Ray::new(origin, (target - origin).normalize());
             let Some(alpha) = t.intersect(&ray) else { return Ok(()) };
             prop_assert!(ray.contains(alpha));
-            let to_local = |p: Vec3| t.frame.world_from_object.transpose() * (p - center);
+            let to_local = |p: Vec3| t.placement.world_from_object.transpose() * (p - center);
             let raw = distance(&t, to_local(ray.at(alpha)));
             prop_assert!(raw < 2e-5 * (distance_to + bound), "ray point off by {raw}");
             let s = t.surface(&ray, alpha);
@@ -359,7 +362,7 @@ mod tests {
             prop_assert!(distance(&t, p) < 2e-6 * bound, "{}", distance(&t, p));
             prop_assert!((s.normal.length() - 1.0).abs() < 1e-5);
             let rho = (p.x * p.x + p.z * p.z).sqrt();
-            let tube = t.frame.point_to_world(major / rho * Vec3::new(p.x, 0.0, p.z));
+            let tube = t.placement.point_to_world(major / rho * Vec3::new(p.x, 0.0, p.z));
             prop_assert!(s.normal.dot(s.point - tube) > 0.0);
         }
     }

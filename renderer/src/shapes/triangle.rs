@@ -2,7 +2,7 @@
 //! watertight test of Woop, Benthin and Wald (JCGT 2013).
 
 use super::{AreaSample, Method, Surface};
-use crate::ray::Ray;
+use crate::geometry::ray::Ray;
 use glam::{DVec3, Vec2, Vec3};
 use serde::Serialize;
 use wide::f32x4;
@@ -161,11 +161,11 @@ pub struct WatertightRay {
     origin: Vec3,
     /// The axis of the direction's largest magnitude (the shear's z)...
     kz: usize,
-    /// ...and the other two, swapped when v[kz] < 0 to keep the winding.
+    /// ...and the other two, swapped when `v[kz] < 0` to keep the winding.
     kx: usize,
     /// See `kx`.
     ky: usize,
-    /// Shear factors v[kx]/v[kz], v[ky]/v[kz] and 1/v[kz].
+    /// Shear factors `v[kx]/v[kz]`, `v[ky]/v[kz]` and `1/v[kz]`.
     sx: f32,
     /// See `sx`.
     sy: f32,

@@ -3,7 +3,7 @@
 //! Orthographic cameras have no counterpart in raylab and are skipped.
 
 use super::warnings::Warnings;
-use crate::model_file::ModelCamera;
+use crate::model::model_file::ModelCamera;
 use ::gltf::json::camera::Type;
 use ::gltf::json::validation::Checked;
 use glam::{Mat4, Vec3};

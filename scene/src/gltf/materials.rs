@@ -23,7 +23,7 @@
 use super::warnings::Warnings;
 use crate::materials::builtin;
 use crate::model::BaseMaterial;
-use crate::resolved::Material;
+use crate::model::Material;
 use glam::Vec3;
 
 /// Roughness above which a dielectric is matte.

@@ -1,4 +1,4 @@
-//! glTF 2.0 import: [`load`] reads a `.gltf` (external or `data:` buffers
+//! glTF 2.0 import: [`load_model`] reads a `.gltf` (external or `data:` buffers
 //! and images) or a `.glb` into a [`ModelFile`].
 //!
 //! One job per file: `document` (GLB container, JSON, validation),
@@ -23,7 +23,7 @@ mod primitives;
 mod textures;
 mod warnings;
 
-use crate::model_file::{MeshInstance, ModelError, ModelFile, ModelMaterial, Wrap};
+use crate::model::model_file::{MeshInstance, ModelError, ModelFile, ModelMaterial, Wrap};
 use ::gltf::{Document, Node};
 use buffers::Buffers;
 use glam::Mat4;
@@ -33,19 +33,28 @@ use std::path::Path;
 use std::sync::Arc;
 use warnings::Warnings;
 
-/// Loads the model file at `path`; see [`crate::model_file::load_model`].
-pub(crate) fn load(path: &Path) -> Result<ModelFile, ModelError> {
+/// Loads a `.gltf` (external or embedded buffers) or `.glb` file.
+///
+/// What raylab does not support (Draco, skins, morph targets, animations,
+/// orthographic cameras…) is listed in [`ModelFile::warnings`], once per
+/// feature, and the rest loads. A file that cannot be read, parsed or
+/// trusted (an index out of range, a non-finite position, a missing buffer…)
+/// is a [`ModelError`] naming the mesh, primitive, accessor or buffer.
+/// The material mapping is documented in `scene/src/gltf/materials.rs`.
+pub fn load_model(path: &Path) -> Result<ModelFile, ModelError> {
     let fail = |message: String| ModelError {
         path: path.display().to_string(),
         message,
     };
     let bytes = crate::bounded_read::read_limited(path, buffers::MAX_FILE_BYTES).map_err(fail)?;
-    load_bytes(bytes, path)
+    load_model_bytes(bytes, path)
 }
 
-/// Loads a model from its bytes, as though read from `path` (errors name
-/// it; its folder resolves relative URIs); see [`crate::model_file::load_model_bytes`].
-pub(crate) fn load_bytes(bytes: Vec<u8>, path: &Path) -> Result<ModelFile, ModelError> {
+/// Loads a model from bytes already in memory, as though read from `path`:
+/// errors name `path`, and relative buffer and image URIs resolve beside it.
+/// The fuzz target and the hostile-file tests use it; [`load_model`] reads
+/// the file and calls it.
+pub fn load_model_bytes(bytes: Vec<u8>, path: &Path) -> Result<ModelFile, ModelError> {
     let fail = |message: String| ModelError {
         path: path.display().to_string(),
         message,

@@ -4,7 +4,7 @@
 
 use super::buffers::{Buffers, MAX_FILE_BYTES, read_uri};
 use super::warnings::Warnings;
-use crate::model_file::{Texture, Wrap};
+use crate::model::model_file::{Texture, Wrap};
 use ::gltf::texture::WrappingMode;
 use image::ImageFormat;
 use std::path::Path;

@@ -1,10 +1,10 @@
 //! `<camera>`, `<light>` and `<sky>`.
 
 use super::element::Element;
-use super::suggest::did_you_mean;
 use super::values::{self, Range, parallel};
 use crate::SceneError;
 use crate::model::{Camera, Light, LightKind, defaults};
+use crate::suggest::did_you_mean;
 use glam::Vec3;
 
 /// The attributes `<camera>` takes, in writing order.

@@ -2,11 +2,11 @@
 //! element takes) and typed access to their values, with errors at the value.
 
 use super::position::Locator;
-use super::suggest::did_you_mean;
 use super::values::{self, Range};
 use crate::SceneError;
 use crate::color::parse_color;
 use crate::model::MaterialParams;
+use crate::suggest::did_you_mean;
 use glam::Vec3;
 use quick_xml::XmlVersion;
 use quick_xml::events::BytesStart;

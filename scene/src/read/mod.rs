@@ -7,19 +7,17 @@ mod element;
 mod file;
 mod objects;
 mod position;
-mod suggest;
 mod values;
 
 use camera::{CAMERA_ATTRS, LIGHT_ATTRS, SKY_ATTRS};
 pub use file::read_file;
 use objects::{MATERIAL_ATTRS, shape_attrs};
-pub(crate) use suggest::suggest;
-pub use values::MAX_MAGNITUDE;
-pub(crate) use values::parse_triple;
 
 use crate::SceneError;
+use crate::gltf::load_model;
+use crate::model::model_file::ModelFile;
 use crate::model::{BaseMaterial, Scene};
-use crate::model_file::{ModelFile, load_model};
+use crate::suggest::suggest;
 use element::Element;
 use position::Locator;
 use quick_xml::Reader;
@@ -297,7 +295,7 @@ impl Document<'_> {
                     format!(
                         "unknown material {name:?}{} (expected a built-in material ({}) or the \
                          name of a <material> in this file)",
-                        suggest::did_you_mean(name, names),
+                        crate::suggest::did_you_mean(name, names),
                         objects::builtin_names()
                     ),
                 ));

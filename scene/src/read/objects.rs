@@ -1,11 +1,11 @@
 //! `<material>` definitions and the shape elements.
 
 use super::element::Element;
-use super::suggest::did_you_mean;
 use super::values::{self, Range, degenerate_triangle};
 use crate::SceneError;
+use crate::model::model_file::ModelFile;
 use crate::model::{BaseMaterial, MaterialDef, MeshSource, Object, Shape};
-use crate::model_file::ModelFile;
+use crate::suggest::did_you_mean;
 use glam::Vec3;
 use std::sync::Arc;
 

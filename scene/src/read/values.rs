@@ -1,6 +1,7 @@
 //! Attribute values: numbers, vectors, integers and their ranges. Each parser
 //! returns the message (naming the attribute) on failure.
 
+use crate::numbers::{finite, parse_triple};
 use glam::{DVec3, Vec3};
 
 /// The accepted range of a number.
@@ -47,23 +48,6 @@ impl Range {
     }
 }
 
-/// The largest magnitude of any number in a scene file (a kilometre in
-/// millimetres). Beyond it 32-bit arithmetic loses a scene's detail (the
-/// spacing of f32 values near 1e6 is 0.06), and the torus's quartic, whose
-/// coefficients grow as the fourth power of sizes and distances, overflows.
-pub const MAX_MAGNITUDE: f32 = 1.0e6;
-
-/// A finite `f32` within ±[`MAX_MAGNITUDE`]; the reason otherwise (without
-/// the attribute name).
-fn finite(token: &str) -> Result<f32, &'static str> {
-    match token.parse::<f32>() {
-        Ok(x) if x.abs() <= MAX_MAGNITUDE => Ok(x),
-        Ok(x) if x.is_finite() => Err("must lie within ±1e6"),
-        Ok(_) => Err("must be a finite number"),
-        Err(_) => Err("is not a number"),
-    }
-}
-
 /// A number of attribute `name` in `range`.
 pub(crate) fn number(name: &str, text: &str, range: Range) -> Result<f32, String> {
     match finite(text.trim()) {
@@ -73,26 +57,6 @@ pub(crate) fn number(name: &str, text: &str, range: Range) -> Result<f32, String
             "{name} must be {}, got {text:?} (it {why})",
             range.expected()
         )),
-    }
-}
-
-/// Exactly three finite numbers separated by whitespace and/or single commas;
-/// the reason otherwise.
-pub(crate) fn parse_triple(text: &str) -> Result<Vec3, String> {
-    let mut numbers = Vec::new();
-    let parts: Vec<&str> = text.split(',').collect();
-    for part in &parts {
-        let mut tokens = part.split_whitespace().peekable();
-        if tokens.peek().is_none() && parts.len() > 1 {
-            return Err("a comma must stand between two numbers".into());
-        }
-        for token in tokens {
-            numbers.push(finite(token).map_err(|why| format!("{token:?} {why}"))?);
-        }
-    }
-    match numbers[..] {
-        [x, y, z] => Ok(Vec3::new(x, y, z)),
-        _ => Err(format!("found {} numbers", numbers.len())),
     }
 }
 

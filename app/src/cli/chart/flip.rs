@@ -7,7 +7,7 @@
 
 use glam::Vec3;
 use nv_flip::{DEFAULT_PIXELS_PER_DEGREE, FlipImageRgb8, FlipPool};
-use renderer::film::linear_to_srgb8;
+use renderer::display::srgb::linear_to_srgb8;
 
 /// A reference picture, encoded once, to measure images against.
 pub struct FlipReference {

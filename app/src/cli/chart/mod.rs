@@ -10,10 +10,10 @@ use crate::plot::chart::{Curve, write_chart};
 use anyhow::{Context, Result};
 use flip::FlipReference;
 use glam::Vec3;
-use renderer::adaptive::Adaptive;
-use renderer::convergence::{Budget, converge, time_to_reach};
+use renderer::diagnostics::convergence::{Budget, converge, time_to_reach};
+use renderer::diagnostics::reference_image::read_exr_rgb;
 use renderer::integrator::Integrator;
-use renderer::reference_image::read_exr_rgb;
+use renderer::integrator::adaptive::Adaptive;
 use renderer::{Film, Method, RenderOptions, Sampling, World};
 use std::io::Write;
 use std::path::PathBuf;
@@ -57,6 +57,7 @@ fn options_of(method: ChartMethod, max_depth: u32, seed: u64) -> RenderOptions {
 pub fn run(args: &ChartArgs) -> Result<Vec<PathBuf>> {
     let scene = scene::read_any(&args.scene).map_err(|e| UserError(e.to_string()))?;
     let world = World::from_scene(&scene)
+        .and_then(|world| renderer::film::image_memory::check_world_fits(&world).map(|()| world))
         .map_err(|e| UserError(format!("{}: {e}", args.scene.display())))?;
     let (w, h) = (world.camera.w, world.camera.h);
     let reference = match &args.reference {

@@ -215,7 +215,7 @@ pub fn build(inputs: &Inputs<'_>) -> Drawing {
     }
     camera_and_window(&mut drawing, camera, options, radius);
     for (k, light) in inputs.world.lights.iter().enumerate() {
-        if let renderer::light::Light::Point { position, .. } = light {
+        if let renderer::world::light::Light::Point { position, .. } = light {
             drawing.marker(*position, palette::SHADOW_FREE);
             drawing.label(*position, format!("light {k}"), palette::SHADOW_FREE);
         }

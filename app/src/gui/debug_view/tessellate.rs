@@ -1,9 +1,9 @@
 //! Triangle meshes of the scene's primitives for the debug view: each
-//! primitive drawn by its own shape, placed by the same [`Frame`] the tracer
+//! primitive drawn by its own shape, placed by the same [`Placement`] the tracer
 //! uses, so the drawing and the image agree.
 
 use glam::Vec3;
-use renderer::frame::Frame;
+use renderer::shapes::Placement;
 use scene::Geometry;
 use std::f32::consts::TAU;
 
@@ -26,30 +26,49 @@ pub struct MeshVertex {
 /// at the point of the plane nearest to `focus`.
 pub fn tessellate(geometry: &Geometry, focus: Vec3, plane_extent: f32, out: &mut Vec<MeshVertex>) {
     match *geometry {
-        Geometry::Sphere { center, radius } => sphere(Frame::at(center), radius, out),
+        Geometry::Sphere { center, radius } => sphere(Placement::at(center), radius, out),
         Geometry::Box {
             center,
             size,
             rotate,
-        } => cuboid(Frame::from_euler_degrees(center, rotate), 0.5 * size, out),
+        } => cuboid(
+            Placement::from_euler_degrees(center, rotate),
+            0.5 * size,
+            out,
+        ),
         Geometry::Cylinder {
             base,
             radius,
             height,
             rotate,
-        } => cylinder(Frame::from_euler_degrees(base, rotate), radius, height, out),
+        } => cylinder(
+            Placement::from_euler_degrees(base, rotate),
+            radius,
+            height,
+            out,
+        ),
         Geometry::Cone {
             base,
             radius,
             height,
             rotate,
-        } => cone(Frame::from_euler_degrees(base, rotate), radius, height, out),
+        } => cone(
+            Placement::from_euler_degrees(base, rotate),
+            radius,
+            height,
+            out,
+        ),
         Geometry::Torus {
             center,
             major,
             minor,
             rotate,
-        } => torus(Frame::from_euler_degrees(center, rotate), major, minor, out),
+        } => torus(
+            Placement::from_euler_degrees(center, rotate),
+            major,
+            minor,
+            out,
+        ),
         Geometry::Triangle { t0, t1, t2 } => {
             let normal = (t1 - t0).cross(t2 - t0).normalize_or(Vec3::Y);
             for position in [t0, t1, t2] {
@@ -79,7 +98,7 @@ fn mesh(model: &scene::ModelFile, world_from_model: glam::Mat4, out: &mut Vec<Me
         if !draw_triangles {
             if let Some((lo, hi)) = mesh.bounds() {
                 let center = 0.5 * (lo + hi);
-                let local = Frame::at(Vec3::ZERO);
+                let local = Placement::at(Vec3::ZERO);
                 let start = out.len();
                 cuboid(local, 0.5 * (hi - lo), out);
                 for v in &mut out[start..] {
@@ -117,7 +136,7 @@ pub fn tessellate_bounds(
     out: &mut Vec<MeshVertex>,
 ) {
     match scene::layout::bounds(geometry) {
-        Some(b) => cuboid(Frame::at(b.center()), 0.5 * (b.max - b.min), out),
+        Some(b) => cuboid(Placement::at(b.center()), 0.5 * (b.max - b.min), out),
         None => tessellate(geometry, focus, plane_extent, out),
     }
 }
@@ -141,7 +160,7 @@ fn square(out: &mut Vec<MeshVertex>, corner: impl Fn(f32, f32) -> MeshVertex) {
 }
 
 /// An object-space vertex in the world.
-fn placed(frame: &Frame, position: Vec3, normal: Vec3) -> MeshVertex {
+fn placed(frame: &Placement, position: Vec3, normal: Vec3) -> MeshVertex {
     MeshVertex {
         position: frame.point_to_world(position),
         normal: frame.vector_to_world(normal),
@@ -154,7 +173,7 @@ fn around(k: u32) -> Vec3 {
     Vec3::new(phi.cos(), 0.0, -phi.sin())
 }
 
-fn sphere(frame: Frame, radius: f32, out: &mut Vec<MeshVertex>) {
+fn sphere(frame: Placement, radius: f32, out: &mut Vec<MeshVertex>) {
     let vertex = |k: u32, ring: u32| {
         let polar = std::f32::consts::PI * ring as f32 / RINGS as f32;
         let n = around(k) * polar.sin() + Vec3::Y * polar.cos();
@@ -179,7 +198,7 @@ fn sphere(frame: Frame, radius: f32, out: &mut Vec<MeshVertex>) {
     }
 }
 
-fn cuboid(frame: Frame, half: Vec3, out: &mut Vec<MeshVertex>) {
+fn cuboid(frame: Placement, half: Vec3, out: &mut Vec<MeshVertex>) {
     for axis in 0..3 {
         for sign in [-1.0f32, 1.0] {
             let mut n = Vec3::ZERO;
@@ -195,7 +214,7 @@ fn cuboid(frame: Frame, half: Vec3, out: &mut Vec<MeshVertex>) {
 }
 
 /// A flat disk of `radius` at local height `y`, facing `normal_y` (±1).
-fn disk(frame: &Frame, radius: f32, y: f32, normal_y: f32, out: &mut Vec<MeshVertex>) {
+fn disk(frame: &Placement, radius: f32, y: f32, normal_y: f32, out: &mut Vec<MeshVertex>) {
     let n = Vec3::Y * normal_y;
     let centre = placed(frame, Vec3::Y * y, n);
     for k in 0..AROUND {
@@ -212,7 +231,7 @@ fn disk(frame: &Frame, radius: f32, y: f32, normal_y: f32, out: &mut Vec<MeshVer
     }
 }
 
-fn cylinder(frame: Frame, radius: f32, height: f32, out: &mut Vec<MeshVertex>) {
+fn cylinder(frame: Placement, radius: f32, height: f32, out: &mut Vec<MeshVertex>) {
     for k in 0..AROUND {
         let side = |k: u32, y: f32| placed(&frame, around(k) * radius + Vec3::Y * y, around(k));
         quad(
@@ -229,7 +248,7 @@ fn cylinder(frame: Frame, radius: f32, height: f32, out: &mut Vec<MeshVertex>) {
     disk(&frame, radius, height, 1.0, out);
 }
 
-fn cone(frame: Frame, radius: f32, height: f32, out: &mut Vec<MeshVertex>) {
+fn cone(frame: Placement, radius: f32, height: f32, out: &mut Vec<MeshVertex>) {
     // The side's normal leans up by the slope R/H.
     let normal = |k: u32| (around(k) * height + Vec3::Y * radius).normalize_or(Vec3::Y);
     for k in 0..AROUND {
@@ -243,7 +262,7 @@ fn cone(frame: Frame, radius: f32, height: f32, out: &mut Vec<MeshVertex>) {
     disk(&frame, radius, 0.0, -1.0, out);
 }
 
-fn torus(frame: Frame, major: f32, minor: f32, out: &mut Vec<MeshVertex>) {
+fn torus(frame: Placement, major: f32, minor: f32, out: &mut Vec<MeshVertex>) {
     let vertex = |k: u32, ring: u32| {
         let psi = TAU * ring as f32 / RINGS as f32;
         let n = around(k) * psi.cos() + Vec3::Y * psi.sin();
@@ -278,7 +297,7 @@ fn plane(point: Vec3, normal: Vec3, focus: Vec3, extent: f32, out: &mut Vec<Mesh
 #[cfg(test)]
 mod tests {
     use super::*;
-    use renderer::ray::Ray;
+    use renderer::geometry::ray::Ray;
     use renderer::shapes::Shape;
 
     fn shapes() -> Vec<Geometry> {

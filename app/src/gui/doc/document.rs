@@ -2,8 +2,8 @@
 //! belong to, what was last saved, and the undo history.
 
 use super::history::History;
-use renderer::adaptive::Adaptive;
 use renderer::integrator::Integrator;
+use renderer::integrator::adaptive::Adaptive;
 use renderer::{Method, RenderOptions, Sampling};
 use scene::Scene;
 use std::path::{Path, PathBuf};

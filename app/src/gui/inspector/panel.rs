@@ -17,7 +17,7 @@ pub struct Context<'a> {
     /// The pixel's mean colour in the image on screen, and its samples per pixel.
     pub accumulated: Option<(Vec3, u32)>,
     /// The world's lights, by index (shadow rays name theirs).
-    pub lights: &'a [renderer::light::Light],
+    pub lights: &'a [renderer::world::light::Light],
 }
 
 /// A vector with three decimals.
@@ -266,13 +266,13 @@ fn title(index: usize, ray: &RayNode, cx: &Context<'_>) -> String {
 }
 
 /// Light `k`'s name in the ray tree: its kind, and where a point light is.
-fn light_label(k: usize, light: &renderer::light::Light) -> String {
+fn light_label(k: usize, light: &renderer::world::light::Light) -> String {
     match light {
-        renderer::light::Light::Point { position, .. } => {
+        renderer::world::light::Light::Point { position, .. } => {
             format!("point light {k} at {}", v3(*position))
         }
-        renderer::light::Light::Directional { .. } => format!("directional light {k}"),
-        renderer::light::Light::Ambient { .. } => format!("ambient light {k}"),
+        renderer::world::light::Light::Directional { .. } => format!("directional light {k}"),
+        renderer::world::light::Light::Ambient { .. } => format!("ambient light {k}"),
     }
 }
 

@@ -3,9 +3,9 @@
 //! started (log–log, egui_plot), so the image's convergence is visible as it
 //! refines.
 
-use renderer::metrics::rel_mse;
+use renderer::diagnostics::metrics::rel_mse;
+use renderer::diagnostics::reference_image::LinearImage;
 use renderer::progressive::{RenderedFrame, Step};
-use renderer::reference_image::LinearImage;
 use std::path::PathBuf;
 
 /// A reference image and the error of each pass of the current render against it.

@@ -2,8 +2,8 @@
 
 use super::widgets;
 use crate::gui::doc::document::RenderSettings;
-use renderer::adaptive::Adaptive;
 use renderer::integrator::Integrator;
+use renderer::integrator::adaptive::Adaptive;
 use renderer::{Method, Sampling};
 
 /// Samples per pixel offered when the user turns a target back on.

@@ -174,7 +174,7 @@ pub(super) fn assert_shows_the_document(h: &Harness<'static, RaylabApp>) {
     assert_eq!(*options, app.doc.state.render.options());
     let world = World::from_scene(&app.doc.state.scene).expect("the scene renders");
     let expected = match frame.step {
-        Step::Preview { stride } => renderer::preview::preview(&world, options, stride),
+        Step::Preview { stride } => renderer::film::preview::preview(&world, options, stride),
         Step::Passes { spp } => Film::render(&world, options, spp).linear(),
     };
     let camera = &app.doc.state.scene.camera;

@@ -8,7 +8,7 @@ use egui::{Key, Modifiers, PointerButton};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glam::Vec3;
-use renderer::adaptive::Adaptive;
+use renderer::integrator::adaptive::Adaptive;
 use renderer::progressive::Step;
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -311,7 +311,7 @@ fn saving_the_image_writes_the_tonemapped_accumulation_buffer_and_the_camera() {
     let expected: Vec<u8> = frame
         .pixels
         .iter()
-        .flat_map(|&c| renderer::film::linear_to_srgb8(c))
+        .flat_map(|&c| renderer::display::srgb::linear_to_srgb8(c))
         .collect();
     let written = image::open(&path).expect("a PNG").to_rgb8();
     assert_eq!(written.dimensions(), (48, 32));
@@ -412,9 +412,9 @@ fn clicking_a_pixel_on_the_red_sphere_inspects_its_rays() {
     assert_eq!(hit.shape, "sphere");
     // The ray through P_ij is the depth AOV's ray: the same α.
     let world = &h.state().session.prepared.as_ref().expect("prepared").world;
-    let alpha = renderer::aov::aov_at(
+    let alpha = renderer::film::aov::aov_at(
         world,
-        renderer::aov::Aov::Depth,
+        renderer::film::aov::Aov::Depth,
         renderer::Method::Robust,
         pixel[0],
         pixel[1],

@@ -7,7 +7,7 @@ use super::image_view::Gestures;
 use super::navigation::OrbitView;
 use crate::gui::session::Prepared;
 use renderer::Method;
-use renderer::ray::Ray;
+use renderer::geometry::ray::Ray;
 
 /// Orbit speed, radians per point dragged.
 const ORBIT_SPEED: f32 = 0.008;

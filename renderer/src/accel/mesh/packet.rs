@@ -14,7 +14,7 @@ use super::{ChildRef, MeshBvh, Stack, TrianglePack, WIDTH, Walk};
 use crate::accel::slab::{SlabRay, box_entry, widen_up};
 use crate::accel::triangle_pack::PackHit;
 use crate::accel::wide::WideNode;
-use crate::ray::Ray;
+use crate::geometry::ray::Ray;
 use crate::shapes::WatertightRay;
 
 /// Rays in a packet (one per lane of an 8-lane SIMD register).

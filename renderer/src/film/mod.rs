@@ -1,0 +1,139 @@
+//! The film: per pixel, the sum of the samples traced so far, their count
+//! and the statistics of the diagnostic heatmaps. `pass.rs` accumulates one
+//! pass of samples into it (every pixel, or with adaptive sampling those
+//! still noisy); [`preview`] traces the coarse images shown first; [`aov`]
+//! the per-pixel outputs beside the colour.
+
+pub mod aov;
+pub mod image_memory;
+mod pass;
+pub mod pixel_stats;
+pub mod preview;
+mod reuse;
+
+use glam::Vec3;
+use pixel_stats::PixelStats;
+
+/// A sum of samples per pixel with each pixel's sample count, and per pixel
+/// the statistics of the diagnostic heatmaps and of adaptive sampling.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Film {
+    width: u32,
+    height: u32,
+    sum: Vec<Vec3>,
+    stats: Vec<PixelStats>,
+    /// Samples traced per pixel (discarded ones included): the pass count
+    /// everywhere unless adaptive sampling stopped the pixel.
+    counts: Vec<u32>,
+    passes: u32,
+    /// Samples the last pass traced (all pixels without adaptive sampling).
+    last_pass_samples: u64,
+    samples: u64,
+    discarded: u64,
+    rays: u64,
+}
+
+impl Film {
+    /// An empty film of `width` × `height` pixels.
+    pub fn new(width: u32, height: u32) -> Self {
+        Self {
+            width,
+            height,
+            sum: vec![Vec3::ZERO; width as usize * height as usize],
+            stats: vec![PixelStats::default(); width as usize * height as usize],
+            counts: vec![0; width as usize * height as usize],
+            passes: 0,
+            last_pass_samples: 0,
+            samples: 0,
+            discarded: 0,
+            rays: 0,
+        }
+    }
+
+    /// Bytes a film holds per pixel (sum, statistics and sample count).
+    pub fn bytes_per_pixel() -> u64 {
+        (size_of::<Vec3>() + size_of::<PixelStats>() + size_of::<u32>()) as u64
+    }
+
+    /// Width in pixels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height in pixels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// Passes so far: the samples of every pixel that never stopped.
+    pub fn passes(&self) -> u32 {
+        self.passes
+    }
+
+    /// Samples traced so far, over all pixels.
+    pub fn samples(&self) -> u64 {
+        self.samples
+    }
+
+    /// Samples per pixel on average.
+    pub fn mean_spp(&self) -> f64 {
+        self.samples as f64 / self.counts.len().max(1) as f64
+    }
+
+    /// Samples each pixel has, row by row from the top.
+    pub fn samples_per_pixel(&self) -> &[u32] {
+        &self.counts
+    }
+
+    /// True once adaptive sampling has stopped every pixel: more passes add nothing.
+    pub fn converged(&self) -> bool {
+        self.passes > 0 && self.last_pass_samples == 0
+    }
+
+    /// Samples that came out NaN or infinite and were left out (counted, not hidden).
+    pub fn discarded(&self) -> u64 {
+        self.discarded
+    }
+
+    /// Rays traced for the passes so far: camera, secondary and shadow rays.
+    pub fn rays(&self) -> u64 {
+        self.rays
+    }
+
+    /// The mean radiance of pixel (i, j).
+    pub fn pixel(&self, i: u32, j: u32) -> Vec3 {
+        let k = j as usize * self.width as usize + i as usize;
+        self.sum[k] / self.counts[k].max(1) as f32
+    }
+
+    /// The mean radiance of every pixel, row by row from the top.
+    pub fn linear(&self) -> Vec<Vec3> {
+        self.sum
+            .iter()
+            .zip(&self.counts)
+            .map(|(s, &n)| *s / n.max(1) as f32)
+            .collect()
+    }
+
+    /// The relative variance of every pixel's mean (see
+    /// [`PixelStats::relative_variance`]), row by row from the top; `None`
+    /// below two passes.
+    pub fn relative_variance(&self) -> Option<Vec<f32>> {
+        (self.passes >= 2).then(|| {
+            self.stats
+                .iter()
+                .zip(&self.counts)
+                .map(|(s, &n)| s.relative_variance(n).unwrap_or(0.0))
+                .collect()
+        })
+    }
+
+    /// Shape tests per sample of every pixel, row by row from the top.
+    pub fn cost_per_sample(&self) -> Vec<f32> {
+        self.stats
+            .iter()
+            .zip(&self.counts)
+            .map(|(s, &n)| s.cost_per_sample(n))
+            .collect()
+    }
+}

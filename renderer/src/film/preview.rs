@@ -1,0 +1,270 @@
+//! Coarse previews: one ray per block of pixels, so a first image of an edit
+//! is on screen within a display frame.
+//!
+//! A preview traces sample 0 of every `stride`-th pixel in both directions,
+//! the very samples that finer previews and the first full pass trace again;
+//! [`PreviewSamples`] keeps them so that they are traced once per edit.
+
+use super::reuse::{Known, for_each_with_known, trace_with_cost};
+use crate::integrator::RenderOptions;
+use crate::world::World;
+use glam::Vec3;
+use rayon::prelude::*;
+
+/// Sample 0 of pixel (i, j) for every i and j that are multiples of the
+/// stride, exactly as [`sample_pixel`](crate::integrator::sample_pixel)
+/// returns it (NaN and infinities kept).
+#[derive(Clone, Debug)]
+pub struct PreviewSamples {
+    stride: u32,
+    width: u32,
+    height: u32,
+    /// Samples per row: ⌈width / stride⌉.
+    columns: usize,
+    /// Row by row from the top.
+    values: Vec<Vec3>,
+    /// The shape tests each sample cost, in the same order.
+    tests: Vec<u32>,
+}
+
+/// One row of preview samples: pixels 0, stride, 2 stride … of a pixel row.
+#[derive(Clone, Copy, Debug)]
+pub struct PreviewRow<'a> {
+    /// The samples.
+    pub values: &'a [Vec3],
+    /// The shape tests each sample cost.
+    pub tests: &'a [u32],
+    /// The pixels between two samples.
+    pub stride: u32,
+}
+
+impl PreviewSamples {
+    /// Traces the samples of stride `stride`, taking those that `coarser`
+    /// (samples of the same world and options, every stride it holds being a
+    /// multiple of this one) already holds.
+    pub fn trace(
+        world: &World,
+        options: &RenderOptions,
+        stride: u32,
+        coarser: Option<&PreviewSamples>,
+    ) -> Self {
+        let (width, height) = (world.camera.w, world.camera.h);
+        let stride = stride.max(1);
+        let columns = width.div_ceil(stride) as usize;
+        let rows = height.div_ceil(stride) as usize;
+        let coarser =
+            coarser.filter(|c| c.is_for(width, height) && c.stride.is_multiple_of(stride));
+        let mut values = vec![Vec3::ZERO; columns * rows];
+        let mut tests = vec![0u32; columns * rows];
+        values
+            .par_chunks_mut(columns)
+            .zip(tests.par_chunks_mut(columns))
+            .enumerate()
+            .for_each(|(row, (out, out_tests))| {
+                let j = row as u32 * stride;
+                let known = coarser.and_then(|c| c.row(j)).map(|row| Known {
+                    values: row.values,
+                    tests: row.tests,
+                    step: (row.stride / stride) as usize,
+                });
+                for_each_with_known(out.len(), known, |k, sample| {
+                    let i = k as u32 * stride;
+                    (out[k], out_tests[k]) = sample.unwrap_or_else(|| {
+                        let (value, spent) = trace_with_cost(world, options, i, j, 0);
+                        (value, u32::try_from(spent).unwrap_or(u32::MAX))
+                    });
+                });
+            });
+        Self {
+            stride,
+            width,
+            height,
+            columns,
+            values,
+            tests,
+        }
+    }
+
+    /// The stride: one sample per `stride` × `stride` block.
+    pub fn stride(&self) -> u32 {
+        self.stride
+    }
+
+    /// True when these are samples of a `width` × `height` image.
+    pub fn is_for(&self, width: u32, height: u32) -> bool {
+        (self.width, self.height) == (width, height)
+    }
+
+    /// How many samples these are.
+    pub fn len(&self) -> usize {
+        self.values.len()
+    }
+
+    /// True when there are none (never, for a valid camera).
+    pub fn is_empty(&self) -> bool {
+        self.values.is_empty()
+    }
+
+    /// Sample 0 of pixel (i, j), when it is one of these.
+    pub fn get(&self, i: u32, j: u32) -> Option<Vec3> {
+        (i < self.width
+            && j < self.height
+            && i.is_multiple_of(self.stride)
+            && j.is_multiple_of(self.stride))
+        .then(|| {
+            self.values[(j / self.stride) as usize * self.columns + (i / self.stride) as usize]
+        })
+    }
+
+    /// The samples of pixel row `j` (pixels 0, stride, 2 stride …), when
+    /// that row is one of these.
+    pub fn row(&self, j: u32) -> Option<PreviewRow<'_>> {
+        (j < self.height && j.is_multiple_of(self.stride)).then(|| {
+            let range = (j / self.stride) as usize * self.columns..;
+            let range = range.start..range.start + self.columns;
+            PreviewRow {
+                values: &self.values[range.clone()],
+                tests: &self.tests[range],
+                stride: self.stride,
+            }
+        })
+    }
+
+    /// Shape tests of each block's one sample, as an image row by row from
+    /// the top (the cost heatmap of a preview).
+    pub fn tests_image(&self) -> Vec<f32> {
+        let costs: Vec<f32> = self.tests.iter().map(|&t| t as f32).collect();
+        self.blocks(&costs, |&c| c)
+    }
+
+    /// The preview image, row by row from the top: each block shows the
+    /// sample of its top-left pixel (black where that sample is not finite).
+    pub fn image(&self) -> Vec<Vec3> {
+        self.blocks(
+            &self.values,
+            |&v| if v.is_finite() { v } else { Vec3::ZERO },
+        )
+    }
+
+    /// An image where each block holds `f` of its sample in `per_sample`
+    /// (one entry per sample, in the order of `values`).
+    fn blocks<T: Copy + Send + Sync, U: Copy + Default + Send + Sync>(
+        &self,
+        per_sample: &[T],
+        f: impl Fn(&T) -> U + Sync,
+    ) -> Vec<U> {
+        let (w, stride) = (self.width as usize, self.stride as usize);
+        let mut pixels = vec![U::default(); w * self.height as usize];
+        pixels
+            .par_chunks_mut(w * stride)
+            .zip(per_sample.par_chunks(self.columns))
+            .for_each(|(rows, samples)| {
+                for (block, sample) in rows[..w].chunks_mut(stride).zip(samples) {
+                    block.fill(f(sample));
+                }
+                let (first, rest) = rows.split_at_mut(w);
+                for row in rest.chunks_mut(w) {
+                    row.copy_from_slice(first);
+                }
+            });
+        pixels
+    }
+}
+
+/// An image where each `stride` × `stride` block shows sample 0 of its
+/// top-left pixel, row by row from the top. Stride 1 is one full sample.
+pub fn preview(world: &World, options: &RenderOptions, stride: u32) -> Vec<Vec3> {
+    PreviewSamples::trace(world, options, stride, None).image()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::film::Film;
+    use crate::integrator::sample_pixel;
+    use scene::{Object, Scene, Shape};
+
+    fn world() -> World {
+        let scene = Scene {
+            camera: scene::Camera {
+                width: 37,
+                height: 21,
+                ..Default::default()
+            },
+            objects: ["cone", "sphere", "box", "floor"]
+                .map(|tag| Object {
+                    name: None,
+                    shape: Shape::default_for_tag(tag).expect("tag"),
+                    material: None,
+                    params: Default::default(),
+                })
+                .to_vec(),
+            ..Default::default()
+        };
+        World::from_scene(&scene).expect("valid")
+    }
+
+    #[test]
+    fn each_block_shows_the_first_sample_of_its_corner_pixel() {
+        let world = world();
+        let options = RenderOptions::default();
+        let coarse = preview(&world, &options, 8);
+        for (j, i) in [(0, 0), (8, 16), (20, 36), (19, 33)] {
+            let corner = sample_pixel(&world, &options, (i / 8 * 8) as u32, (j / 8 * 8) as u32, 0);
+            assert_eq!(coarse[j * 37 + i], corner, "pixel ({i}, {j})");
+        }
+    }
+
+    #[test]
+    fn finer_samples_taken_from_coarser_ones_equal_samples_traced_afresh() {
+        let world = world();
+        let options = RenderOptions::default();
+        let coarse = PreviewSamples::trace(&world, &options, 8, None);
+        let reusing = PreviewSamples::trace(&world, &options, 4, Some(&coarse));
+        let fresh = PreviewSamples::trace(&world, &options, 4, None);
+        assert_eq!(reusing.values, fresh.values);
+        assert_eq!(reusing.tests, fresh.tests, "costs are carried over too");
+        assert_eq!(reusing.image(), preview(&world, &options, 4));
+    }
+
+    #[test]
+    fn samples_are_held_for_exactly_the_pixels_on_the_stride_grid() {
+        let world = world();
+        let samples = PreviewSamples::trace(&world, &RenderOptions::default(), 4, None);
+        assert_eq!(samples.len(), 10 * 6);
+        for j in 0..world.camera.h + 4 {
+            for i in 0..world.camera.w + 4 {
+                let on_grid = i % 4 == 0 && j % 4 == 0 && i < 37 && j < 21;
+                assert_eq!(samples.get(i, j).is_some(), on_grid, "({i}, {j})");
+            }
+        }
+    }
+
+    #[test]
+    fn a_first_pass_reusing_a_preview_is_the_same_film_with_fewer_rays_traced() {
+        let world = world();
+        let options = RenderOptions::default();
+        let known = PreviewSamples::trace(&world, &options, 2, None);
+        let mut traced = Film::new(37, 21);
+        let mut reusing = Film::new(37, 21);
+        for _ in 0..2 {
+            traced.add_pass(&world, &options);
+            assert!(reusing.add_pass_reusing(&world, &options, &known, &|| false));
+            assert_eq!(reusing.linear(), traced.linear(), "bit for bit");
+            assert_eq!(reusing.cost_per_sample(), traced.cost_per_sample());
+            assert_eq!(reusing.relative_variance(), traced.relative_variance());
+        }
+        assert_eq!(reusing.discarded(), traced.discarded());
+        assert!(reusing.rays() < traced.rays());
+    }
+
+    #[test]
+    fn stride_one_equals_the_first_full_pass() {
+        let world = world();
+        let options = RenderOptions::default();
+        assert_eq!(
+            preview(&world, &options, 1),
+            Film::render(&world, &options, 1).linear()
+        );
+    }
+}

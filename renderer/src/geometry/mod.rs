@@ -1,0 +1,11 @@
+//! Rays and what every intersection routine shares: the lecture's ray
+//! (P0, v) on an interval of α, spawning secondary rays off a surface, warps
+//! of uniform numbers onto disks, and the per-thread counters of the
+//! tracer's work.
+
+pub mod counters;
+pub mod offset;
+pub mod ray;
+pub mod warp;
+
+pub use ray::Ray;

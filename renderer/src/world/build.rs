@@ -1,0 +1,162 @@
+//! Building a [`World`] from a resolved scene: the camera, the lights, every
+//! mesh instance with its shared bottom-level BVH, the emitters, and the top
+//! level over every bounded object.
+
+use super::blas_cache;
+use super::emitters::Emitters;
+use super::light::Light;
+use super::placed_mesh::PlacedMesh;
+use super::{Item, Object, RenderError, World};
+use crate::accel::{Aabb, SceneBvh};
+use crate::camera::Camera;
+use crate::shapes::Shape;
+use glam::{Affine3A, Vec3};
+use scene::{Geometry, ResolvedObject, ResolvedScene, Scene};
+use std::sync::Arc;
+
+/// Relative padding of an analytic shape's box in the top level, so that a
+/// grazing hit that the shape's own test rounds to just outside its exact
+/// box is still found.
+const BOX_PADDING: f32 = 1.0e-3;
+
+impl World {
+    /// Resolves `scene`'s defaults and prepares it.
+    pub fn from_scene(scene: &Scene) -> Result<World, RenderError> {
+        World::new(&scene::resolve(scene)?)
+    }
+
+    /// Prepares a resolved scene: bottom-level BVHs for meshes not seen
+    /// before (built in parallel), then the top level over everything.
+    pub fn new(resolved: &ResolvedScene) -> Result<World, RenderError> {
+        let camera = Camera::new(&resolved.camera)?;
+        let mut lights = Vec::new();
+        let mut ambient = Vec3::ZERO;
+        for light in resolved.lights.iter().map(Light::from_scene) {
+            match light {
+                Light::Ambient { radiance } => ambient += radiance,
+                other => lights.push(other),
+            }
+        }
+        let meshes = place_meshes(&resolved.objects);
+        let mut objects = Vec::with_capacity(resolved.objects.len());
+        let (mut items, mut bounds, mut unbounded) = (Vec::new(), Vec::new(), Vec::new());
+        let mut next_instance = 0u32;
+        let mut magnitudes = Vec::with_capacity(resolved.objects.len());
+        let largest = |min: Vec3, max: Vec3| min.abs().max(max.abs()).max_element();
+        for (id, object) in resolved.objects.iter().enumerate() {
+            let id = id as u32;
+            let Some(shape) = Shape::from_geometry(&object.geometry) else {
+                let start = next_instance;
+                while meshes
+                    .get(next_instance as usize)
+                    .is_some_and(|m| m.object == id)
+                {
+                    items.push(Item::Mesh(next_instance));
+                    bounds.push(meshes[next_instance as usize].bounds);
+                    next_instance += 1;
+                }
+                objects.push(Object::Model {
+                    instances: start..next_instance,
+                });
+                magnitudes.push(
+                    meshes[start as usize..next_instance as usize]
+                        .iter()
+                        .map(|m| largest(m.bounds.min, m.bounds.max))
+                        .fold(0.0, f32::max),
+                );
+                continue;
+            };
+            objects.push(Object::Shape(shape));
+            match scene::layout::bounds(&object.geometry) {
+                Some(b) => {
+                    let magnitude = largest(b.min, b.max);
+                    magnitudes.push(magnitude);
+                    let pad =
+                        BOX_PADDING * (b.max - b.min).max_element() + f32::EPSILON * magnitude;
+                    items.push(Item::Shape(id));
+                    bounds.push(Aabb {
+                        min: b.min - Vec3::splat(pad),
+                        max: b.max + Vec3::splat(pad),
+                    });
+                }
+                None => {
+                    // An infinite plane: its hit points are placed from its point.
+                    magnitudes.push(match &object.geometry {
+                        scene::Geometry::Plane { point, .. } => point.abs().max_element(),
+                        _ => 0.0,
+                    });
+                    unbounded.push(id);
+                }
+            }
+        }
+        let emissive_shapes: Vec<_> = objects
+            .iter()
+            .zip(&resolved.objects)
+            .map(|(object, resolved)| match object {
+                Object::Shape(shape) => (Some(*shape), resolved.material.emission),
+                Object::Model { .. } => (None, Vec3::ZERO),
+            })
+            .collect();
+        let emitters = Emitters::new(&emissive_shapes, &meshes);
+        Ok(World {
+            camera,
+            emitters,
+            sky: resolved.sky,
+            objects,
+            materials: resolved.objects.iter().map(|o| o.material).collect(),
+            names: resolved.objects.iter().map(|o| o.name.clone()).collect(),
+            meshes,
+            lights,
+            ambient,
+            top: SceneBvh::build(&bounds),
+            items,
+            unbounded,
+            magnitudes,
+        })
+    }
+}
+
+/// Every instance of every model object, in object order, with its BVH
+/// (shared per mesh, reused from earlier worlds) and its material.
+fn place_meshes(objects: &[ResolvedObject]) -> Vec<PlacedMesh> {
+    let mut wanted = Vec::new();
+    for (id, object) in objects.iter().enumerate() {
+        if let Geometry::Mesh {
+            model,
+            world_from_model,
+            file_materials,
+        } = &object.geometry
+        {
+            for instance in &model.instances {
+                let mesh = model.meshes[instance.mesh as usize].clone();
+                let file_material = model.materials.get(instance.material as usize);
+                let (material, texture) = match file_material {
+                    Some(m) if *file_materials => (
+                        m.material,
+                        m.base_color_texture
+                            .and_then(|k| model.textures.get(k as usize).cloned()),
+                    ),
+                    _ => (object.material, None),
+                };
+                let transform = *world_from_model * instance.model_from_mesh;
+                wanted.push((id as u32, mesh, transform, material, texture));
+            }
+        }
+    }
+    let meshes: Vec<Arc<scene::TriangleMesh>> = wanted.iter().map(|w| w.1.clone()).collect();
+    let bvhs = blas_cache::bvhs_for(&meshes);
+    wanted
+        .into_iter()
+        .zip(bvhs)
+        .map(|((object, mesh, transform, material, texture), bvh)| {
+            PlacedMesh::new(
+                object,
+                mesh,
+                bvh,
+                Affine3A::from_mat4(transform),
+                material,
+                texture,
+            )
+        })
+        .collect()
+}

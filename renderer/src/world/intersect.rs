@@ -1,0 +1,96 @@
+//! The ray queries of a [`World`]: the nearest hit through the top-level BVH
+//! (infinite planes last) and the any-hit test of shadow rays, counting the
+//! rays and shape tests they cost ([`crate::geometry::counters`]).
+
+use super::{Hit, Item, TriangleRef, World};
+use crate::geometry::ray::Ray;
+use crate::shapes::Method;
+
+impl World {
+    /// The nearest hit along the ray. `method` chooses the formulas of
+    /// spheres and lone triangles; mesh triangles always use the watertight test.
+    pub fn intersect(&self, ray: &Ray, method: Method) -> Option<Hit> {
+        crate::geometry::counters::count_ray();
+        let mut tests = 0usize;
+        // The triangle of the last hit the top level accepted: each accepted
+        // hit lies inside the interval shrunk by the one before, so the last
+        // is the nearest.
+        let mut last_triangle = None;
+        let found = self
+            .top
+            .closest(ray, |item, ray| match self.items[item as usize] {
+                Item::Shape(id) => {
+                    tests += 1;
+                    let alpha = self.analytic(id).intersect(ray, method)?;
+                    last_triangle = None;
+                    Some(alpha)
+                }
+                Item::Mesh(instance) => {
+                    tests += 1;
+                    let hit = self.meshes[instance as usize].closest_hit(ray)?;
+                    last_triangle = Some(TriangleRef {
+                        instance,
+                        triangle: hit.triangle,
+                        beta: hit.beta,
+                        gamma: hit.gamma,
+                    });
+                    Some(hit.alpha)
+                }
+            });
+        let nearest = found.map(|(item, alpha)| Hit {
+            object: match self.items[item as usize] {
+                Item::Shape(id) => id,
+                Item::Mesh(instance) => self.meshes[instance as usize].object,
+            },
+            alpha,
+            triangle: last_triangle,
+        });
+        let nearest = self.planes_last(ray, nearest, method, &mut tests);
+        crate::geometry::counters::count_shape_tests(tests);
+        nearest
+    }
+
+    /// `nearest` (the nearest bounded hit of `ray`, if any) or a nearer hit
+    /// with an infinite plane. Planes go last so that a bounded surface lying
+    /// exactly in a plane (a cone's base on the floor) wins the tie: a plane
+    /// must be strictly nearer. Counts the plane tests in `tests`.
+    pub(super) fn planes_last(
+        &self,
+        ray: &Ray,
+        mut nearest: Option<Hit>,
+        method: Method,
+        tests: &mut usize,
+    ) -> Option<Hit> {
+        let mut search = nearest.map_or(*ray, |h| ray.with_t_max(h.alpha));
+        for &id in &self.unbounded {
+            *tests += 1;
+            if let Some(alpha) = self.analytic(id).intersect(&search, method) {
+                search.t_max = alpha;
+                nearest = Some(Hit {
+                    object: id,
+                    alpha,
+                    triangle: None,
+                });
+            }
+        }
+        nearest
+    }
+
+    /// True when anything lies on the ray inside its interval (shadow rays).
+    pub fn occluded(&self, ray: &Ray, method: Method) -> bool {
+        crate::geometry::counters::count_ray();
+        let mut tests = 0usize;
+        let blocked = self.unbounded.iter().any(|&id| {
+            tests += 1;
+            self.analytic(id).intersect(ray, method).is_some()
+        }) || self.top.any(ray, |item, ray| {
+            tests += 1;
+            match self.items[item as usize] {
+                Item::Shape(id) => self.analytic(id).intersect(ray, method).is_some(),
+                Item::Mesh(instance) => self.meshes[instance as usize].any_hit(ray),
+            }
+        });
+        crate::geometry::counters::count_shape_tests(tests);
+        blocked
+    }
+}

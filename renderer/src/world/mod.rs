@@ -1,0 +1,179 @@
+//! The prepared, immutable render copy of a scene: camera, objects,
+//! materials, lights, and the two-level BVH over them.
+//!
+//! [`World::new`] (in `build.rs`) prepares it; `intersect.rs` answers the
+//! integrators' ray queries; `batch.rs` traces many rays at once.
+
+mod batch;
+pub mod blas_cache;
+mod build;
+pub mod emitters;
+mod hit;
+mod intersect;
+pub mod light;
+pub mod placed_mesh;
+
+pub use batch::BATCHED_INSTANCES;
+pub use hit::{Hit, TriangleRef};
+
+use crate::accel::{Aabb, SceneBvh};
+use crate::camera::{Camera, CameraError};
+use crate::geometry::ray::Ray;
+use crate::shapes::{Shape, Surface};
+use emitters::Emitters;
+use glam::Vec3;
+use light::Light;
+use placed_mesh::PlacedMesh;
+use scene::{InvalidScene, Material};
+use std::ops::Range;
+
+/// Why a scene cannot be rendered.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum RenderError {
+    /// The scene itself is inconsistent.
+    #[error(transparent)]
+    Scene(#[from] InvalidScene),
+    /// The camera is degenerate.
+    #[error("camera: {0}")]
+    Camera(#[from] CameraError),
+    /// The image would not fit in memory ([`crate::film::image_memory`]).
+    #[error("image size: {0}")]
+    Memory(String),
+}
+
+/// What one object is made of.
+#[derive(Clone, Debug)]
+pub enum Object {
+    /// One analytic shape (or a lone `<triangle>`).
+    Shape(Shape),
+    /// A model file's mesh instances: `World::meshes[instances]`.
+    Model {
+        /// Which entries of [`World::meshes`] belong to the object.
+        instances: Range<u32>,
+    },
+}
+
+/// What the top-level BVH holds: an analytic shape or a mesh instance.
+#[derive(Clone, Copy, Debug)]
+enum Item {
+    /// The object with this id, an analytic shape.
+    Shape(u32),
+    /// This entry of `meshes`.
+    Mesh(u32),
+}
+
+/// A scene prepared for rendering: built once per render, never edited.
+#[derive(Clone, Debug)]
+pub struct World {
+    /// The lecture's camera.
+    pub camera: Camera,
+    /// One entry per object, in object-id order.
+    pub objects: Vec<Object>,
+    /// One material per object (for a model shown with its file's
+    /// materials, what the object's own settings say; instances carry theirs).
+    pub materials: Vec<Material>,
+    /// One name per object.
+    pub names: Vec<String>,
+    /// Every mesh instance, grouped by object.
+    pub meshes: Vec<PlacedMesh>,
+    /// Point and directional lights (ambient ones are folded into `ambient`).
+    pub lights: Vec<Light>,
+    /// Total ambient radiance: lights every surface unshadowed, and is what
+    /// rays escaping the scene see (Whitted only; the path tracer has no ambient term).
+    pub ambient: Vec3,
+    /// Radiance of the constant environment (`<sky>`), zero without one.
+    pub sky: Vec3,
+    /// Every emissive surface, as area lights.
+    pub emitters: Emitters,
+    /// The top level's items, in BVH item order.
+    items: Vec<Item>,
+    /// The top level over every bounded item.
+    top: SceneBvh,
+    /// Objects no box holds (infinite planes), tested by every ray.
+    unbounded: Vec<u32>,
+    /// Per object, the largest coordinate magnitude of its geometry (see [`World::magnitude`]).
+    magnitudes: Vec<f32>,
+}
+
+impl World {
+    /// The largest coordinate magnitude of an object's geometry (its world
+    /// bounds; for a plane, its point). Hit points on it are placed to within
+    /// a few ε of this, so secondary rays leave it by an offset that scales
+    /// with it ([`crate::geometry::offset::offset_ray_origin`]).
+    pub fn magnitude(&self, object: u32) -> f32 {
+        self.magnitudes.get(object as usize).copied().unwrap_or(0.0)
+    }
+
+    /// The analytic shape of an object, `None` for a model.
+    pub fn shape(&self, object: u32) -> Option<&Shape> {
+        match &self.objects[object as usize] {
+            Object::Shape(shape) => Some(shape),
+            Object::Model { .. } => None,
+        }
+    }
+
+    /// The analytic shape of an object known to be one.
+    fn analytic(&self, object: u32) -> &Shape {
+        match &self.objects[object as usize] {
+            Object::Shape(shape) => shape,
+            Object::Model { .. } => unreachable!("object {object} is a model, not a shape"),
+        }
+    }
+
+    /// Hit point and geometric normal of a hit.
+    pub fn surface(&self, ray: &Ray, hit: Hit) -> Surface {
+        match hit.triangle {
+            Some(t) => self.meshes[t.instance as usize].surface(&t.mesh_hit(hit.alpha)),
+            None => self.analytic(hit.object).surface(ray, hit.alpha),
+        }
+    }
+
+    /// The normal to shade with: the interpolated vertex normal on meshes,
+    /// the geometric normal elsewhere.
+    pub fn shading_normal(&self, hit: Hit, surface: &Surface) -> Vec3 {
+        match hit.triangle {
+            Some(t) => self.meshes[t.instance as usize]
+                .shading_normal(&t.mesh_hit(hit.alpha), surface.normal),
+            None => surface.normal,
+        }
+    }
+
+    /// The material at a hit, its colour multiplied by the mesh's texture there.
+    pub fn material(&self, hit: Hit) -> Material {
+        match hit.triangle {
+            Some(t) => {
+                let mesh = &self.meshes[t.instance as usize];
+                Material {
+                    color: mesh.base_color(&t.mesh_hit(hit.alpha)),
+                    ..mesh.material
+                }
+            }
+            None => self.materials[hit.object as usize],
+        }
+    }
+
+    /// The colour that stands for an object in drawings: its material's, or
+    /// for a model its first instance's (textures aside); grey for an
+    /// object id out of range.
+    pub fn object_color(&self, object: u32) -> Vec3 {
+        let first_instance = match self.objects.get(object as usize) {
+            Some(Object::Model { instances }) => self.meshes.get(instances.start as usize),
+            _ => None,
+        };
+        match (first_instance, self.materials.get(object as usize)) {
+            (Some(mesh), _) => mesh.material.color,
+            (None, Some(material)) => material.color,
+            (None, None) => Vec3::splat(0.7),
+        }
+    }
+
+    /// The box around every bounded object (the top level's root box).
+    pub fn bounded_box(&self) -> Aabb {
+        self.top.bounds()
+    }
+
+    /// Triangles drawn (every mesh instance counts its mesh's triangles).
+    pub fn triangle_count(&self) -> usize {
+        self.meshes.iter().map(|m| m.mesh.triangles.len()).sum()
+    }
+}

@@ -1,0 +1,126 @@
+//! A mesh placed in the world: one instance of a model file's primitive,
+//! sharing its bottom-level BVH with every other instance of the same mesh.
+
+use crate::accel::{Aabb, Instance, MeshBvh, MeshHit};
+use crate::geometry::ray::Ray;
+use crate::shading::image_texture;
+use crate::shapes::Surface;
+use glam::{Affine3A, Vec2, Vec3};
+use scene::{Material, Texture, TriangleMesh};
+use std::sync::Arc;
+
+/// One mesh instance in world space.
+#[derive(Clone, Debug)]
+pub struct PlacedMesh {
+    /// The object (object id) this instance belongs to.
+    pub object: u32,
+    /// The mesh, in its own space.
+    pub mesh: Arc<TriangleMesh>,
+    /// Its bottom-level BVH (shared by every instance of `mesh`).
+    pub bvh: Arc<MeshBvh>,
+    /// world_from_mesh (the model file's node transform, then the object's
+    /// placement) with its inverse, which takes rays into mesh space.
+    pub instance: Instance,
+    /// The material the instance is shaded with.
+    pub material: Material,
+    /// The base-colour texture multiplied with `material.color`, if any.
+    pub texture: Option<Arc<Texture>>,
+    /// The world-space bounding box.
+    pub bounds: Aabb,
+}
+
+impl PlacedMesh {
+    /// The instance of `mesh` (with its BVH) placed by `world_from_mesh`.
+    pub fn new(
+        object: u32,
+        mesh: Arc<TriangleMesh>,
+        bvh: Arc<MeshBvh>,
+        world_from_mesh: Affine3A,
+        material: Material,
+        texture: Option<Arc<Texture>>,
+    ) -> PlacedMesh {
+        let instance = Instance::new(world_from_mesh);
+        PlacedMesh {
+            object,
+            mesh,
+            bounds: instance.world_bounds(bvh.bounds()),
+            bvh,
+            instance,
+            material,
+            texture,
+        }
+    }
+
+    /// The closest triangle hit inside the ray's interval (watertight test);
+    /// α is the world ray's.
+    #[inline]
+    pub fn closest_hit(&self, ray: &Ray) -> Option<MeshHit> {
+        self.instance.closest_hit(&self.bvh, ray)
+    }
+
+    /// True when any triangle lies on the ray inside its interval.
+    #[inline]
+    pub fn any_hit(&self, ray: &Ray) -> bool {
+        self.instance.any_hit(&self.bvh, ray)
+    }
+
+    /// The triangle's corners in mesh space.
+    fn corners(&self, triangle: u32) -> [u32; 3] {
+        self.mesh.triangles[triangle as usize]
+    }
+
+    /// The hit point (interpolated in mesh space, then placed) and the
+    /// geometric normal: (t1 − t0) × (t2 − t0) taken to world space by the
+    /// inverse transpose, so that a mirroring transform keeps it outward.
+    pub fn surface(&self, hit: &MeshHit) -> Surface {
+        let [a, b, c] = self.corners(hit.triangle);
+        let p = &self.mesh.positions;
+        let (p0, p1, p2) = (p[a as usize], p[b as usize], p[c as usize]);
+        let local = p0 + hit.beta * (p1 - p0) + hit.gamma * (p2 - p0);
+        let normal = self.instance.normal_to_world((p1 - p0).cross(p2 - p0));
+        Surface {
+            point: self.instance.point_to_world(local),
+            normal: if normal == Vec3::ZERO {
+                Vec3::Y
+            } else {
+                normal
+            },
+        }
+    }
+
+    /// The interpolated vertex normal in world space (smooth shading), or
+    /// `geometric` when the mesh has none or it degenerates.
+    pub fn shading_normal(&self, hit: &MeshHit, geometric: Vec3) -> Vec3 {
+        let n = &self.mesh.normals;
+        let [a, b, c] = self.corners(hit.triangle);
+        let (Some(n0), Some(n1), Some(n2)) =
+            (n.get(a as usize), n.get(b as usize), n.get(c as usize))
+        else {
+            return geometric;
+        };
+        let alpha = 1.0 - hit.beta - hit.gamma;
+        let local = alpha * *n0 + hit.beta * *n1 + hit.gamma * *n2;
+        let n = self.instance.normal_to_world(local);
+        if n == Vec3::ZERO { geometric } else { n }
+    }
+
+    /// The interpolated texture coordinate, if the mesh has them.
+    pub fn uv(&self, hit: &MeshHit) -> Option<Vec2> {
+        let uv = &self.mesh.uvs;
+        let [a, b, c] = self.corners(hit.triangle);
+        let (u0, u1, u2) = (
+            uv.get(a as usize)?,
+            uv.get(b as usize)?,
+            uv.get(c as usize)?,
+        );
+        Some((1.0 - hit.beta - hit.gamma) * *u0 + hit.beta * *u1 + hit.gamma * *u2)
+    }
+
+    /// The albedo at the hit: the material's colour times the texture, if any.
+    pub fn base_color(&self, hit: &MeshHit) -> Vec3 {
+        match (&self.texture, self.uv(hit)) {
+            (Some(texture), Some(uv)) => self.material.color * image_texture::sample(texture, uv),
+            _ => self.material.color,
+        }
+    }
+}
