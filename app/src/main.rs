@@ -1,21 +1,16 @@
 //! The `raylab` program: the desktop window (`raylab [SCENE]`) and the command line.
+//!
+//! - `gui`: the window (egui, drawn with wgpu);
+//! - `cli`: the commands (`raylab render`, `chart`, `stability`, `inspect`, `bench`);
+//! - `bench`: the throughput benchmarks and what they measure;
+//! - `plot`: the PNG charts the commands write;
+//! - `io`: files written atomically, images with their provenance, free output names.
 
-mod atomic_file;
-mod bench_cmd;
-mod bench_export;
-mod chart_cmd;
-mod chart_plot;
+mod bench;
 mod cli;
-mod flip;
 mod gui;
-mod inspect_cmd;
-mod output;
-mod output_path;
-mod render_cmd;
-mod scene_spec;
-mod stability_cmd;
-mod stability_plot;
-mod trace_bench;
+mod io;
+mod plot;
 
 use clap::Parser;
 use cli::{Cli, Command};
@@ -36,7 +31,7 @@ fn default_scene() -> PathBuf {
 fn run_window(path: PathBuf, reference: Option<PathBuf>) -> ExitCode {
     let scene = match scene::read_any(&path) {
         Ok(scene) => {
-            output::warn_about_models(&scene);
+            io::output::warn_about_models(&scene);
             scene
         }
         Err(error) => {
@@ -116,14 +111,14 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
         None => run_window(cli.scene.unwrap_or_else(default_scene), cli.reference),
-        Some(Command::Bench(args)) => finish(bench_cmd::run(&args, default_scene()), |()| {}),
-        Some(Command::Inspect(args)) => finish(inspect_cmd::run(&args), |json| println!("{json}")),
-        Some(Command::Stability(args)) => finish(stability_cmd::run(&args), report_written),
-        Some(Command::Chart(args)) => finish(chart_cmd::run(&args), report_written),
+        Some(Command::Bench(args)) => finish(cli::bench::run(&args, default_scene()), |()| {}),
+        Some(Command::Inspect(args)) => finish(cli::inspect::run(&args), |json| println!("{json}")),
+        Some(Command::Stability(args)) => finish(cli::stability::run(&args), report_written),
+        Some(Command::Chart(args)) => finish(cli::chart::run(&args), report_written),
         Some(Command::Render(args)) => {
             // The user named the file: replacing it is what they asked, said aloud.
             let replacing = args.output.is_file();
-            finish(render_cmd::run(&args), |elapsed| {
+            finish(cli::render::run(&args), |elapsed| {
                 let replaced = if replacing {
                     " (replaced the existing file)"
                 } else {

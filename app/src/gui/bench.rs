@@ -1,7 +1,12 @@
 //! `raylab bench interactive`: the window's own code driven headless by an
 //! egui context, timing what a user feels — from an edit to the first
 //! preview on screen and to the first full-resolution pass — and the UI
-//! thread's frame time while the tracer keeps every core busy.
+//! thread's frame time while the tracer keeps every core busy; and
+//! `raylab bench debug-view`, whole frames with the 3D debug view shown.
+//!
+//! These benchmarks live with the window, not in `crate::bench`, because
+//! they drive the app's own state (its session, inspector and debug view);
+//! `cli/bench.rs` runs them and prints their figures.
 
 use super::RaylabApp;
 use renderer::progressive::Step;
@@ -20,15 +25,6 @@ pub struct Report {
     pub preview_handed_over: Vec<Duration>,
     /// CPU time of every UI frame (layout and tessellation) while rendering.
     pub frame_times: Vec<Duration>,
-}
-
-/// The `q`-quantile of `values` (sorted in place).
-pub fn quantile(values: &mut [Duration], q: f64) -> Duration {
-    values.sort_unstable();
-    let Some(last) = values.len().checked_sub(1) else {
-        return Duration::ZERO;
-    };
-    values[((last as f64) * q).round() as usize]
 }
 
 /// How long one display frame lasts at 60 Hz: the UI loop's pace.
@@ -57,7 +53,7 @@ pub fn interactive(scene: Scene, path: Option<PathBuf>, edits: u32) -> Report {
     // Warm up: the first job, rendered to a few passes.
     let warm_up = Instant::now() + Duration::from_secs(5);
     while Instant::now() < warm_up
-        && !matches!(app.frame.as_ref().map(|f| f.step), Some(Step::Passes { spp }) if spp >= 2)
+        && !matches!(app.session.frame.as_ref().map(|f| f.step), Some(Step::Passes { spp }) if spp >= 2)
     {
         frame(&mut app);
         std::thread::sleep(Duration::from_millis(1));
@@ -73,9 +69,10 @@ pub fn interactive(scene: Scene, path: Option<PathBuf>, edits: u32) -> Report {
             let took = frame(&mut app);
             report.frame_times.push(took);
             let shown = app
+                .session
                 .frame
                 .as_ref()
-                .filter(|f| f.generation == app.generation)
+                .filter(|f| f.generation == app.session.generation)
                 .map(|f| (f.step, f.since_submit));
             match shown.map(|(step, _)| step) {
                 Some(Step::Preview { .. }) if preview.is_none() => {
@@ -125,7 +122,7 @@ pub fn debug_view(
     path: Option<PathBuf>,
     frames: u32,
     show_debug: bool,
-    gpu: &super::headless_gpu::HeadlessGpu,
+    gpu: &crate::bench::headless_gpu::HeadlessGpu,
     size: egui::Vec2,
 ) -> anyhow::Result<DebugViewReport> {
     let ctx = egui::Context::default();
@@ -150,16 +147,18 @@ pub fn debug_view(
     let warm_up = Instant::now() + Duration::from_secs(10);
     while Instant::now() < warm_up
         && !matches!(
-            app.frame.as_ref().map(|f| f.step),
+            app.session.frame.as_ref().map(|f| f.step),
             Some(Step::Passes { .. })
         )
     {
         frame(&mut app, None)?;
         std::thread::sleep(Duration::from_millis(5));
     }
-    if let Some(prepared) = &app.prepared {
+    if let Some(prepared) = &app.session.prepared {
         let camera = &prepared.world.camera;
-        app.inspect([camera.w / 2, camera.h / 2], false);
+        let method = app.doc.state.render.method;
+        app.inspector
+            .inspect([camera.w / 2, camera.h / 2], false, Some(prepared), method);
     }
     let mut report = DebugViewReport::default();
     for _ in 0..frames {

@@ -1,13 +1,14 @@
-//! Everything the user can ask of the window, from the menu bar or a
-//! keyboard shortcut, as one enum the app carries out in one place.
+//! Everything the user can ask of the window, from the menu bar, the
+//! toolbar, a button, a keyboard shortcut or a dropped file, as one enum
+//! the app carries out in one place.
 
-use super::edits::Action;
-use super::scene_panel;
+use super::doc::edits::Action;
+use super::panels::scene_panel;
 use egui::{Key, KeyboardShortcut, Modifiers};
 use renderer::display::Display;
 use std::path::PathBuf;
 
-/// A command from the menu bar, a shortcut or a dropped file.
+/// A command from the menu bar, the toolbar, a button, a shortcut or a dropped file.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Command {
     /// Start a new, empty scene.
@@ -22,6 +23,8 @@ pub enum Command {
     SaveAs,
     /// Ask where to save the rendered image.
     SaveImage,
+    /// Ask for a reference image for the live error plot.
+    LoadReference,
     /// Copy the rendered image to the clipboard.
     CopyImage,
     /// Close the window.
@@ -40,6 +43,8 @@ pub enum Command {
     Fit,
     /// Show the image at 100 %.
     ActualSize,
+    /// Pause refinement, or resume it.
+    TogglePause,
     /// Show or hide the help overlay.
     ToggleHelp,
     /// Show or hide the 3D debug view.
@@ -98,6 +103,36 @@ pub fn from_keyboard(ctx: &egui::Context) -> Vec<Command> {
         }
         commands
     })
+}
+
+/// The file dropped on the window this frame, to open (the first, if several).
+pub fn from_dropped_files(ctx: &egui::Context) -> Option<Command> {
+    let dropped: Vec<PathBuf> = ctx.input(|i| {
+        i.raw
+            .dropped_files
+            .iter()
+            .map(|f| f.path().to_path_buf())
+            .filter(|p| !p.as_os_str().is_empty())
+            .collect()
+    });
+    dropped.into_iter().next().map(Command::OpenPath)
+}
+
+/// The toolbar above the image (`debug_shown`: the 3D debug view is
+/// shown); returns the command chosen, if any.
+pub fn toolbar(ui: &mut egui::Ui, debug_shown: bool) -> Option<Command> {
+    let mut shown = debug_shown;
+    let toggled = ui
+        .horizontal(|ui| {
+            ui.toggle_value(&mut shown, "3D debug view")
+                .on_hover_text(
+                    "The camera, the view window with C00 and its pixel grid, and the \
+                     inspected pixel's rays in 3D (G)",
+                )
+                .clicked()
+        })
+        .inner;
+    toggled.then_some(Command::ToggleDebugView)
 }
 
 /// A menu item with its shortcut shown beside it.

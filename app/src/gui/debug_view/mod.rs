@@ -10,8 +10,9 @@ pub mod observer;
 pub mod rays;
 mod tessellate;
 
-pub use drawing::{DrawOptions, DrawnRay, Fan, Inputs};
+pub use drawing::{DrawOptions, Fan, Inputs};
 pub use gpu::DebugRenderer;
+pub use rays::DrawnRay;
 
 use drawing::{Drawing, palette};
 use glam::Vec3;

@@ -2,7 +2,7 @@
 //! ray-tracing camera and its view window from outside. Moving it never
 //! moves the ray-tracing camera.
 
-use super::super::navigation::OrbitView;
+use crate::gui::viewport::navigation::OrbitView;
 use glam::camera::rh::{proj::directx::perspective, view::look_at_mat4};
 use glam::{Mat4, Vec3, Vec4Swizzles};
 

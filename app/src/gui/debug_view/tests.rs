@@ -56,7 +56,7 @@ fn debug_view_snapshot_shows_camera_window_c00_and_a_ray() {
     let rays: Vec<DrawnRay> = rays::drawn_rays(&inspection).collect();
     assert!(
         rays.iter()
-            .any(|r| matches!(r.kind, drawing::RayKind::Shadow { .. }))
+            .any(|r| matches!(r.kind, rays::RayKind::Shadow { .. }))
     );
     let state = State {
         view: DebugView::default(),

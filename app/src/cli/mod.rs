@@ -1,0 +1,13 @@
+//! The command line: the arguments (clap), what the commands share, and one
+//! module per command (`raylab render`, `chart`, `stability`, `inspect`,
+//! `bench`), each with a `run` that `main` calls.
+
+mod args;
+pub mod bench;
+pub mod chart;
+pub mod inspect;
+mod prepare;
+pub mod render;
+pub mod stability;
+
+pub use args::{Cli, Command};

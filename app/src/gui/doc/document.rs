@@ -1,0 +1,262 @@
+//! The open document: the edited scene and render settings, the file they
+//! belong to, what was last saved, and the undo history.
+
+use super::history::History;
+use renderer::integrator::Integrator;
+use renderer::integrator::adaptive::Adaptive;
+use renderer::{Method, RenderOptions, Sampling};
+use scene::Scene;
+use std::path::{Path, PathBuf};
+
+/// Integrator settings the user edits alongside the scene (undoable, not saved in the file).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RenderSettings {
+    /// Whitted or path tracing.
+    pub integrator: Integrator,
+    /// Lecture or robust intersection formulas.
+    pub method: Method,
+    /// Maximum reflection/refraction bounces.
+    pub max_depth: u32,
+    /// Independent or Sobol samples.
+    pub sampling: Sampling,
+    /// Adaptive sampling, when on.
+    pub adaptive: Option<Adaptive>,
+    /// Stop refining at this many samples per pixel; `None` refines until stopped.
+    pub target_spp: Option<u32>,
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        Self {
+            integrator: Integrator::Whitted,
+            method: Method::Robust,
+            max_depth: RenderOptions::default().max_depth,
+            sampling: Sampling::Independent,
+            adaptive: None,
+            target_spp: Some(64),
+        }
+    }
+}
+
+impl RenderSettings {
+    /// The integrator options these settings ask for.
+    pub fn options(&self) -> RenderOptions {
+        RenderOptions {
+            integrator: self.integrator,
+            method: self.method,
+            max_depth: self.max_depth,
+            sampling: self.sampling,
+            adaptive: self.adaptive,
+            ..RenderOptions::default()
+        }
+    }
+}
+
+/// Everything an edit can change: what undo and redo step through.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EditState {
+    /// The scene as edited.
+    pub scene: Scene,
+    /// The integrator settings.
+    pub render: RenderSettings,
+}
+
+/// A scene open in the window.
+pub struct Document {
+    /// The live, edited state.
+    pub state: EditState,
+    /// The file the scene is saved to; `None` until it is saved.
+    pub path: Option<PathBuf>,
+    /// The scene as last loaded or saved, to tell unsaved changes; `None`
+    /// for a recovered scene, which is on disk nowhere but the recovery file.
+    saved: Option<Scene>,
+    /// Undo/redo over [`EditState`].
+    pub history: History<EditState>,
+}
+
+impl Document {
+    /// A document showing `scene`, loaded from `path` (or new when `None`).
+    pub fn new(scene: Scene, path: Option<PathBuf>, render: RenderSettings) -> Self {
+        let state = EditState { scene, render };
+        Self {
+            history: History::new(&state),
+            saved: Some(state.scene.clone()),
+            state,
+            path,
+        }
+    }
+
+    /// A document restored from a recovery file: `scene`, to be saved to
+    /// `path`, marked unsaved until it is saved.
+    pub fn recovered(scene: Scene, path: Option<PathBuf>, render: RenderSettings) -> Self {
+        Self {
+            saved: None,
+            ..Self::new(scene, path, render)
+        }
+    }
+
+    /// Reads the scene file (or model file) at `path`.
+    pub fn open(path: &Path, render: RenderSettings) -> Result<Self, scene::SceneError> {
+        let scene = scene::read_any(path)?;
+        Ok(Self::new(scene, Self::scene_path(path), render))
+    }
+
+    /// The file a document read from `path` saves to: the path itself for a
+    /// scene file; none for a model file (.gltf, .glb), which raylab never
+    /// overwrites — saving it asks where to write a new scene.
+    pub fn scene_path(path: &Path) -> Option<PathBuf> {
+        (!scene::is_model_path(path)).then(|| path.to_path_buf())
+    }
+
+    /// True when the scene differs from the file (undoing back to the saved
+    /// state clears it).
+    pub fn is_modified(&self) -> bool {
+        self.saved.as_ref() != Some(&self.state.scene)
+    }
+
+    /// Writes the scene to `path` atomically, keeping the file it replaces
+    /// as `path.bak` (see [`crate::io::atomic_file`]), and makes it the
+    /// document's file. A failed save changes nothing: not the file, not
+    /// the document (still unsaved, still pointing where it did).
+    pub fn save_as(&mut self, path: &Path) -> std::io::Result<()> {
+        let mut scene = self.state.scene.clone();
+        rebase_mesh_sources(&mut scene, path);
+        let text = scene::write_string(&scene);
+        crate::io::atomic_file::replace_keeping_backup(path, text.as_bytes())?;
+        self.state.scene = scene;
+        self.path = Some(path.to_path_buf());
+        self.saved = Some(self.state.scene.clone());
+        Ok(())
+    }
+
+    /// The file name shown in the title and in default screenshot names.
+    pub fn display_name(&self) -> String {
+        self.path
+            .as_deref()
+            .and_then(Path::file_name)
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "untitled".to_owned())
+    }
+
+    /// The window title: file name, folder, and `•` for unsaved changes.
+    pub fn title(&self) -> String {
+        let mark = if self.is_modified() { "• " } else { "" };
+        let folder = self
+            .path
+            .as_deref()
+            .and_then(Path::parent)
+            .map(|p| format!(" — {}", p.display()))
+            .unwrap_or_default();
+        format!("{mark}{}{folder} — raylab", self.display_name())
+    }
+}
+
+/// Points every `<mesh src>` at its model file from the folder `scene_path`
+/// is in: just the file name when the model lies in that folder, else the
+/// model's absolute path (so a scene saved elsewhere still finds its models).
+pub(super) fn rebase_mesh_sources(scene: &mut Scene, scene_path: &Path) {
+    let folder = scene_path.parent().and_then(|f| {
+        std::fs::canonicalize(if f.as_os_str().is_empty() {
+            Path::new(".")
+        } else {
+            f
+        })
+        .ok()
+    });
+    for object in &mut scene.objects {
+        if let scene::Shape::Mesh { source, .. } = &mut object.shape {
+            let Ok(model) = std::fs::canonicalize(&source.model.path) else {
+                continue;
+            };
+            source.src = match (model.parent(), model.file_name(), &folder) {
+                (Some(dir), Some(name), Some(folder)) if dir == folder => {
+                    name.to_string_lossy().into_owned()
+                }
+                _ => model.display().to_string(),
+            };
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn saving_elsewhere_points_mesh_sources_at_their_models() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let models = dir.path().join("models");
+        std::fs::create_dir(&models).expect("mkdir");
+        let model_path = models.join("box.gltf");
+        std::fs::write(&model_path, "{}").expect("write");
+        let mut model = scene::ModelFile::default();
+        model.path = model_path.clone();
+        let mut scene = Scene::default();
+        scene.objects.push(scene::Object {
+            name: None,
+            shape: scene::Shape::Mesh {
+                source: scene::MeshSource {
+                    src: "box.gltf".into(),
+                    model: std::sync::Arc::new(model),
+                },
+                translate: None,
+                rotate: glam::Vec3::ZERO,
+                scale: glam::Vec3::ONE,
+            },
+            material: None,
+            params: Default::default(),
+        });
+        let src = |scene: &Scene| match &scene.objects[0].shape {
+            scene::Shape::Mesh { source, .. } => source.src.clone(),
+            _ => unreachable!(),
+        };
+        // Beside the model: its file name.
+        rebase_mesh_sources(&mut scene, &models.join("scene.xml"));
+        assert_eq!(src(&scene), "box.gltf");
+        // In another folder: the model's absolute path, which still opens.
+        rebase_mesh_sources(&mut scene, &dir.path().join("scene.xml"));
+        let absolute = PathBuf::from(src(&scene));
+        assert!(absolute.is_absolute(), "{absolute:?}");
+        assert_eq!(
+            std::fs::canonicalize(absolute).expect("exists"),
+            std::fs::canonicalize(model_path).expect("exists")
+        );
+    }
+
+    #[test]
+    fn saving_then_reopening_gives_the_same_scene_and_clears_the_mark() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let path = dir.path().join("s.xml");
+        let mut doc = Document::new(Scene::default(), None, RenderSettings::default());
+        doc.state.scene.camera.theta_deg = 33.0;
+        assert!(doc.is_modified());
+        doc.save_as(&path).expect("saved");
+        assert!(!doc.is_modified());
+        assert!(doc.title().starts_with("s.xml"));
+        let reopened = Document::open(&path, RenderSettings::default()).expect("reopens");
+        assert_eq!(reopened.state.scene, doc.state.scene);
+    }
+
+    #[test]
+    fn undoing_back_to_the_saved_scene_clears_the_unsaved_mark() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let path = dir.path().join("s.xml");
+        let mut doc = Document::new(Scene::default(), None, RenderSettings::default());
+        doc.save_as(&path).expect("saved");
+        doc.state.scene.camera.theta_deg = 10.0;
+        assert!(doc.title().starts_with("• "));
+        doc.history.undo(&mut doc.state);
+        assert!(!doc.is_modified());
+    }
+
+    #[test]
+    fn a_failed_save_keeps_the_old_file_and_the_unsaved_mark() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let missing = dir.path().join("no-such-folder").join("s.xml");
+        let mut doc = Document::new(Scene::default(), None, RenderSettings::default());
+        doc.state.scene.camera.theta_deg = 12.0;
+        assert!(doc.save_as(&missing).is_err());
+        assert!(doc.is_modified());
+        assert_eq!(doc.path, None);
+    }
+}
