@@ -9,7 +9,6 @@ pub mod image_memory;
 mod pass;
 pub mod pixel_stats;
 pub mod preview;
-mod reuse;
 
 use glam::Vec3;
 use pixel_stats::PixelStats;

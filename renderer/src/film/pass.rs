@@ -4,8 +4,7 @@
 //! every sample can be re-traced exactly.
 
 use super::Film;
-use super::preview::PreviewSamples;
-use super::reuse::{Known, for_each_with_known, trace_with_cost};
+use super::preview::{PreviewSamples, for_each_with_known, trace_with_cost};
 use crate::geometry::counters::rays_on_this_thread;
 use crate::integrator::RenderOptions;
 use crate::integrator::adaptive::{Adaptive, pixels_needing_samples};
@@ -96,11 +95,9 @@ impl Film {
                 {
                     let j = (band * BAND_ROWS + row) as u32;
                     let needing_row = needing.map(|n| &n[j as usize * width..][..width]);
-                    let known_row = known.and_then(|k| k.row(j)).map(|row| Known {
-                        values: row.values,
-                        tests: row.tests,
-                        step: row.stride as usize,
-                    });
+                    let known_row = known
+                        .and_then(|k| k.row(j))
+                        .map(|row| (row, row.stride as usize));
                     for_each_with_known(width, known_row, |i, sample| {
                         if needing_row.is_some_and(|n| !n[i]) {
                             return;

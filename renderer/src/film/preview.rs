@@ -5,15 +5,14 @@
 //! the very samples that finer previews and the first full pass trace again;
 //! [`PreviewSamples`] keeps them so that they are traced once per edit.
 
-use super::reuse::{Known, for_each_with_known, trace_with_cost};
-use crate::integrator::RenderOptions;
+use crate::geometry::counters::shape_tests_on_this_thread;
+use crate::integrator::{RenderOptions, sample_pixel};
 use crate::world::World;
 use glam::Vec3;
 use rayon::prelude::*;
 
 /// Sample 0 of pixel (i, j) for every i and j that are multiples of the
-/// stride, exactly as [`sample_pixel`](crate::integrator::sample_pixel)
-/// returns it (NaN and infinities kept).
+/// stride, exactly as [`sample_pixel`] returns it (NaN and infinities kept).
 #[derive(Clone, Debug)]
 pub struct PreviewSamples {
     stride: u32,
@@ -62,11 +61,9 @@ impl PreviewSamples {
             .enumerate()
             .for_each(|(row, (out, out_tests))| {
                 let j = row as u32 * stride;
-                let known = coarser.and_then(|c| c.row(j)).map(|row| Known {
-                    values: row.values,
-                    tests: row.tests,
-                    step: (row.stride / stride) as usize,
-                });
+                let known = coarser
+                    .and_then(|c| c.row(j))
+                    .map(|row| (row, (row.stride / stride) as usize));
                 for_each_with_known(out.len(), known, |k, sample| {
                     let i = k as u32 * stride;
                     (out[k], out_tests[k]) = sample.unwrap_or_else(|| {
@@ -177,11 +174,45 @@ pub fn preview(world: &World, options: &RenderOptions, stride: u32) -> Vec<Vec3>
     PreviewSamples::trace(world, options, stride, None).image()
 }
 
+/// Calls `visit(index, known)` for every index in 0..`len`, in order, where
+/// `known` is the sample `row` already holds for that index — its value and
+/// the shape tests it cost — or `None`: `row` holds one for every `step`-th
+/// index from 0 (a finer preview: the stride ratio; a full pass: the stride).
+/// Runs of `step` items, the first of each known, find them without a
+/// division per item.
+pub(super) fn for_each_with_known(
+    len: usize,
+    known: Option<(PreviewRow, usize)>,
+    mut visit: impl FnMut(usize, Option<(Vec3, u32)>),
+) {
+    let step = known.map_or(len, |(_, step)| step).max(1);
+    for (run, start) in (0..len).step_by(step).enumerate() {
+        for index in start..(start + step).min(len) {
+            let sample = known
+                .filter(|_| index == start)
+                .map(|(row, _)| (row.values[run], row.tests[run]));
+            visit(index, sample);
+        }
+    }
+}
+
+/// Sample `sample` of pixel (i, j), traced, and the shape tests it cost.
+pub(super) fn trace_with_cost(
+    world: &World,
+    options: &RenderOptions,
+    i: u32,
+    j: u32,
+    sample: u32,
+) -> (Vec3, u64) {
+    let before = shape_tests_on_this_thread();
+    let value = sample_pixel(world, options, i, j, sample);
+    (value, shape_tests_on_this_thread() - before)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::film::Film;
-    use crate::integrator::sample_pixel;
     use scene::{Object, Scene, Shape};
 
     fn world() -> World {

@@ -6,7 +6,7 @@
 //! - **shape tests**, for the cost heatmap: calls of a shape's intersection
 //!   routine, whether its bounding sphere or its exact test answers. A
 //!   closest-hit query counts every shape or mesh instance the top-level BVH
-//!   hands it (N per ray without a BVH); a shadow query stops at the first
+//!   hands it and every infinite plane; a shadow query stops at the first
 //!   occluder.
 //!
 //! A count is the difference of two readings on one thread.
