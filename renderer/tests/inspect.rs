@@ -2,7 +2,7 @@
 
 use glam::Vec3;
 use renderer::film::aov::{Aov, aov_at};
-use renderer::inspect::{Inspection, RayNode, SurfaceHit};
+use renderer::inspect::{Inspection, RayNode, ShadowTarget, SurfaceHit};
 use renderer::integrator::RayKind;
 use renderer::integrator::sample_pixel;
 use renderer::{Film, Method, RenderOptions, World, inspect_pixel};
@@ -342,7 +342,7 @@ fn shadow_ray_blocked_by_a_sphere_reports_that_sphere_as_blocker() {
         let (_, ray) = shadows[0];
         assert_eq!(ray.kind, RayKind::Shadow);
         let test = ray.shadow.as_ref().expect("a shadow test");
-        assert_eq!(test.light, 0);
+        assert_eq!(test.target, ShadowTarget::Light(0));
         assert!(test.blocked);
         let blocker = test.blocker.as_ref().expect("the blocker");
         assert_eq!(

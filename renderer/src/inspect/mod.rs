@@ -1,19 +1,24 @@
 //! The pixel inspector: one sample of one pixel re-traced as a ray tree.
 //!
-//! [`inspect_pixel`] runs the very integrator the image uses
-//! ([`whitted_recorded`]) with a recorder that keeps every ray: the primary
-//! ray R_ij = (P0, v_ij), shadow rays, reflections and refractions, each with
-//! what it hit (α, the hit point, the normal, β and γ on a triangle, the
-//! quadratic's roots on a sphere), its weight and its contribution. The
-//! contributions add up to the sample's colour.
+//! [`inspect_pixel`] runs the very code the image uses
+//! ([`sample_pixel_recorded`], Whitted or the path tracer) with a recorder
+//! that keeps every ray: the primary ray R_ij = (P0, v_ij), shadow rays,
+//! reflections and refractions (the path tracer's BSDF samples, with lobe,
+//! density and weight), each with what it hit (α, the hit point, the normal,
+//! β and γ on a triangle, the quadratic's roots on a sphere), its weight and
+//! its contribution; the path tracer's emission weights and Russian roulette
+//! decisions are kept on the hits. The contributions add up to the sample's
+//! colour.
 
 mod node;
 mod tree;
 
-pub use node::{Barycentrics, Blocker, MaterialInfo, ObjectRef, RayNode, ShadowTest, SurfaceHit};
+pub use node::{
+    Barycentrics, Blocker, MaterialInfo, ObjectRef, RayNode, Roulette, Scatter, ShadowTarget,
+    ShadowTest, SurfaceHit,
+};
 
-use crate::integrator::sample_offset;
-use crate::integrator::{RenderOptions, whitted_recorded};
+use crate::integrator::{Integrator, RenderOptions, sample_pixel_recorded};
 use crate::shapes::Method;
 use crate::world::World;
 use glam::{Vec2, Vec3};
@@ -39,6 +44,8 @@ pub struct Inspection {
     pub window_point: Vec3,
     /// v_ij, the unit direction of the primary ray from P0 through `window_point`.
     pub v_ij: Vec3,
+    /// The integrator that traced the sample (the image's).
+    pub integrator: Integrator,
     /// The intersection formulas used.
     pub method: Method,
     /// The bounce limit used.
@@ -88,11 +95,13 @@ pub struct PixelOutOfRange {
     pub height: u32,
 }
 
-/// Re-traces pixel (i, j) as a ray tree: with `Some(k)` sample k exactly as
-/// [`sample_pixel`](crate::integrator::sample_pixel) traces it (same jitter, same
-/// ray, same colour bit for bit); with `None` the ray through the pixel
-/// centre P_ij ([`Camera::center_ray`](crate::Camera::center_ray)), the ray
-/// of the AOVs.
+/// Re-traces pixel (i, j) as a ray tree with the integrator of `options`:
+/// with `Some(k)` sample k exactly as
+/// [`sample_pixel`](crate::integrator::sample_pixel) traces it (same jitter,
+/// same random numbers, same rays, same colour bit for bit); with `None` the
+/// ray through the pixel centre P_ij
+/// ([`Camera::center_ray`](crate::Camera::center_ray)), the ray of the AOVs
+/// (the path tracer then draws sample 0's random numbers).
 pub fn inspect_pixel(
     world: &World,
     options: &RenderOptions,
@@ -109,13 +118,9 @@ pub fn inspect_pixel(
             height: camera.h,
         });
     }
-    let offset = match sample {
-        Some(k) => sample_offset(options, i, j, k),
-        None => Vec2::splat(0.5),
-    };
-    let ray = camera.ray(i, j, offset);
     let mut tree = TreeRecorder::new(world, options.method);
-    let color = whitted_recorded(world, &ray, options, &mut tree);
+    let traced = sample_pixel_recorded(world, options, i, j, sample, &mut tree);
+    let (offset, ray, color) = (traced.offset, traced.ray, traced.color);
     Ok(Inspection {
         i,
         j,
@@ -124,6 +129,7 @@ pub fn inspect_pixel(
         p_ij: camera.pixel_center(i, j),
         window_point: camera.window_point(i, j, offset),
         v_ij: ray.dir,
+        integrator: options.integrator,
         method: options.method,
         max_depth: options.max_depth,
         color,

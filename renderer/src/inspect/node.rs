@@ -2,6 +2,8 @@
 //! blocked it, its weight and the colour it adds to the sample.
 
 use crate::integrator::RayKind;
+use crate::integrator::recorder::EmitterLightSample;
+use crate::shading::bsdf::Lobe;
 use crate::shapes::SphereQuadratic;
 use glam::Vec3;
 use serde::Serialize;
@@ -24,9 +26,11 @@ pub struct RayNode {
     /// Hits at α ≥ t_max are ignored: the light's distance for a shadow ray,
     /// ∞ otherwise (`null` in JSON).
     pub t_max: f32,
-    /// The throughput from the camera: the product of the reflectivity,
-    /// reflectance and Fresnel factors along the path, and (1 − reflectivity)
-    /// for a shadow ray. The sample's colour gains weight × what this ray brings.
+    /// The throughput from the camera: Whitted's product of the
+    /// reflectivity, reflectance and Fresnel factors along the path, and
+    /// (1 − reflectivity) for a shadow ray; the path tracer's throughput
+    /// (Π f·cos/pdf, Russian roulette's divisions included). The sample's
+    /// colour gains weight × what this ray brings.
     pub weight: Vec3,
     /// The colour this ray adds to the sample: weight × its local term
     /// (emission + ambient·albedo·(1 − reflectivity) at a hit, the ambient
@@ -40,6 +44,31 @@ pub struct RayNode {
     /// The light test of a shadow ray; `None` for other rays.
     #[serde(flatten)]
     pub shadow: Option<ShadowTest>,
+    /// How the path tracer drew this ray from its parent's BSDF; `None` for
+    /// primary, shadow and Whitted rays.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub scatter: Option<Scatter>,
+}
+
+/// A path tracer's bounce: the BSDF sample that chose a ray's direction.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Scatter {
+    /// The lobe the direction was drawn from.
+    pub lobe: Lobe,
+    /// Its density in solid angle (0 for a delta lobe).
+    pub pdf: f32,
+    /// f · |cos θ_i| / pdf, what the throughput was multiplied by (before
+    /// any Russian roulette division).
+    pub bsdf_weight: Vec3,
+}
+
+/// The path tracer's Russian roulette at a hit.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Roulette {
+    /// The probability that the path went on.
+    pub keep: f32,
+    /// Whether it did.
+    pub survived: bool,
 }
 
 /// An object of the scene: its index (object id) and name.
@@ -79,6 +108,15 @@ pub struct SurfaceHit {
     pub depth_limited: bool,
     /// Glass reflected everything here: no refracted ray (total internal reflection).
     pub total_internal_reflection: bool,
+    /// The path tracer counted this hit's emission with this multiple-importance
+    /// weight (1 when no light sample could have found it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub emission_weight: Option<f32>,
+    /// The path tracer's Russian roulette after this hit, when it was played.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub roulette: Option<Roulette>,
+    /// The path tracer's BSDF sample here carried no light: the path ended.
+    pub absorbed: bool,
 }
 
 /// β and γ of a triangle hit, as the method computed them.
@@ -107,11 +145,21 @@ pub struct MaterialInfo {
     pub emission: Vec3,
 }
 
+/// What a shadow ray goes toward.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ShadowTarget {
+    /// A point or directional light: its index in the world's lights.
+    Light(usize),
+    /// A point the path tracer drew on an emitter.
+    Emitter(EmitterLightSample),
+}
+
 /// The light test of a shadow ray.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ShadowTest {
-    /// The light's index in the world's point and directional lights.
-    pub light: usize,
+    /// The light or emitter the ray goes toward.
+    pub target: ShadowTarget,
     /// True when something lies between the hit point and the light.
     pub blocked: bool,
     /// The nearest object on the shadow ray, when blocked.

@@ -2,10 +2,13 @@
 //! node of a flat tree, with its weight and contribution.
 
 use super::node::{
-    Barycentrics, Blocker, MaterialInfo, ObjectRef, RayNode, ShadowTest, SurfaceHit,
+    Barycentrics, Blocker, MaterialInfo, ObjectRef, RayNode, Roulette, Scatter, ShadowTarget,
+    ShadowTest, SurfaceHit,
 };
 use crate::geometry::ray::Ray;
+use crate::integrator::recorder::EmitterLightSample;
 use crate::integrator::{Note, RayKind, Recorder};
+use crate::shading::bsdf::BsdfSample;
 use crate::shapes::{Method, Shape, Surface};
 use crate::world::{Hit, World};
 use glam::Vec3;
@@ -54,6 +57,7 @@ fn node(kind: RayKind, parent: Option<usize>, depth: u32, ray: &Ray, weight: Vec
         contribution: Vec3::ZERO,
         hit: None,
         shadow: None,
+        scatter: None,
     }
 }
 
@@ -120,6 +124,9 @@ impl Recorder for TreeRecorder<'_> {
             sphere,
             depth_limited: false,
             total_internal_reflection: false,
+            emission_weight: None,
+            roulette: None,
+            absorbed: false,
         });
     }
 
@@ -129,6 +136,74 @@ impl Recorder for TreeRecorder<'_> {
     }
 
     fn shadow(&mut self, at: usize, light: usize, ray: &Ray, scale: f32, lit: Option<Vec3>) {
+        self.push_shadow(at, ShadowTarget::Light(light), ray, scale, lit);
+    }
+
+    fn note(&mut self, at: usize, note: Note) {
+        if let Some(hit) = &mut self.rays[at].hit {
+            match note {
+                Note::DepthLimit => hit.depth_limited = true,
+                Note::TotalInternalReflection => hit.total_internal_reflection = true,
+                Note::Roulette { keep, survived } => {
+                    hit.roulette = Some(Roulette { keep, survived });
+                }
+                Note::Absorbed => hit.absorbed = true,
+            }
+        }
+    }
+
+    fn emission(&mut self, at: usize, radiance: Vec3, mis_weight: f32) {
+        self.local(at, mis_weight * radiance);
+        if let Some(hit) = &mut self.rays[at].hit {
+            hit.emission_weight = Some(mis_weight);
+        }
+    }
+
+    fn scatter(
+        &mut self,
+        parent: usize,
+        ray: &Ray,
+        depth: u32,
+        throughput: Vec3,
+        sample: &BsdfSample,
+    ) -> usize {
+        // Local directions: z > 0 is the side the path arrived from.
+        let kind = if sample.wi.z > 0.0 {
+            RayKind::Reflection
+        } else {
+            RayKind::Refraction
+        };
+        let mut child = node(kind, Some(parent), depth, ray, throughput);
+        child.scatter = Some(Scatter {
+            lobe: sample.lobe,
+            pdf: sample.pdf,
+            bsdf_weight: sample.weight,
+        });
+        self.push(child)
+    }
+
+    fn emitter_shadow(
+        &mut self,
+        at: usize,
+        sample: EmitterLightSample,
+        ray: &Ray,
+        lit: Option<Vec3>,
+    ) {
+        self.push_shadow(at, ShadowTarget::Emitter(sample), ray, 1.0, lit);
+    }
+}
+
+impl TreeRecorder<'_> {
+    /// A shadow ray from `at`'s hit toward `target`, weighted by `at`'s
+    /// weight × `scale`; `lit` is what it lets through, `None` when blocked.
+    fn push_shadow(
+        &mut self,
+        at: usize,
+        target: ShadowTarget,
+        ray: &Ray,
+        scale: f32,
+        lit: Option<Vec3>,
+    ) {
         let (weight, depth) = (self.rays[at].weight * scale, self.rays[at].depth);
         // The integrator's test is any-hit; the nearest blocker is found here only.
         let blocker = match lit {
@@ -141,19 +216,10 @@ impl Recorder for TreeRecorder<'_> {
         let mut shadow = node(RayKind::Shadow, Some(at), depth, ray, weight);
         shadow.contribution = lit.map_or(Vec3::ZERO, |l| weight * l);
         shadow.shadow = Some(ShadowTest {
-            light,
+            target,
             blocked: lit.is_none(),
             blocker,
         });
         self.push(shadow);
-    }
-
-    fn note(&mut self, at: usize, note: Note) {
-        if let Some(hit) = &mut self.rays[at].hit {
-            match note {
-                Note::DepthLimit => hit.depth_limited = true,
-                Note::TotalInternalReflection => hit.total_internal_reflection = true,
-            }
-        }
     }
 }

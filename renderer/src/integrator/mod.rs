@@ -17,8 +17,8 @@ pub mod whitted;
 
 pub use adaptive::Adaptive;
 pub use options::{Integrator, RenderOptions};
-pub use path::path;
+pub use path::{path, path_recorded};
 pub use recorder::{NoRecorder, Note, RayKind, Recorder};
-pub use sample_pixel::{sample_offset, sample_pixel};
+pub use sample_pixel::{TracedSample, sample_offset, sample_pixel, sample_pixel_recorded};
 pub use shading_context::ShadingContext;
 pub use whitted::{whitted, whitted_recorded};

@@ -12,6 +12,7 @@
 //! - no ambient term: only emitters, lights and the `<sky>` bring light.
 
 use super::RenderOptions;
+use super::recorder::{EmitterLightSample, NoRecorder, Note, Recorder};
 use super::sampler::{BounceDraw, Sampler};
 use super::shading_context::ShadingContext;
 use crate::geometry::offset::offset_ray_origin;
@@ -45,9 +46,23 @@ pub fn power_heuristic(own: f32, other: f32) -> f32 {
 /// The radiance arriving along the camera ray `ray`, one path traced with
 /// the random numbers of `sampler`.
 pub fn path(world: &World, ray: &Ray, options: &RenderOptions, sampler: &mut Sampler) -> Vec3 {
+    path_recorded(world, ray, options, sampler, &mut NoRecorder)
+}
+
+/// [`path`], telling `rec` about every ray it traces (the camera ray `ray`
+/// first), every emission it counts and every roulette decision; the
+/// radiance is bit for bit the same for any recorder.
+pub fn path_recorded<R: Recorder>(
+    world: &World,
+    ray: &Ray,
+    options: &RenderOptions,
+    sampler: &mut Sampler,
+    rec: &mut R,
+) -> Vec3 {
     let mut radiance = Vec3::ZERO;
     let mut throughput = Vec3::ONE;
     let mut ray = *ray;
+    let mut node = rec.primary(&ray);
     // Where the ray started and the BSDF density it was drawn with; `None`
     // for the camera ray and after a delta lobe (no light sample competes).
     let mut previous: Option<(Vec3, f32)> = None;
@@ -57,9 +72,11 @@ pub fn path(world: &World, ray: &Ray, options: &RenderOptions, sampler: &mut Sam
     loop {
         let Some(hit) = world.intersect(&ray, options.method) else {
             radiance += throughput * world.sky;
+            rec.miss(node, world.sky);
             break;
         };
         let at = ShadingContext::new(world, &ray, &hit);
+        rec.hit(node, &ray, hit, &at.surface, at.front);
         let material = &at.material;
         if at.front && material.emission != Vec3::ZERO {
             let weight = match (previous, world.emitters.index_of(&hit)) {
@@ -72,8 +89,10 @@ pub fn path(world: &World, ray: &Ray, options: &RenderOptions, sampler: &mut Sam
                 _ => 1.0,
             };
             radiance += throughput * weight * material.emission;
+            rec.emission(node, material.emission, weight);
         }
         if depth + 1 >= options.max_depth {
+            rec.note(node, Note::DepthLimit);
             break;
         }
         let frame = ShadingFrame::new(at.shading_normal);
@@ -87,29 +106,34 @@ pub fn path(world: &World, ray: &Ray, options: &RenderOptions, sampler: &mut Sam
         };
         if bsdf.has_smooth() {
             sampler.seek_bounce(depth, BounceDraw::Light);
-            radiance += throughput * direct_light(world, options, &vertex, sampler);
+            radiance += throughput * direct_light(world, options, &vertex, sampler, rec, node);
         }
         sampler.seek_bounce(depth, BounceDraw::Scatter);
         let u_lobe = sampler.next_f32();
         let Some(sample) = bsdf.sample(wo, u_lobe, sampler.next_2d()) else {
+            rec.note(node, Note::Absorbed);
             break;
         };
         let wi = frame.to_world(sample.wi);
         throughput *= sample.weight;
         eta_scale *= sample.radiance_scale;
-        previous = (!sample.delta).then_some((at.point(), sample.pdf));
+        previous = (!sample.is_delta()).then_some((at.point(), sample.pdf));
         ray = at.spawn(wi);
         depth += 1;
         if depth >= RR_DEPTH {
             let keep = (throughput.max_element() / eta_scale).min(0.95);
-            if !(sampler.next_f32() < keep) {
+            let survived = sampler.next_f32() < keep;
+            rec.note(node, Note::Roulette { keep, survived });
+            if !survived {
                 break;
             }
             throughput /= keep;
         }
         if !(throughput.max_element() > 0.0) {
+            rec.note(node, Note::Absorbed);
             break;
         }
+        node = rec.scatter(node, &ray, depth, throughput, &sample);
     }
     radiance
 }
@@ -126,12 +150,15 @@ struct Vertex<'a> {
 
 /// Light reflected at `at` straight from a light: every point and
 /// directional light, plus one point drawn on the emitters, weighted by the
-/// power heuristic against BSDF sampling.
-fn direct_light(
+/// power heuristic against BSDF sampling. Each shadow ray is told to `rec`
+/// as a child of `node`.
+fn direct_light<R: Recorder>(
     world: &World,
     options: &RenderOptions,
     vertex: &Vertex,
     sampler: &mut Sampler,
+    rec: &mut R,
+    node: R::Node,
 ) -> Vec3 {
     let (at, point) = (vertex.at, vertex.at.point());
     let mut sum = Vec3::ZERO;
@@ -149,7 +176,7 @@ fn direct_light(
             below
         }
     };
-    for light in &world.lights {
+    for (index, light) in world.lights.iter().enumerate() {
         let Some(s) = light.sample(point) else {
             continue;
         };
@@ -163,8 +190,12 @@ fn direct_light(
             continue;
         }
         let shadow = Ray::new(origin, s.to_light).with_t_max(s.distance);
-        if !world.occluded(&shadow, options.method) {
-            sum += f * s.irradiance;
+        if world.occluded(&shadow, options.method) {
+            rec.shadow(node, index, &shadow, 1.0, None);
+        } else {
+            let lit = f * s.irradiance;
+            sum += lit;
+            rec.shadow(node, index, &shadow, 1.0, Some(lit));
         }
     }
     let u_select = sampler.next_f32();
@@ -177,9 +208,18 @@ fn direct_light(
         if f != Vec3::ZERO {
             let shadow =
                 Ray::new(origin, s.to_light).with_t_max(s.distance * (1.0 - SHADOW_SHORTENING));
-            if !world.occluded(&shadow, options.method) {
-                let weight = power_heuristic(s.pdf, vertex.bsdf.pdf(vertex.wo, wi));
-                sum += f * s.radiance * (weight / s.pdf);
+            let mis_weight = power_heuristic(s.pdf, vertex.bsdf.pdf(vertex.wo, wi));
+            let drawn = EmitterLightSample {
+                emitter: s.index,
+                pdf: s.pdf,
+                mis_weight,
+            };
+            if world.occluded(&shadow, options.method) {
+                rec.emitter_shadow(node, drawn, &shadow, None);
+            } else {
+                let lit = f * s.radiance * (mis_weight / s.pdf);
+                sum += lit;
+                rec.emitter_shadow(node, drawn, &shadow, Some(lit));
             }
         }
     }

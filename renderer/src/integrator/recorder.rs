@@ -1,9 +1,10 @@
-//! What the Whitted integrator tells an observer while it traces: the hook
-//! the pixel inspector uses to rebuild one sample as a ray tree. The image
-//! is traced with [`NoRecorder`], whose calls are empty and compile away, so
-//! the image and the inspector run the same integrator.
+//! What the integrators tell an observer while they trace: the hook the pixel
+//! inspector uses to rebuild one sample as a ray tree. The image is traced
+//! with [`NoRecorder`], whose calls are empty and compile away, so the image
+//! and the inspector run the same integrator.
 
 use crate::geometry::ray::Ray;
+use crate::shading::bsdf::BsdfSample;
 use crate::shapes::Surface;
 use crate::world::Hit;
 use glam::Vec3;
@@ -24,17 +25,46 @@ pub enum RayKind {
 }
 
 /// An event that shaped a hit's subtree without tracing a ray.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Note {
     /// A reflection or refraction would have followed, but `max_depth` stopped it.
     DepthLimit,
     /// Glass reflected everything: no refracted ray exists (total internal reflection).
     TotalInternalReflection,
+    /// The path tracer's Russian roulette at this hit: the path went on with
+    /// probability `keep` (its throughput then divided by `keep`), and did
+    /// when `survived`.
+    Roulette {
+        /// The probability of going on: min(0.95, max throughput channel / η scale).
+        keep: f32,
+        /// Whether the path went on.
+        survived: bool,
+    },
+    /// The path tracer's BSDF sample carried no light (zero density or zero
+    /// weight): the path ends here.
+    Absorbed,
 }
 
-/// An observer of the Whitted integrator. Every call is made beside the
-/// radiance computation, never inside it, so a recorder cannot change the
-/// result; nodes are the recorder's handles to the rays it was told about.
+/// A point drawn on an emitter by the path tracer's light sampling, as its
+/// shadow ray tests it.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct EmitterLightSample {
+    /// The emitter's index in the world's emitters.
+    pub emitter: usize,
+    /// The density in solid angle of the drawn direction, the choice of
+    /// emitter included.
+    pub pdf: f32,
+    /// Its multiple-importance weight against BSDF sampling (power heuristic).
+    pub mis_weight: f32,
+}
+
+/// An observer of an integrator. Every call is made beside the radiance
+/// computation, never inside it, so a recorder cannot change the result;
+/// nodes are the recorder's handles to the rays it was told about.
+///
+/// A node's weight is what the sample's colour gains per unit of radiance
+/// the ray brings back: Whitted's product of factors, the path tracer's
+/// throughput.
 pub trait Recorder {
     /// A handle to a recorded ray (`()` when nothing is kept).
     type Node: Copy;
@@ -71,6 +101,34 @@ pub trait Recorder {
 
     /// Something shaped `node`'s subtree without tracing a ray.
     fn note(&mut self, node: Self::Node, note: Note);
+
+    /// The path tracer: `node`'s hit is an emitter seen from its front, which
+    /// adds `mis_weight` × `radiance` (its power-heuristic weight against
+    /// light sampling; 1 for the camera ray and after a delta lobe).
+    fn emission(&mut self, node: Self::Node, radiance: Vec3, mis_weight: f32);
+
+    /// The path tracer: a ray of bounce `depth` leaves `parent`'s hit in the
+    /// direction `sample` drew from its BSDF, carrying the path throughput
+    /// `throughput` (Russian roulette's division included).
+    fn scatter(
+        &mut self,
+        parent: Self::Node,
+        ray: &Ray,
+        depth: u32,
+        throughput: Vec3,
+        sample: &BsdfSample,
+    ) -> Self::Node;
+
+    /// The path tracer: a shadow ray toward the point `sample` drew on an
+    /// emitter left `node`'s hit point; `lit` as in [`Recorder::shadow`]
+    /// (f · L · weight / pdf when unblocked).
+    fn emitter_shadow(
+        &mut self,
+        node: Self::Node,
+        sample: EmitterLightSample,
+        ray: &Ray,
+        lit: Option<Vec3>,
+    );
 }
 
 /// The recorder of the image: keeps nothing, costs nothing.
@@ -100,4 +158,13 @@ impl Recorder for NoRecorder {
 
     #[inline(always)]
     fn note(&mut self, _: (), _: Note) {}
+
+    #[inline(always)]
+    fn emission(&mut self, _: (), _: Vec3, _: f32) {}
+
+    #[inline(always)]
+    fn scatter(&mut self, _: (), _: &Ray, _: u32, _: Vec3, _: &BsdfSample) {}
+
+    #[inline(always)]
+    fn emitter_shadow(&mut self, _: (), _: EmitterLightSample, _: &Ray, _: Option<Vec3>) {}
 }

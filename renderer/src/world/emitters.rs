@@ -33,6 +33,8 @@ pub struct Emitter {
 /// A point drawn on an emitter, as seen from the shading point.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EmitterSample {
+    /// The index of the emitter drawn.
+    pub index: usize,
     /// Unit direction from the shading point toward the drawn point.
     pub to_light: Vec3,
     /// Distance to the drawn point (the shadow ray's t_max, shortened by the caller).
@@ -193,6 +195,7 @@ impl Emitters {
             let ray = Ray::new(from, dir);
             let alpha = sphere.intersect(&ray, Method::Robust)?;
             return Some(EmitterSample {
+                index,
                 to_light: dir,
                 distance: alpha,
                 radiance: emitter.radiance,
@@ -212,6 +215,7 @@ impl Emitters {
             return None;
         }
         Some(EmitterSample {
+            index,
             to_light,
             distance,
             radiance: emitter.radiance,

@@ -68,3 +68,56 @@ pub fn drawn_rays(inspection: &Inspection) -> impl Iterator<Item = DrawnRay> + '
         }
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use renderer::integrator::Integrator;
+
+    /// The Cornell box of the references (open toward the camera) at 16 × 16.
+    fn cornell() -> renderer::World {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../assets/reference/cornell.xml");
+        let mut scene = scene::read_file(&path).expect("the Cornell box loads");
+        scene.camera.width = 16;
+        scene.camera.height = 16;
+        renderer::World::from_scene(&scene).expect("the Cornell box renders")
+    }
+
+    #[test]
+    fn a_path_traced_sample_draws_its_bounces_and_its_light_samples() {
+        let world = cornell();
+        let options = renderer::RenderOptions {
+            integrator: Integrator::Path,
+            ..Default::default()
+        };
+        // A pixel on the back wall: diffuse bounces, with light samples.
+        let inspection = renderer::inspect_pixel(&world, &options, 8, 6, Some(0)).expect("inside");
+        let rays: Vec<DrawnRay> = drawn_rays(&inspection).collect();
+        assert_eq!(rays.len(), inspection.rays.len(), "one segment per ray");
+        let bounces = rays
+            .iter()
+            .filter(|r| r.kind == RayKind::Reflection)
+            .count();
+        let shadows = rays
+            .iter()
+            .filter(|r| matches!(r.kind, RayKind::Shadow { .. }))
+            .count();
+        assert!(bounces >= 1 && shadows >= 1, "{rays:?}");
+        // A ray that hit ends at its hit point, a shadow ray at its light
+        // point or its blocker; only a ray out of the open front goes on.
+        for (ray, node) in rays.iter().zip(&inspection.rays) {
+            match (&node.hit, ray.length) {
+                (Some(hit), Some(length)) => {
+                    let end = ray.from + ray.dir * length;
+                    assert!((end - hit.point).length() < 1e-3, "{ray:?} ends at its hit");
+                }
+                (None, length) if node.shadow.is_some() => {
+                    assert!(length.is_some_and(|l| l > 0.0 && l < 4.0), "{ray:?}");
+                }
+                (None, None) => assert!(ray.dir.z > 0.0, "{ray:?} leaves by the open front"),
+                _ => panic!("{ray:?}: a hit without a length"),
+            }
+        }
+    }
+}

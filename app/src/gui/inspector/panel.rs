@@ -6,8 +6,8 @@
 
 use super::pixel::InspectedPixel;
 use glam::Vec3;
-use renderer::inspect::{RayNode, SurfaceHit};
-use renderer::integrator::RayKind;
+use renderer::inspect::{RayNode, ShadowTarget, SurfaceHit};
+use renderer::integrator::{Integrator, RayKind};
 use renderer::{Camera, Inspection};
 
 /// What the panel needs besides the inspection.
@@ -59,7 +59,11 @@ pub fn show(
     ui.separator();
     ui.horizontal(|ui| {
         swatch(ui, inspection.color);
-        ui.label(format!("sample colour {}", v3(inspection.color)));
+        ui.label(format!(
+            "sample colour {} ({})",
+            v3(inspection.color),
+            integrator_name(inspection.integrator)
+        ));
     });
     ui.label(format!(
         "Σ contributions {} (the rays below add up to the sample)",
@@ -67,6 +71,14 @@ pub fn show(
     ));
     ray_tree(ui, inspection, cx);
     open
+}
+
+/// How the sample was traced, as the inspector says it.
+fn integrator_name(integrator: Integrator) -> &'static str {
+    match integrator {
+        Integrator::Whitted => "Whitted",
+        Integrator::Path => "path traced",
+    }
 }
 
 /// A small square of a linear colour.
@@ -246,11 +258,7 @@ fn title(index: usize, ray: &RayNode, cx: &Context<'_>) -> String {
             n(hit.alpha)
         ),
         (None, Some(shadow)) => {
-            let light = cx
-                .lights
-                .get(shadow.light)
-                .map(|light| light_label(shadow.light, light))
-                .unwrap_or_else(|| format!("light {}", shadow.light));
+            let light = target_label(shadow.target, cx);
             match &shadow.blocker {
                 Some(b) => format!(
                     "#{index} {kind} -> {light}: blocked by {} at α = {}",
@@ -262,6 +270,18 @@ fn title(index: usize, ray: &RayNode, cx: &Context<'_>) -> String {
             }
         }
         (None, None) => format!("#{index} {kind} -> misses (background)"),
+    }
+}
+
+/// What a shadow ray goes toward, as the ray tree names it.
+fn target_label(target: ShadowTarget, cx: &Context<'_>) -> String {
+    match target {
+        ShadowTarget::Light(k) => cx
+            .lights
+            .get(k)
+            .map(|light| light_label(k, light))
+            .unwrap_or_else(|| format!("light {k}")),
+        ShadowTarget::Emitter(sample) => format!("emitter {}", sample.emitter),
     }
 }
 
@@ -335,9 +355,43 @@ fn details(ui: &mut egui::Ui, ray: &RayNode) {
                 if hit.total_internal_reflection {
                     row("note", "total internal reflection".to_owned());
                 }
+                if let Some(weight) = hit.emission_weight {
+                    row("emission MIS weight", n(weight));
+                }
+                if let Some(r) = hit.roulette {
+                    let verdict = if r.survived { "went on" } else { "ended" };
+                    row(
+                        "Russian roulette",
+                        format!("kept with p = {}: {verdict}", n(r.keep)),
+                    );
+                }
+                if hit.absorbed {
+                    row(
+                        "note",
+                        "the BSDF sample carried no light: path ended".to_owned(),
+                    );
+                }
+            }
+            if let Some(s) = &ray.scatter {
+                row(
+                    "BSDF sample",
+                    format!(
+                        "{:?} lobe, pdf {}, f·cos/pdf {}",
+                        s.lobe,
+                        n(s.pdf),
+                        v3(s.bsdf_weight)
+                    ),
+                );
             }
             if let Some(shadow) = &ray.shadow {
-                row("light", format!("#{}", shadow.light));
+                match shadow.target {
+                    ShadowTarget::Light(k) => row("light", format!("#{k}")),
+                    ShadowTarget::Emitter(e) => {
+                        row("emitter", format!("#{}", e.emitter));
+                        row("pdf (solid angle)", n(e.pdf));
+                        row("MIS weight", n(e.mis_weight));
+                    }
+                }
                 row("blocked", shadow.blocked.to_string());
             }
             row("weight", v3(ray.weight));

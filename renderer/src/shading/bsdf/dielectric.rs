@@ -1,7 +1,7 @@
 //! A smooth dielectric interface (glass): Fresnel reflection and Snell
 //! refraction, chosen at random in proportion to the Fresnel reflectance.
 
-use super::BsdfSample;
+use super::{BsdfSample, Lobe};
 use crate::shading::optics::{fresnel_dielectric, refract};
 use glam::Vec3;
 
@@ -36,7 +36,7 @@ impl SmoothDielectric {
             wi: Vec3::new(-wo.x, -wo.y, wo.z),
             weight: Vec3::ONE,
             pdf: 0.0,
-            delta: true,
+            lobe: Lobe::Specular,
             radiance_scale: 1.0,
         };
         if u < fresnel {
@@ -49,7 +49,7 @@ impl SmoothDielectric {
                     wi,
                     weight: self.tint * scale,
                     pdf: 0.0,
-                    delta: true,
+                    lobe: Lobe::Specular,
                     radiance_scale: scale,
                 }
             }

@@ -74,12 +74,25 @@ pub struct BsdfSample {
     pub weight: Vec3,
     /// The density of the non-delta parts at wi (0 for a delta lobe).
     pub pdf: f32,
-    /// Whether wi came from a delta lobe (mirror or smooth glass): no light
-    /// sample could have found it, so emission it hits counts in full.
-    pub delta: bool,
+    /// The lobe wi was drawn from; [`Lobe::Specular`] is a delta lobe
+    /// (mirror or smooth glass): no light sample could have found wi, so
+    /// emission it hits counts in full.
+    pub lobe: Lobe,
     /// The factor η² by which refraction scaled `weight` (radiance is
     /// compressed into a smaller solid angle); 1 for reflection.
     pub radiance_scale: f32,
+}
+
+/// Which part of a BSDF a sampled direction came from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Lobe {
+    /// The Lambertian base (cosine-weighted hemisphere).
+    Diffuse,
+    /// A GGX microfacet lobe: a highlight, rough metal or rough glass.
+    Glossy,
+    /// A delta lobe: mirror reflection or smooth refraction.
+    Specular,
 }
 
 /// A conductor's reflectance where light meets it at `cos` to the normal:
@@ -94,16 +107,28 @@ pub(crate) fn conductor_reflectance(f0: Vec3, schlick: bool, cos: f32) -> Vec3 {
 }
 
 impl BsdfSample {
-    /// wi drawn through a non-delta lobe with density `pdf`, where the BSDF
-    /// gives f · |cos θ_i| = `f_cos`; `None` when the density is zero.
-    pub fn scattered(wi: Vec3, f_cos: Vec3, pdf: f32, radiance_scale: f32) -> Option<Self> {
+    /// wi drawn through the non-delta lobe `lobe` with density `pdf` (of
+    /// all non-delta lobes together), where the BSDF gives f · |cos θ_i| =
+    /// `f_cos`; `None` when the density is zero.
+    pub fn scattered(
+        lobe: Lobe,
+        wi: Vec3,
+        f_cos: Vec3,
+        pdf: f32,
+        radiance_scale: f32,
+    ) -> Option<Self> {
         (pdf > 0.0).then(|| BsdfSample {
             wi,
             weight: f_cos / pdf,
             pdf,
-            delta: false,
+            lobe,
             radiance_scale,
         })
+    }
+
+    /// Whether wi came from a delta lobe (mirror or smooth glass).
+    pub fn is_delta(&self) -> bool {
+        self.lobe == Lobe::Specular
     }
 }
 
@@ -217,26 +242,26 @@ impl Bsdf {
         let mirrored = Vec3::new(-wo.x, -wo.y, wo.z);
         match *self {
             Bsdf::Layered(l) => {
-                let wi = if u_lobe < l.mirror {
+                let (lobe, wi) = if u_lobe < l.mirror {
                     return Some(BsdfSample {
                         wi: mirrored,
                         weight: Vec3::ONE,
                         pdf: 0.0,
-                        delta: true,
+                        lobe: Lobe::Specular,
                         radiance_scale: 1.0,
                     });
                 } else if u_lobe < l.mirror + l.glossy {
-                    l.ggx.sample_reflection(wo, u)?
+                    (Lobe::Glossy, l.ggx.sample_reflection(wo, u)?)
                 } else {
-                    sample_cosine_hemisphere(u)
+                    (Lobe::Diffuse, sample_cosine_hemisphere(u))
                 };
-                BsdfSample::scattered(wi, self.eval(wo, wi), self.pdf(wo, wi), 1.0)
+                BsdfSample::scattered(lobe, wi, self.eval(wo, wi), self.pdf(wo, wi), 1.0)
             }
             Bsdf::Conductor { f0, schlick } => Some(BsdfSample {
                 wi: mirrored,
                 weight: conductor_reflectance(f0, schlick, wo.z),
                 pdf: 0.0,
-                delta: true,
+                lobe: Lobe::Specular,
                 radiance_scale: 1.0,
             }),
             Bsdf::Dielectric(glass) => Some(glass.sample(wo, u_lobe)),

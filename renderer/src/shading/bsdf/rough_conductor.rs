@@ -2,8 +2,8 @@
 //! reflection, f = F(wo·h) D(h) G1(wo) G1(wi) / (4 cos θ_o cos θ_i), sampled
 //! through the normals visible from wo, as Mitsuba 3's `roughconductor`.
 
-use super::BsdfSample;
 use super::ggx::Ggx;
+use super::{BsdfSample, Lobe};
 use crate::shading::optics::reflect;
 use glam::{Vec2, Vec3};
 
@@ -47,6 +47,6 @@ impl RoughConductor {
     pub fn sample(&self, wo: Vec3, u: Vec2) -> Option<BsdfSample> {
         let h = self.ggx.sample_visible(wo, u);
         let wi = reflect(-wo, h);
-        BsdfSample::scattered(wi, self.eval(wo, wi), self.pdf(wo, wi), 1.0)
+        BsdfSample::scattered(Lobe::Glossy, wi, self.eval(wo, wi), self.pdf(wo, wi), 1.0)
     }
 }

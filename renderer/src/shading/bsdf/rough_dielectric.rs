@@ -131,6 +131,12 @@ impl RoughDielectric {
         if (wi.z > 0.0) != reflects {
             return None;
         }
-        BsdfSample::scattered(wi, self.eval(wo, wi), self.pdf(wo, wi), radiance_scale)
+        BsdfSample::scattered(
+            super::Lobe::Glossy,
+            wi,
+            self.eval(wo, wi),
+            self.pdf(wo, wi),
+            radiance_scale,
+        )
     }
 }

@@ -332,7 +332,7 @@ proptest! {
         let bsdf = Bsdf::new(&material, material.color, front);
         let wo = direction(cos_o, 0.3);
         if let Some(s) = bsdf.sample(wo, u_lobe, Vec2::new(u1, u2)) {
-            prop_assert!(!s.delta);
+            prop_assert!(!s.is_delta());
             let pdf = bsdf.pdf(wo, s.wi);
             prop_assert!((pdf - s.pdf).abs() <= 1e-4 * pdf.max(1.0));
             let expected = bsdf.eval(wo, s.wi) / pdf;
@@ -364,7 +364,7 @@ proptest! {
         let bsdf = Bsdf::new(&material, material.color, true);
         let wo = direction(cos_o, 0.3);
         if let Some(s) = bsdf.sample(wo, u_lobe, Vec2::new(u1, u2))
-            && !s.delta
+            && !s.is_delta()
         {
             let pdf = bsdf.pdf(wo, s.wi);
             prop_assert!((pdf - s.pdf).abs() <= 1e-5 * pdf.max(1.0));
