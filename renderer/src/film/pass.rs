@@ -4,10 +4,10 @@
 //! every sample can be re-traced exactly.
 
 use super::Film;
-use super::preview::{PreviewSamples, for_each_with_known, trace_with_cost};
+use super::preview::{PreviewSamples, for_each_with_known};
 use crate::geometry::counters::rays_on_this_thread;
-use crate::integrator::RenderOptions;
 use crate::integrator::adaptive::{Adaptive, pixels_needing_samples};
+use crate::integrator::{RenderOptions, SampleRef, SampleResult, trace_samples};
 use crate::world::World;
 use rayon::prelude::*;
 use scene::color::luminance;
@@ -86,13 +86,11 @@ impl Film {
                     return (0, 1, 0, 0);
                 }
                 let rays_before = rays_on_this_thread();
-                let (mut bad, mut traced) = (0, 0);
-                for (row, ((accs, stats), counts)) in rows
-                    .chunks_mut(width)
-                    .zip(stats.chunks_mut(width))
-                    .zip(counts.chunks_mut(width))
-                    .enumerate()
-                {
+                // The band's samples: those a preview already holds, and those
+                // to trace (together, so the path tracer can batch them).
+                let mut found: Vec<(usize, SampleResult)> = Vec::with_capacity(counts.len());
+                let mut todo: Vec<(usize, SampleRef)> = Vec::with_capacity(counts.len());
+                for row in 0..counts.len() / width {
                     let j = (band * BAND_ROWS + row) as u32;
                     let needing_row = needing.map(|n| &n[j as usize * width..][..width]);
                     let known_row = known
@@ -102,24 +100,46 @@ impl Film {
                         if needing_row.is_some_and(|n| !n[i]) {
                             return;
                         }
-                        let (acc, stat, count) = (&mut accs[i], &mut stats[i], &mut counts[i]);
-                        let (value, tests) = match sample {
-                            Some((value, tests)) => (value, u64::from(tests)),
-                            None => trace_with_cost(world, options, i as u32, j, *count),
-                        };
-                        *count += 1;
-                        traced += 1;
-                        stat.add_cost(tests);
-                        // Welford's weight of this sample. A pixel that lost
-                        // a NaN sample still counts it (rare, and the mean
-                        // then treats it as black).
-                        if value.is_finite() {
-                            *acc += value;
-                            stat.add(luminance(value), 1.0 / *count as f32);
-                        } else {
-                            bad += 1;
+                        let at = row * width + i;
+                        match sample {
+                            Some((radiance, tests)) => found.push((
+                                at,
+                                SampleResult {
+                                    radiance,
+                                    shape_tests: u64::from(tests),
+                                },
+                            )),
+                            None => todo.push((
+                                at,
+                                SampleRef {
+                                    i: i as u32,
+                                    j,
+                                    sample: counts[at],
+                                },
+                            )),
                         }
                     });
+                }
+                let samples: Vec<SampleRef> = todo.iter().map(|&(_, s)| s).collect();
+                let mut traced_results = vec![SampleResult::default(); samples.len()];
+                trace_samples(world, options, &samples, &mut traced_results);
+                found.extend(todo.iter().map(|&(at, _)| at).zip(traced_results));
+                let (mut bad, mut traced) = (0, 0);
+                for (at, result) in found {
+                    let (acc, stat, count) = (&mut rows[at], &mut stats[at], &mut counts[at]);
+                    let value = result.radiance;
+                    *count += 1;
+                    traced += 1;
+                    stat.add_cost(result.shape_tests);
+                    // Welford's weight of this sample. A pixel that lost
+                    // a NaN sample still counts it (rare, and the mean
+                    // then treats it as black).
+                    if value.is_finite() {
+                        *acc += value;
+                        stat.add(luminance(value), 1.0 / *count as f32);
+                    } else {
+                        bad += 1;
+                    }
                 }
                 let rays = rays_on_this_thread() - rays_before;
                 (bad, 0, rays, traced)

@@ -13,6 +13,7 @@ pub mod recorder;
 mod sample_pixel;
 pub mod sampler;
 mod shading_context;
+pub mod trace_samples;
 pub mod whitted;
 
 pub use adaptive::Adaptive;
@@ -21,4 +22,5 @@ pub use path::{path, path_recorded};
 pub use recorder::{NoRecorder, Note, RayKind, Recorder};
 pub use sample_pixel::{TracedSample, sample_offset, sample_pixel, sample_pixel_recorded};
 pub use shading_context::ShadingContext;
+pub use trace_samples::{SampleRef, SampleResult, trace_samples};
 pub use whitted::{whitted, whitted_recorded};

@@ -41,6 +41,25 @@ pub fn sample_pixel_recorded<R: Recorder>(
     sample: Option<u32>,
     rec: &mut R,
 ) -> TracedSample {
+    let (sampler, offset, ray) = camera_sample(world, options, i, j, sample);
+    let color = match options.integrator {
+        Integrator::Whitted => whitted_recorded(world, &ray, options, rec),
+        Integrator::Path => path_recorded(world, &ray, options, sampler, rec),
+    };
+    TracedSample { offset, ray, color }
+}
+
+/// The start of sample `sample` of pixel (i, j) (`None`: the centre ray):
+/// its random stream after the camera's draw, where the ray crosses the
+/// pixel, and the camera ray R_ij. Every way of tracing a sample starts here.
+#[inline(always)]
+pub(crate) fn camera_sample(
+    world: &World,
+    options: &RenderOptions,
+    i: u32,
+    j: u32,
+    sample: Option<u32>,
+) -> (Sampler, Vec2, Ray) {
     let mut sampler =
         Sampler::for_pixel_sample(options.sampling, options.seed, i, j, sample.unwrap_or(0));
     let jitter = sampler.next_2d();
@@ -49,12 +68,7 @@ pub fn sample_pixel_recorded<R: Recorder>(
     } else {
         Vec2::splat(0.5)
     };
-    let ray = world.camera.ray(i, j, offset);
-    let color = match options.integrator {
-        Integrator::Whitted => whitted_recorded(world, &ray, options, rec),
-        Integrator::Path => path_recorded(world, &ray, options, &mut sampler, rec),
-    };
-    TracedSample { offset, ray, color }
+    (sampler, offset, world.camera.ray(i, j, offset))
 }
 
 /// (x, y) in [0, 1)², where sample `sample` of pixel (i, j) passes through

@@ -52,10 +52,12 @@ const SOBOL_DRAWS: u32 = CAMERA_DRAWS + DRAWS_PER_BOUNCE;
 const SOBOL_LENGTH: u32 = 1 << 16;
 
 /// A per-sample random stream.
+#[derive(Clone)]
 pub struct Sampler {
     source: Source,
 }
 
+#[derive(Clone)]
 enum Source {
     Independent(Pcg32),
     Sobol(SobolStream),
@@ -65,6 +67,7 @@ enum Source {
 /// number or a 2D point — takes the first one or two Sobol dimensions of
 /// its own scramble (Burley's padding), so each 2D point set is a (0, 2)
 /// sequence and separate draws are decorrelated at random.
+#[derive(Clone)]
 struct SobolStream {
     index: u32,
     pixel_seed: u64,

@@ -1,0 +1,279 @@
+//! One path as a state machine that stops wherever it needs rays traced: a
+//! path waits for the closest hit of its next ray, then for the shadow rays
+//! of its vertex. Its arithmetic never depends on how the rays were traced,
+//! so one path traced alone ([`super::path_recorded`]) and the same path
+//! traced in a batch with others ([`super::batch`]) give the same radiance
+//! bit for bit.
+
+use super::{RR_DEPTH, SHADOW_SHORTENING, power_heuristic};
+use crate::geometry::offset::offset_ray_origin;
+use crate::geometry::ray::Ray;
+use crate::integrator::RenderOptions;
+use crate::integrator::recorder::{EmitterLightSample, Note, Recorder};
+use crate::integrator::sampler::{BounceDraw, Sampler};
+use crate::integrator::shading_context::ShadingContext;
+use crate::shading::bsdf::{Bsdf, BsdfSample, ShadingFrame};
+use crate::shading::texture::albedo_at;
+use crate::world::{Hit, World};
+use glam::Vec3;
+
+/// A path being traced: its radiance so far, its throughput and the ray it
+/// waits on.
+pub(crate) struct PathLane<N> {
+    /// Radiance gathered so far.
+    pub(crate) radiance: Vec3,
+    throughput: Vec3,
+    /// The ray whose closest hit the path waits for.
+    pub(crate) ray: Ray,
+    /// Where the ray started and the BSDF density it was drawn with; `None`
+    /// for the camera ray and after a delta lobe (no light sample competes).
+    previous: Option<(Vec3, f32)>,
+    /// Product of refraction's radiance scaling, divided out for roulette.
+    eta_scale: f32,
+    /// Scattering events so far.
+    depth: u32,
+    sampler: Sampler,
+    /// The recorder's handle to `ray`.
+    node: N,
+    /// The vertex whose shadow rays are out: its throughput, and the BSDF
+    /// sample of the next ray (recorded once the shadow rays are).
+    vertex: Option<PendingVertex>,
+}
+
+/// What a vertex keeps while its shadow rays are traced.
+#[derive(Default)]
+struct PendingVertex {
+    /// The throughput arriving at the vertex, when it sampled lights (the
+    /// light its shadow rays let through is scaled by it).
+    lit_by: Option<Vec3>,
+    /// The next ray's BSDF sample and throughput, when the path goes on.
+    next: Option<(BsdfSample, Vec3)>,
+}
+
+/// A shadow ray a vertex waits on, and the radiance it lets through
+/// (before the vertex's throughput) when nothing blocks it.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ShadowRay {
+    /// The ray, its interval ending before the light.
+    pub(crate) ray: Ray,
+    /// f · irradiance for a point or directional light; f · L · weight / pdf
+    /// for a point on an emitter.
+    lit: Vec3,
+    /// Which light it goes toward.
+    target: ShadowTarget,
+}
+
+#[derive(Clone, Copy, Debug)]
+enum ShadowTarget {
+    Light(usize),
+    Emitter(EmitterLightSample),
+}
+
+/// Whether a path goes on after [`PathLane::shade`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Next {
+    /// Its next ray waits for its closest hit (after the shadow rays).
+    Trace,
+    /// The path is complete once its shadow rays are in.
+    Done,
+}
+
+impl<N: Copy> PathLane<N> {
+    /// A path starting with the camera ray `ray`, drawing from `sampler`.
+    pub(crate) fn new<R: Recorder<Node = N>>(ray: Ray, sampler: Sampler, rec: &mut R) -> Self {
+        Self {
+            radiance: Vec3::ZERO,
+            throughput: Vec3::ONE,
+            ray,
+            previous: None,
+            eta_scale: 1.0,
+            depth: 0,
+            sampler,
+            node: rec.primary(&ray),
+            vertex: None,
+        }
+    }
+
+    /// Shades `hit`, the closest hit of [`PathLane::ray`] (`None` on a miss):
+    /// adds emission, appends the vertex's shadow rays to `shadows` (in the
+    /// order [`PathLane::finish_vertex`] must get their answers), and draws
+    /// the next ray.
+    pub(crate) fn shade<R: Recorder<Node = N>>(
+        &mut self,
+        world: &World,
+        options: &RenderOptions,
+        hit: Option<Hit>,
+        shadows: &mut Vec<ShadowRay>,
+        rec: &mut R,
+    ) -> Next {
+        let ray = self.ray;
+        let Some(hit) = hit else {
+            self.radiance += self.throughput * world.sky;
+            rec.miss(self.node, world.sky);
+            return Next::Done;
+        };
+        let at = ShadingContext::new(world, &ray, &hit);
+        rec.hit(self.node, &ray, hit, &at.surface, at.front);
+        let material = &at.material;
+        if at.front && material.emission != Vec3::ZERO {
+            let weight = match (self.previous, world.emitters.index_of(&hit)) {
+                (Some((from, bsdf_pdf)), Some(index)) => power_heuristic(
+                    bsdf_pdf,
+                    world
+                        .emitters
+                        .pdf(from, index, at.point(), at.surface.normal),
+                ),
+                _ => 1.0,
+            };
+            self.radiance += self.throughput * weight * material.emission;
+            rec.emission(self.node, material.emission, weight);
+        }
+        if self.depth + 1 >= options.max_depth {
+            rec.note(self.node, Note::DepthLimit);
+            return Next::Done;
+        }
+        let frame = ShadingFrame::new(at.shading_normal);
+        let wo = frame.to_local(-ray.dir);
+        let bsdf = Bsdf::new(material, albedo_at(material, at.point()), at.front);
+        if bsdf.has_smooth() {
+            self.sampler.seek_bounce(self.depth, BounceDraw::Light);
+            light_samples(world, &at, frame, wo, &bsdf, &mut self.sampler, shadows);
+            self.vertex = Some(PendingVertex {
+                lit_by: Some(self.throughput),
+                next: None,
+            });
+        }
+        self.sampler.seek_bounce(self.depth, BounceDraw::Scatter);
+        let u_lobe = self.sampler.next_f32();
+        let Some(sample) = bsdf.sample(wo, u_lobe, self.sampler.next_2d()) else {
+            rec.note(self.node, Note::Absorbed);
+            return Next::Done;
+        };
+        let wi = frame.to_world(sample.wi);
+        self.throughput *= sample.weight;
+        self.eta_scale *= sample.radiance_scale;
+        self.previous = (!sample.is_delta()).then_some((at.point(), sample.pdf));
+        self.ray = at.spawn(wi);
+        self.depth += 1;
+        if self.depth >= RR_DEPTH {
+            let keep = (self.throughput.max_element() / self.eta_scale).min(0.95);
+            let survived = self.sampler.next_f32() < keep;
+            rec.note(self.node, Note::Roulette { keep, survived });
+            if !survived {
+                return Next::Done;
+            }
+            self.throughput /= keep;
+        }
+        if !(self.throughput.max_element() > 0.0) {
+            rec.note(self.node, Note::Absorbed);
+            return Next::Done;
+        }
+        self.vertex.get_or_insert_default().next = Some((sample, self.throughput));
+        Next::Trace
+    }
+
+    /// Adds the light of the shadow rays [`PathLane::shade`] appended, now
+    /// that `blocked` tells which of them something blocks; records them,
+    /// then the next ray.
+    pub(crate) fn finish_vertex<R: Recorder<Node = N>>(
+        &mut self,
+        shadows: &[ShadowRay],
+        blocked: &[bool],
+        rec: &mut R,
+    ) {
+        debug_assert_eq!(shadows.len(), blocked.len());
+        let Some(vertex) = self.vertex.take() else {
+            debug_assert!(shadows.is_empty());
+            return;
+        };
+        let vertex_node = self.node;
+        if let Some(throughput) = vertex.lit_by {
+            let mut sum = Vec3::ZERO;
+            for (shadow, &blocked) in shadows.iter().zip(blocked) {
+                let lit = (!blocked).then_some(shadow.lit);
+                if let Some(lit) = lit {
+                    sum += lit;
+                }
+                match shadow.target {
+                    ShadowTarget::Light(index) => {
+                        rec.shadow(vertex_node, index, &shadow.ray, 1.0, lit);
+                    }
+                    ShadowTarget::Emitter(drawn) => {
+                        rec.emitter_shadow(vertex_node, drawn, &shadow.ray, lit);
+                    }
+                }
+            }
+            self.radiance += throughput * sum;
+        }
+        if let Some((sample, throughput)) = vertex.next {
+            self.node = rec.scatter(vertex_node, &self.ray, self.depth, throughput, &sample);
+        }
+    }
+}
+
+/// The shadow rays of a vertex with a smooth lobe: one toward every point
+/// and directional light, then one toward a point drawn on the emitters,
+/// weighted by the power heuristic against BSDF sampling. Lights the BSDF
+/// does not reflect toward the eye get no ray.
+fn light_samples(
+    world: &World,
+    at: &ShadingContext,
+    frame: ShadingFrame,
+    wo: Vec3,
+    bsdf: &Bsdf,
+    sampler: &mut Sampler,
+    shadows: &mut Vec<ShadowRay>,
+) {
+    let point = at.point();
+    // A shadow ray starts off the side its light is on; only a transmitting
+    // BSDF sees lights behind the surface.
+    let above = offset_ray_origin(point, at.geometric, at.magnitude);
+    let below = bsdf
+        .transmits()
+        .then(|| offset_ray_origin(point, -at.geometric, at.magnitude));
+    let origin_toward = |to_light: Vec3| {
+        if to_light.dot(at.geometric) > 0.0 {
+            Some(above)
+        } else {
+            below
+        }
+    };
+    for (index, light) in world.lights.iter().enumerate() {
+        let Some(s) = light.sample(point) else {
+            continue;
+        };
+        let Some(origin) = origin_toward(s.to_light) else {
+            continue;
+        };
+        let f = bsdf.eval(wo, frame.to_local(s.to_light));
+        if f == Vec3::ZERO {
+            continue;
+        }
+        shadows.push(ShadowRay {
+            ray: Ray::new(origin, s.to_light).with_t_max(s.distance),
+            lit: f * s.irradiance,
+            target: ShadowTarget::Light(index),
+        });
+    }
+    let u_select = sampler.next_f32();
+    let u = sampler.next_2d();
+    if let Some(s) = world.emitters.sample(point, u_select, u)
+        && let Some(origin) = origin_toward(s.to_light)
+    {
+        let wi = frame.to_local(s.to_light);
+        let f = bsdf.eval(wo, wi);
+        if f != Vec3::ZERO {
+            let mis_weight = power_heuristic(s.pdf, bsdf.pdf(wo, wi));
+            shadows.push(ShadowRay {
+                ray: Ray::new(origin, s.to_light)
+                    .with_t_max(s.distance * (1.0 - SHADOW_SHORTENING)),
+                lit: f * s.radiance * (mis_weight / s.pdf),
+                target: ShadowTarget::Emitter(EmitterLightSample {
+                    emitter: s.index,
+                    pdf: s.pdf,
+                    mis_weight,
+                }),
+            });
+        }
+    }
+}

@@ -1,0 +1,109 @@
+//! The batched path tracer: every sample's radiance is the one the same
+//! sample gets traced alone, bit for bit, whatever the batch size, the
+//! order of the samples or the thread count.
+
+use glam::Vec3;
+use renderer::integrator::path::batch::trace_paths;
+use renderer::integrator::sampler::Sampling;
+use renderer::integrator::{Integrator, SampleRef, SampleResult, sample_pixel};
+use renderer::{Film, Method, RenderOptions, World};
+use std::path::Path;
+
+fn reference(name: &str, width: u32, height: u32) -> World {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../assets/reference")
+        .join(name);
+    let mut scene = scene::read_file(&path).expect("a reference scene parses");
+    scene.camera.width = width;
+    scene.camera.height = height;
+    World::from_scene(&scene).expect("a reference scene is valid")
+}
+
+fn shipped(name: &str, width: u32, height: u32) -> World {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../assets/scenes")
+        .join(name);
+    let mut scene = scene::read_file(&path).expect("a shipped scene parses");
+    scene.camera.width = width;
+    scene.camera.height = height;
+    World::from_scene(&scene).expect("a shipped scene is valid")
+}
+
+fn bits(v: Vec3) -> [u32; 3] {
+    v.to_array().map(f32::to_bits)
+}
+
+#[test]
+fn a_batched_path_is_the_path_traced_alone_bit_for_bit_for_any_batch_size() {
+    let worlds = [
+        ("spheres.xml", reference("spheres.xml", 24, 18)),
+        ("rough.xml", reference("rough.xml", 16, 16)),
+        ("glass.xml", shipped("glass.xml", 20, 12)),
+    ];
+    for (name, world) in &worlds {
+        for sampling in [Sampling::Independent, Sampling::Sobol] {
+            let options = RenderOptions {
+                integrator: Integrator::Path,
+                method: Method::Robust,
+                sampling,
+                seed: 5,
+                ..Default::default()
+            };
+            // Samples in a scrambled order, several per pixel.
+            let mut samples = Vec::new();
+            for k in [0, 3, 17] {
+                for j in 0..world.camera.h {
+                    for i in 0..world.camera.w {
+                        samples.push(SampleRef { i, j, sample: k });
+                    }
+                }
+            }
+            samples.reverse();
+            let third = samples.len() / 3;
+            samples.rotate_left(third);
+            let alone: Vec<[u32; 3]> = samples
+                .iter()
+                .map(|s| bits(sample_pixel(world, &options, s.i, s.j, s.sample)))
+                .collect();
+            for batch in [1, 2, 7, 64, 1000] {
+                let mut results = vec![SampleResult::default(); samples.len()];
+                trace_paths(world, &options, &samples, batch, &mut results);
+                for ((s, result), expected) in samples.iter().zip(&results).zip(&alone) {
+                    assert_eq!(
+                        &bits(result.radiance),
+                        expected,
+                        "{name} {sampling:?} batch {batch}: pixel ({}, {}) sample {}",
+                        s.i,
+                        s.j,
+                        s.sample
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn a_path_traced_film_is_the_same_on_one_thread_and_on_all() {
+    let world = reference("cornell.xml", 40, 40);
+    let options = RenderOptions {
+        integrator: Integrator::Path,
+        sampling: Sampling::Sobol,
+        ..Default::default()
+    };
+    let all = Film::render(&world, &options, 3);
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .expect("a one-thread pool")
+        .install(|| Film::render(&world, &options, 3));
+    for j in 0..40 {
+        for i in 0..40 {
+            assert_eq!(
+                bits(all.pixel(i, j)),
+                bits(one.pixel(i, j)),
+                "pixel ({i}, {j})"
+            );
+        }
+    }
+}
