@@ -10,8 +10,8 @@
 //!   that share each node's loads, incoherent ones several at a time,
 //!   interleaved, to hide memory latency.
 //! - [`SceneBvh`]: the top level over items known only by their boxes (mesh
-//!   instances, analytic shapes), built with obvhs's PLOC; the caller
-//!   intersects each item.
+//!   instances, analytic shapes), the same 8-wide nodes by the same binned
+//!   SAH, leaves of up to eight items; the caller intersects each item.
 //! - [`Instance`]: an affine placement of a mesh, mapping rays into the mesh's
 //!   space so that α is unchanged.
 //! - [`reference`](mod@reference): brute force over every triangle, the oracle of the tests.

@@ -1,24 +1,28 @@
-//! The top level: a binary BVH (obvhs's PLOC builder, fastest settings, so it
-//! can be rebuilt on every edit) over items known only by their bounding
-//! boxes — mesh instances and analytic shapes. The caller intersects each item
-//! the traversal reaches; boxes are tested with the conservative slab test of
-//! [`super::slab`], nearest child first, and children whose entry lies beyond
-//! the closest hit so far are skipped.
+//! The top level: an 8-wide BVH (the mesh BVH's nodes, built by the same
+//! binned SAH) over items known only by their bounding boxes — mesh
+//! instances and analytic shapes. The caller intersects each item the
+//! traversal reaches; the eight children of a node are tested at once with
+//! the conservative slab test of [`super::wide`], nearest child first, and
+//! children whose entry lies beyond the closest hit so far are skipped.
 
+use super::binned_sah::PrimRef;
 use super::slab::SlabRay;
 use super::stack::Stack;
+use super::wide::{ChildRef, WIDTH, WideNode, WideRay};
+use super::wide_build::build_wide_refs;
 use crate::geometry::ray::Ray;
 pub use ::scene::layout::Aabb;
 use glam::Vec3A;
-use obvhs::bvh2::node::Bvh2Node;
-use obvhs::ploc::{PlocBuilder, PlocSearchDistance, SortPrecision};
 
 /// A BVH over boxed items (infinite items stay outside it, with the caller).
 #[derive(Clone, Debug)]
 pub struct SceneBvh {
-    /// obvhs's BVH2 nodes; node 0 is the root (none when there are no items).
-    nodes: Vec<Bvh2Node>,
-    /// Item ids in leaf order: leaves index this list.
+    /// The wide nodes; node 0 is the root (none when there are no items).
+    nodes: Vec<WideNode>,
+    /// The leaves' runs of `items`: (first, count); a leaf is one or more
+    /// consecutive runs.
+    runs: Vec<(u32, u32)>,
+    /// Item ids in leaf order.
     items: Vec<u32>,
     /// The box around every item.
     bounds: Aabb,
@@ -37,38 +41,24 @@ impl SceneBvh {
                 b.min.cmple(b.max).all()
             })
             .collect();
-        let boxes: Vec<obvhs::aabb::Aabb> = ids
+        let mut refs: Vec<PrimRef> = ids
             .iter()
-            .map(|&i| {
+            .enumerate()
+            .map(|(k, &i)| {
                 let b = bounds[i as usize];
                 debug_assert!(b.min.is_finite() && b.max.is_finite(), "item {i}: {b:?}");
-                obvhs::aabb::Aabb::new(Vec3A::from(b.min), Vec3A::from(b.max))
+                PrimRef::new(k as u32, Vec3A::from(b.min), Vec3A::from(b.max))
             })
             .collect();
         let all = ids
             .iter()
             .fold(Aabb::EMPTY, |acc, &i| acc.union(bounds[i as usize]));
-        if boxes.is_empty() {
-            return SceneBvh {
-                nodes: Vec::new(),
-                items: Vec::new(),
-                bounds: all,
-            };
-        }
-        let bvh2 = PlocBuilder::with_capacity(boxes.len()).build(
-            PlocSearchDistance::Minimum,
-            &boxes,
-            (0..boxes.len() as u32).collect(),
-            SortPrecision::U64,
-            0,
-        );
+        // One item per leaf: every item is culled by its own box.
+        let (nodes, runs, _) = build_wide_refs(&mut refs, 1);
         SceneBvh {
-            items: bvh2
-                .primitive_indices
-                .iter()
-                .map(|&k| ids[k as usize])
-                .collect(),
-            nodes: bvh2.nodes,
+            nodes,
+            runs,
+            items: refs.iter().map(|r| ids[r.id() as usize]).collect(),
             bounds: all,
         }
     }
@@ -91,13 +81,15 @@ impl SceneBvh {
     /// Bytes held by the structure.
     pub fn bytes(&self) -> usize {
         std::mem::size_of::<Self>()
-            + self.nodes.capacity() * std::mem::size_of::<Bvh2Node>()
+            + self.nodes.capacity() * std::mem::size_of::<WideNode>()
+            + self.runs.capacity() * std::mem::size_of::<(u32, u32)>()
             + self.items.capacity() * std::mem::size_of::<u32>()
     }
 
     /// The closest item hit: `test(item, ray)` returns the α of the item's
     /// closest hit inside `ray`'s interval, whose t_max is lowered to the
     /// closest α found so far. Returns (item, α).
+    #[inline(always)]
     pub fn closest(
         &self,
         ray: &Ray,
@@ -121,6 +113,7 @@ impl SceneBvh {
 
     /// True when `test(item, ray)` is true for some item the ray may reach;
     /// stops at the first.
+    #[inline(always)]
     pub fn any(&self, ray: &Ray, mut test: impl FnMut(u32, &Ray) -> bool) -> bool {
         let mut hit = false;
         self.traverse(ray, |item, _| {
@@ -135,60 +128,55 @@ impl SceneBvh {
     /// traversal by returning true.
     #[inline(always)]
     fn traverse(&self, ray: &Ray, mut leaf: impl FnMut(u32, &mut SlabRay) -> bool) {
-        let Some(root) = self.nodes.first() else {
+        if self.nodes.is_empty() {
             return;
-        };
-        let mut slab = SlabRay::new(ray);
-        let enter = |slab: &SlabRay, n: &Bvh2Node| slab.enter(n.aabb.min.into(), n.aabb.max.into());
-        let Some(mut t_enter) = enter(&slab, root) else {
-            return;
-        };
-        let mut current = 0usize;
-        let mut stack = Stack::<(u32, f32), 64>::new();
-        loop {
-            // A node popped from the stack may now lie beyond the closest hit.
-            if t_enter <= slab.t_max_wide {
-                let node = &self.nodes[current];
-                if node.is_leaf() {
-                    let first = node.first_index as usize;
-                    for &item in &self.items[first..first + node.prim_count as usize] {
-                        if leaf(item, &mut slab) {
+        }
+        let mut wide = WideRay::new(ray);
+        let mut stack = Stack::<(ChildRef, f32), 64>::new();
+        let mut next = Some(ChildRef::node(0));
+        while let Some(current) = next {
+            if let Some(range) = current.packs() {
+                for &(first, count) in &self.runs[range] {
+                    let run = &self.items[first as usize..(first + count) as usize];
+                    for &item in run {
+                        if leaf(item, &mut wide.slab) {
                             return;
                         }
                     }
-                } else {
-                    let l = node.first_index as usize;
-                    let (tl, tr) = (
-                        enter(&slab, &self.nodes[l]),
-                        enter(&slab, &self.nodes[l + 1]),
-                    );
-                    match (tl, tr) {
-                        (Some(a), Some(b)) => {
-                            let (near, far) = if a <= b {
-                                ((l, a), (l + 1, b))
-                            } else {
-                                ((l + 1, b), (l, a))
-                            };
-                            stack.push((far.0 as u32, far.1));
-                            (current, t_enter) = near;
-                            continue;
+                }
+            } else {
+                let node = &self.nodes[current.0 as usize];
+                let (mut mask, t_near) = wide.child_hits(node);
+                if mask != 0 {
+                    // The hit children, nearest last.
+                    let mut hits = [(ChildRef::EMPTY, 0.0f32); WIDTH];
+                    let mut n = 0;
+                    while mask != 0 {
+                        let i = mask.trailing_zeros() as usize;
+                        mask &= mask - 1;
+                        let mut j = n;
+                        while j > 0 && hits[j - 1].1 < t_near[i] {
+                            hits[j] = hits[j - 1];
+                            j -= 1;
                         }
-                        (Some(a), None) => {
-                            (current, t_enter) = (l, a);
-                            continue;
-                        }
-                        (None, Some(b)) => {
-                            (current, t_enter) = (l + 1, b);
-                            continue;
-                        }
-                        (None, None) => {}
+                        hits[j] = (node.children[i], t_near[i]);
+                        n += 1;
                     }
+                    for &h in &hits[..n - 1] {
+                        stack.push(h);
+                    }
+                    next = Some(hits[n - 1].0);
+                    continue;
                 }
             }
-            match stack.pop() {
-                Some((n, t)) => (current, t_enter) = (n as usize, t),
-                None => return,
-            }
+            // The next waiting child that may still hold a closer hit.
+            next = loop {
+                match stack.pop() {
+                    None => break None,
+                    Some((child, t_near)) if t_near <= wide.slab.t_max_wide => break Some(child),
+                    Some(_) => {}
+                }
+            };
         }
     }
 }

@@ -42,24 +42,7 @@ pub fn build_wide(
             PrimRef::new(id, a.min(b).min(c), a.max(b).max(c))
         })
         .collect_into_vec(&mut refs);
-    if refs.is_empty() {
-        return (Vec::new(), Vec::new(), Aabb::EMPTY);
-    }
-    let root = Span::around(&refs, 0);
-    let bounds = Aabb {
-        min: root.bounds.lo.into(),
-        max: root.bounds.hi.into(),
-    };
-    let (nodes, pack_runs) = if root.len() <= LEAF_TRIANGLES {
-        // A small mesh: one wide node with all of it as its one leaf.
-        let mut b = Builder::with_root();
-        let child = b.leaf(&root);
-        set(&mut b.nodes[0], 0, child, &root);
-        (b.nodes, b.packs)
-    } else {
-        let b = subtree(&mut refs, root);
-        (b.nodes, b.packs)
-    };
+    let (nodes, pack_runs, bounds) = build_wide_refs(&mut refs, LEAF_TRIANGLES);
     let mut packs = huge_pages::with_capacity(pack_runs.len());
     pack_runs
         .par_iter()
@@ -75,10 +58,43 @@ pub fn build_wide(
     (nodes, packs, bounds)
 }
 
+/// The wide nodes (node 0 the root) over the primitives `refs`, which it
+/// reorders, with leaves of at most `leaf_max` (1..=8) primitives; each
+/// leaf's packs are runs (first, count ≤ [`PACK`]) of `refs` in their new
+/// order; and the box around them all. No primitives give no nodes. The
+/// layout of [`build_wide`], for any boxed primitives.
+pub fn build_wide_refs(
+    refs: &mut [PrimRef],
+    leaf_max: usize,
+) -> (Vec<WideNode>, Vec<(u32, u32)>, Aabb) {
+    assert!(
+        (1..=LEAF_TRIANGLES).contains(&leaf_max),
+        "leaves of 1 to 8 primitives"
+    );
+    if refs.is_empty() {
+        return (Vec::new(), Vec::new(), Aabb::EMPTY);
+    }
+    let root = Span::around(refs, 0);
+    let bounds = Aabb {
+        min: root.bounds.lo.into(),
+        max: root.bounds.hi.into(),
+    };
+    let b = if root.len() <= leaf_max {
+        // A small set: one wide node with all of it as its one leaf.
+        let mut b = Builder::with_root(leaf_max);
+        let child = b.leaf(&root);
+        set(&mut b.nodes[0], 0, child, &root);
+        b
+    } else {
+        subtree(refs, root, leaf_max)
+    };
+    (b.nodes, b.packs, bounds)
+}
+
 /// The nodes (its root first) and pack runs of the subtree over `span`,
-/// which has more than [`LEAF_TRIANGLES`] triangles, all of them `refs`.
-fn subtree(refs: &mut [PrimRef], span: Span) -> Builder {
-    let mut top = Builder::with_root();
+/// which has more than `leaf_max` primitives, all of them `refs`.
+fn subtree(refs: &mut [PrimRef], span: Span, leaf_max: usize) -> Builder {
+    let mut top = Builder::with_root(leaf_max);
     if span.len() <= PARALLEL_SUBTREE {
         top.fill_all(refs, span.begin, span, 0);
         return top;
@@ -101,7 +117,7 @@ fn subtree(refs: &mut [PrimRef], span: Span) -> Builder {
     let built: Vec<Builder> = tasks
         .par_iter()
         .zip(runs)
-        .map(|(t, run)| subtree(run, t.span))
+        .map(|(t, run)| subtree(run, t.span, leaf_max))
         .collect();
     top.append(&tasks, built)
 }
@@ -119,6 +135,8 @@ struct Task {
 /// this builder until appended).
 #[derive(Default)]
 struct Builder {
+    /// The most primitives in a leaf.
+    leaf_max: usize,
     nodes: Vec<WideNode>,
     /// Each pack's triangles: (first primitive, count ≤ [`PACK`]).
     packs: Vec<(u32, u32)>,
@@ -133,8 +151,9 @@ fn set(node: &mut WideNode, slot: usize, child: ChildRef, span: &Span) {
 
 impl Builder {
     /// A builder holding only its (empty) root node.
-    fn with_root() -> Builder {
+    fn with_root(leaf_max: usize) -> Builder {
         Builder {
+            leaf_max,
             nodes: vec![WideNode::EMPTY],
             ..Builder::default()
         }
@@ -158,16 +177,17 @@ impl Builder {
         let mut todo = vec![(0usize, span)];
         while let Some((node, span)) = todo.pop() {
             let run = &mut refs[span.begin - base..span.end - base];
-            let (children, len) = open(run, &span);
+            let (children, len) = open(run, &span, self.leaf_max);
             let mut slot = 0;
             // Leaves first, then inner nodes and tasks (the inner nodes
             // adjacent in memory).
-            for c in children[..len].iter().filter(|c| c.len() <= LEAF_TRIANGLES) {
+            let leaf_max = self.leaf_max;
+            for c in children[..len].iter().filter(|c| c.len() <= leaf_max) {
                 let child = self.leaf(c);
                 set(&mut self.nodes[node], slot, child, c);
                 slot += 1;
             }
-            let inner = |c: &&Span| c.len() > LEAF_TRIANGLES;
+            let inner = |c: &&Span| c.len() > leaf_max;
             for c in children[..len].iter().filter(inner) {
                 if c.len() <= defer {
                     self.tasks.push(Task {
@@ -232,17 +252,17 @@ fn relocate(node: &WideNode, node_offset: usize, pack_offset: usize) -> WideNode
 }
 
 /// The up to eight children of the wide node over `span` (whose triangles
-/// are `refs`, more than [`LEAF_TRIANGLES`] of them): `span` split in two,
+/// are `refs`, more than `leaf_max` of them): `span` split in two,
 /// then repeatedly the largest-area child with more than a leaf's worth
 /// of triangles split in two.
-fn open(refs: &mut [PrimRef], span: &Span) -> ([Span; WIDTH], usize) {
+fn open(refs: &mut [PrimRef], span: &Span, leaf_max: usize) -> ([Span; WIDTH], usize) {
     let mut children = [*span; WIDTH];
     let mut len = 1;
     while len < WIDTH {
         let widest = children[..len]
             .iter()
             .enumerate()
-            .filter(|(_, c)| c.len() > LEAF_TRIANGLES)
+            .filter(|(_, c)| c.len() > leaf_max)
             .max_by(|(_, a), (_, b)| a.bounds.half_area().total_cmp(&b.bounds.half_area()));
         let Some((i, c)) = widest else { break };
         let c = *c;

@@ -56,25 +56,35 @@ impl World {
                 }
             }
         }
-        let has_shapes = self.items.len() > self.meshes.len();
+        let top = self.top.for_method(method);
+        let has_shapes = top.items.len() > self.meshes.len();
         let mut tests = 0usize;
         for (ray, hit) in rays.iter().zip(hits.iter_mut()) {
             crate::geometry::counters::count_ray();
             tests += self.meshes.len();
             if has_shapes {
                 let search = hit.map_or(*ray, |h| ray.with_t_max(h.alpha));
-                let shape =
-                    self.top
-                        .closest(&search, |item, ray| match self.items[item as usize] {
-                            Item::Shape(id) => {
-                                tests += 1;
-                                self.analytic(id).intersect(ray, method)
-                            }
-                            Item::Mesh(_) => None,
-                        });
+                let mut last_lone = 0;
+                let shape = top
+                    .bvh
+                    .closest(&search, |item, ray| match top.items[item as usize] {
+                        Item::Shape(id) => {
+                            tests += 1;
+                            self.analytic(id).intersect(ray, method)
+                        }
+                        Item::LoneTriangles => {
+                            tests += 1;
+                            let hit = self.top.lone_triangles().closest(ray)?;
+                            last_lone = hit.object;
+                            Some(hit.alpha)
+                        }
+                        Item::Mesh(_) => None,
+                    });
                 if let Some((item, alpha)) = shape {
-                    let Item::Shape(object) = self.items[item as usize] else {
-                        unreachable!("only shapes are accepted above")
+                    let object = match top.items[item as usize] {
+                        Item::Shape(object) => object,
+                        Item::LoneTriangles => last_lone,
+                        Item::Mesh(_) => unreachable!("meshes were traced above"),
                     };
                     *hit = Some(Hit {
                         object,

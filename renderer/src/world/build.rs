@@ -6,8 +6,9 @@ use super::blas_cache;
 use super::emitters::Emitters;
 use super::light::Light;
 use super::placed_mesh::PlacedMesh;
+use super::top_level::TopLevels;
 use super::{Item, Object, RenderError, World};
-use crate::accel::{Aabb, SceneBvh};
+use crate::accel::Aabb;
 use crate::camera::Camera;
 use crate::shapes::Shape;
 use glam::{Affine3A, Vec3};
@@ -40,6 +41,7 @@ impl World {
         let meshes = place_meshes(&resolved.objects);
         let mut objects = Vec::with_capacity(resolved.objects.len());
         let (mut items, mut bounds, mut unbounded) = (Vec::new(), Vec::new(), Vec::new());
+        let mut lone_triangles = Vec::new();
         let mut next_instance = 0u32;
         let mut magnitudes = Vec::with_capacity(resolved.objects.len());
         let largest = |min: Vec3, max: Vec3| min.abs().max(max.abs()).max_element();
@@ -78,6 +80,9 @@ impl World {
                         min: b.min - Vec3::splat(pad),
                         max: b.max + Vec3::splat(pad),
                     });
+                    if let Shape::Triangle(t) = shape {
+                        lone_triangles.push((id, [t.t0, t.t1, t.t2]));
+                    }
                 }
                 None => {
                     // An infinite plane: its hit points are placed from its point.
@@ -108,8 +113,7 @@ impl World {
             meshes,
             lights,
             ambient,
-            top: SceneBvh::build(&bounds),
-            items,
+            top: TopLevels::new(items, &bounds, &lone_triangles),
             unbounded,
             magnitudes,
         })

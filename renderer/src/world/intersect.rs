@@ -12,18 +12,27 @@ impl World {
     pub fn intersect(&self, ray: &Ray, method: Method) -> Option<Hit> {
         crate::geometry::counters::count_ray();
         let mut tests = 0usize;
-        // The triangle of the last hit the top level accepted: each accepted
-        // hit lies inside the interval shrunk by the one before, so the last
-        // is the nearest.
+        let top = self.top.for_method(method);
+        // The triangle (or lone triangle's object) of the last hit the top
+        // level accepted: each accepted hit lies inside the interval shrunk
+        // by the one before, so the last is the nearest.
         let mut last_triangle = None;
-        let found = self
-            .top
-            .closest(ray, |item, ray| match self.items[item as usize] {
+        let mut last_lone = 0;
+        let found = top
+            .bvh
+            .closest(ray, |item, ray| match top.items[item as usize] {
                 Item::Shape(id) => {
                     tests += 1;
                     let alpha = self.analytic(id).intersect(ray, method)?;
                     last_triangle = None;
                     Some(alpha)
+                }
+                Item::LoneTriangles => {
+                    tests += 1;
+                    let hit = self.top.lone_triangles().closest(ray)?;
+                    last_triangle = None;
+                    last_lone = hit.object;
+                    Some(hit.alpha)
                 }
                 Item::Mesh(instance) => {
                     tests += 1;
@@ -38,9 +47,10 @@ impl World {
                 }
             });
         let nearest = found.map(|(item, alpha)| Hit {
-            object: match self.items[item as usize] {
+            object: match top.items[item as usize] {
                 Item::Shape(id) => id,
                 Item::Mesh(instance) => self.meshes[instance as usize].object,
+                Item::LoneTriangles => last_lone,
             },
             alpha,
             triangle: last_triangle,
@@ -80,12 +90,14 @@ impl World {
     pub fn occluded(&self, ray: &Ray, method: Method) -> bool {
         crate::geometry::counters::count_ray();
         let mut tests = 0usize;
+        let top = self.top.for_method(method);
         let blocked = self.unbounded.iter().any(|&id| {
             tests += 1;
             self.analytic(id).intersect(ray, method).is_some()
-        }) || self.top.any(ray, |item, ray| {
+        }) || top.bvh.any(ray, |item, ray| {
             tests += 1;
-            match self.items[item as usize] {
+            match top.items[item as usize] {
+                Item::LoneTriangles => self.top.lone_triangles().any(ray),
                 Item::Shape(id) => self.analytic(id).intersect(ray, method).is_some(),
                 Item::Mesh(instance) => self.meshes[instance as usize].any_hit(ray),
             }

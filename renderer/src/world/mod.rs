@@ -12,11 +12,12 @@ mod hit;
 mod intersect;
 pub mod light;
 pub mod placed_mesh;
+mod top_level;
 
 pub use batch::BATCHED_INSTANCES;
 pub use hit::{Hit, TriangleRef};
 
-use crate::accel::{Aabb, SceneBvh};
+use crate::accel::Aabb;
 use crate::camera::{Camera, CameraError};
 use crate::geometry::ray::Ray;
 use crate::shapes::{Shape, Surface};
@@ -53,13 +54,16 @@ pub enum Object {
     },
 }
 
-/// What the top-level BVH holds: an analytic shape or a mesh instance.
+/// What the top-level BVH holds: an analytic shape, a mesh instance, or
+/// (robust method) the lone triangles grouped in one BVH.
 #[derive(Clone, Copy, Debug)]
 enum Item {
     /// The object with this id, an analytic shape.
     Shape(u32),
     /// This entry of `meshes`.
     Mesh(u32),
+    /// The world's [`top_level::LoneTriangles`].
+    LoneTriangles,
 }
 
 /// A scene prepared for rendering: built once per render, never edited.
@@ -85,10 +89,8 @@ pub struct World {
     pub sky: Vec3,
     /// Every emissive surface, as area lights.
     pub emitters: Emitters,
-    /// The top level's items, in BVH item order.
-    items: Vec<Item>,
-    /// The top level over every bounded item.
-    top: SceneBvh,
+    /// The top level over every bounded item, as each method traces it.
+    top: top_level::TopLevels,
     /// Objects no box holds (infinite planes), tested by every ray.
     unbounded: Vec<u32>,
     /// Per object, the largest coordinate magnitude of its geometry (see [`World::magnitude`]).
@@ -169,7 +171,7 @@ impl World {
 
     /// The box around every bounded object (the top level's root box).
     pub fn bounded_box(&self) -> Aabb {
-        self.top.bounds()
+        self.top.all.bvh.bounds()
     }
 
     /// Triangles drawn (every mesh instance counts its mesh's triangles).

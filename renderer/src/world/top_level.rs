@@ -1,0 +1,233 @@
+//! The top level of a world's BVH as each intersection method sees it. With
+//! [`Method::Lecture`] every bounded object is an item of one [`SceneBvh`],
+//! each tested with its own formulas. With [`Method::Robust`], when there are
+//! at least [`GROUPED_TRIANGLES`] lone triangles (`<triangle>` objects), they
+//! leave it for one mesh BVH of their own, itself one item: its packed
+//! watertight test is exactly [`Triangle::hit`] with `Method::Robust` (bit for
+//! bit the same α), four triangles at a time, and its 8-wide nodes cull
+//! them; a Cornell box of triangles then costs a few SIMD tests per ray
+//! instead of one scalar test per wall.
+//!
+//! [`Triangle::hit`]: crate::shapes::Triangle::hit
+
+use super::{Hit, Item};
+
+/// Lone triangles are grouped in a BVH of their own from this many on:
+/// below, preparing the ray for the packed test costs more than testing
+/// each triangle its box lets through.
+pub(super) const GROUPED_TRIANGLES: usize = 4;
+use crate::accel::{Aabb, MeshBvh, SceneBvh};
+use crate::geometry::ray::Ray;
+use crate::shapes::Method;
+use glam::Vec3;
+
+/// Items in a BVH over their boxes.
+#[derive(Clone, Debug)]
+pub(super) struct TopLevel {
+    /// The BVH; its item ids index `items`.
+    pub(super) bvh: SceneBvh,
+    /// What each item is.
+    pub(super) items: Vec<Item>,
+}
+
+impl TopLevel {
+    /// The BVH over `items`, item i boxed by `bounds[i]`.
+    pub(super) fn new(items: Vec<Item>, bounds: &[Aabb]) -> Self {
+        Self {
+            bvh: SceneBvh::build(bounds),
+            items,
+        }
+    }
+}
+
+/// The lone triangles of a world in one mesh BVH ([`Method::Robust`] only).
+#[derive(Clone, Debug)]
+pub(super) struct LoneTriangles {
+    bvh: MeshBvh,
+    /// The object id of each triangle, in the BVH's triangle order.
+    objects: Vec<u32>,
+}
+
+impl LoneTriangles {
+    /// The BVH over `triangles`: (object id, corners t0, t1, t2) each;
+    /// `None` when there are fewer than [`GROUPED_TRIANGLES`].
+    pub(super) fn new(triangles: &[(u32, [Vec3; 3])]) -> Option<Self> {
+        if triangles.len() < GROUPED_TRIANGLES {
+            return None;
+        }
+        let positions: Vec<Vec3> = triangles.iter().flat_map(|(_, c)| *c).collect();
+        let indices: Vec<[u32; 3]> = (0..triangles.len() as u32)
+            .map(|k| [3 * k, 3 * k + 1, 3 * k + 2])
+            .collect();
+        Some(Self {
+            bvh: MeshBvh::build(&positions, &indices),
+            objects: triangles.iter().map(|&(object, _)| object).collect(),
+        })
+    }
+
+    /// The nearest lone triangle hit in the ray's interval, as the object it is.
+    #[inline]
+    pub(super) fn closest(&self, ray: &Ray) -> Option<Hit> {
+        self.bvh.closest_hit(ray).map(|h| Hit {
+            object: self.objects[h.triangle as usize],
+            alpha: h.alpha,
+            triangle: None,
+        })
+    }
+
+    /// True when some lone triangle lies on the ray inside its interval.
+    #[inline]
+    pub(super) fn any(&self, ray: &Ray) -> bool {
+        self.bvh.any_hit(ray)
+    }
+
+    /// The box around every lone triangle.
+    pub(super) fn bounds(&self) -> Aabb {
+        self.bvh.bounds()
+    }
+}
+
+/// The top levels of both methods.
+#[derive(Clone, Debug)]
+pub(super) struct TopLevels {
+    /// Every bounded object ([`Method::Lecture`]).
+    pub(super) all: TopLevel,
+    /// [`Method::Robust`]'s: the lone triangles grouped in
+    /// `lone_triangles`, one item; `None` when they are not grouped (then
+    /// `all` serves both methods).
+    pub(super) robust: Option<TopLevel>,
+    /// The grouped lone triangles ([`Item::LoneTriangles`]).
+    pub(super) lone_triangles: Option<LoneTriangles>,
+}
+
+impl TopLevels {
+    /// The top levels over `items` (boxed by `bounds`) for both methods;
+    /// `lone_triangles` (object id and corners) are grouped for the robust
+    /// one when there are enough of them.
+    pub(super) fn new(
+        items: Vec<Item>,
+        bounds: &[Aabb],
+        lone_triangles: &[(u32, [Vec3; 3])],
+    ) -> TopLevels {
+        let grouped = LoneTriangles::new(lone_triangles);
+        let robust = grouped.as_ref().map(|group| {
+            let mut lone = Vec::new();
+            for &(id, _) in lone_triangles {
+                lone.resize(lone.len().max(id as usize + 1), false);
+                lone[id as usize] = true;
+            }
+            let is_lone = |item: &Item| match *item {
+                Item::Shape(id) => lone.get(id as usize).copied().unwrap_or(false),
+                Item::Mesh(_) | Item::LoneTriangles => false,
+            };
+            let (mut robust_items, mut robust_bounds): (Vec<Item>, Vec<Aabb>) = items
+                .iter()
+                .zip(bounds)
+                .filter(|(item, _)| !is_lone(item))
+                .map(|(item, b)| (*item, *b))
+                .unzip();
+            robust_items.push(Item::LoneTriangles);
+            robust_bounds.push(group.bounds());
+            TopLevel::new(robust_items, &robust_bounds)
+        });
+        TopLevels {
+            all: TopLevel::new(items, bounds),
+            robust,
+            lone_triangles: grouped,
+        }
+    }
+
+    /// The top level `method` traces.
+    #[inline(always)]
+    pub(super) fn for_method(&self, method: Method) -> &TopLevel {
+        match (method, &self.robust) {
+            (Method::Robust, Some(robust)) => robust,
+            _ => &self.all,
+        }
+    }
+
+    /// The grouped lone triangles, which only [`Item::LoneTriangles`] refers to.
+    #[inline(always)]
+    pub(super) fn lone_triangles(&self) -> &LoneTriangles {
+        self.lone_triangles
+            .as_ref()
+            .expect("an Item::LoneTriangles exists only with its group")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::integrator::sampler::Sampler;
+    use crate::world::World;
+    use std::fmt::Write;
+
+    /// `n` random lone triangles and `n` / 4 spheres in a 10-unit cube, with
+    /// a few triangles sharing edges (a quad split on its diagonal).
+    fn world(n: usize, seed: u64) -> World {
+        let mut rng = Sampler::for_sample(seed, 0, 0, 0);
+        let mut point = || Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 10.0 - 5.0;
+        let v = |p: Vec3| format!("{} {} {}", p.x, p.y, p.z);
+        let mut xml = String::from("<scene>");
+        for _ in 0..n {
+            let (a, b, c) = (point(), point(), point());
+            let _ = write!(
+                xml,
+                r#"<triangle t0="{}" t1="{}" t2="{}"/>"#,
+                v(a),
+                v(b),
+                v(c)
+            );
+        }
+        for _ in 0..n / 4 {
+            let _ = write!(xml, r#"<sphere center="{}" radius="0.7"/>"#, v(point()));
+        }
+        xml.push_str(
+            r#"<triangle t0="-5 -5 0" t1="5 -5 0" t2="5 5 0"/><triangle t0="-5 -5 0" t1="5 5 0" t2="-5 5 0"/></scene>"#,
+        );
+        World::from_scene(&scene::read_str(&xml, "t.xml").expect("parses")).expect("valid")
+    }
+
+    #[test]
+    fn grouped_lone_triangles_find_the_brute_force_nearest_alpha_bit_for_bit() {
+        for n in [2, 3, 4, 40] {
+            let world = world(n, n as u64);
+            assert_eq!(
+                world.top.lone_triangles.is_some(),
+                n + 2 >= GROUPED_TRIANGLES,
+                "{n} triangles"
+            );
+            let mut rng = Sampler::for_sample(7, 0, 0, 0);
+            let mut hits = 0;
+            for k in 0..3000 {
+                let origin = rng.next_direction() * 8.0;
+                let mut ray = Ray::new(origin, rng.next_direction());
+                if k % 4 == 0 {
+                    ray.t_max = 6.0 * rng.next_f32();
+                }
+                // Brute force: every object's own robust test.
+                let want = (0..world.objects.len() as u32)
+                    .filter_map(|id| {
+                        let alpha = world.analytic(id).intersect(&ray, Method::Robust)?;
+                        Some((id, alpha))
+                    })
+                    .min_by(|a, b| a.1.total_cmp(&b.1));
+                let got = world.intersect(&ray, Method::Robust);
+                assert_eq!(
+                    got.map(|h| h.alpha.to_bits()),
+                    want.map(|w| w.1.to_bits()),
+                    "{n} triangles, ray {k}: {ray:?}"
+                );
+                if let (Some(got), Some(_)) = (got, want) {
+                    // On a tie any object at that α may win, but it must be one.
+                    let at = world.analytic(got.object).intersect(&ray, Method::Robust);
+                    assert_eq!(at, Some(got.alpha), "{n} triangles, ray {k}");
+                    assert_eq!(got.triangle, None, "a lone triangle is an object");
+                    hits += 1;
+                }
+                assert_eq!(world.occluded(&ray, Method::Robust), want.is_some());
+            }
+            assert!(hits > 100, "{n} triangles: too few hits ({hits})");
+        }
+    }
+}
