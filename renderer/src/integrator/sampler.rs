@@ -78,18 +78,41 @@ struct SobolStream {
 }
 
 impl SobolStream {
-    fn next_draw(&mut self) -> [f32; 4] {
+    /// The next draw's first `N` (1 or 2) numbers: Sobol dimensions 0..N of
+    /// the draw's own scramble, or independent numbers past [`SOBOL_DRAWS`]
+    /// (two of them whatever `N`, so that later draws do not depend on it).
+    #[inline]
+    fn next_draw<const N: usize>(&mut self) -> [f32; N] {
         if self.draw >= SOBOL_DRAWS {
             self.draw += 1;
             let x = uniform(self.tail.next_u32());
-            return [x, uniform(self.tail.next_u32()), 0.0, 0.0];
+            let y = uniform(self.tail.next_u32());
+            return std::array::from_fn(|d| [x, y][d]);
         }
         // Indices past the crate's length go on in another scramble.
         let lap = u64::from(self.index / SOBOL_LENGTH);
-        let seed = mix(self.pixel_seed ^ mix(u64::from(self.draw) | lap << 32));
+        let seed = mix(self.pixel_seed ^ mix(u64::from(self.draw) | lap << 32)) as u32;
         self.draw += 1;
-        sobol_burley::sample_4d(self.index % SOBOL_LENGTH, 0, seed as u32)
+        owen_sobol::<N>(self.index % SOBOL_LENGTH, seed)
     }
+}
+
+/// Dimensions 0..N of sample `index` of the Owen-scrambled Sobol sequence
+/// of `seed`: `sobol_burley::sample(index, d, seed)` for each d, with the
+/// index shuffled once for all of them (the crate's own parts, so the
+/// numbers are the same bit for bit; checked by a test).
+#[inline]
+fn owen_sobol<const N: usize>(index: u32, seed: u32) -> [f32; N] {
+    use sobol_burley::parts::{hash, owen_scramble_rev, sobol_rev, u32_to_f32_norm};
+    /// The crate's per-dimension scramble constants (dimensions 0–3).
+    const DIMENSION_KEYS: [u32; 4] = [0x912f_69ba, 0x174f_18ab, 0x691e_72ca, 0xb40c_c1b8];
+    let shuffled_rev = owen_scramble_rev(index.reverse_bits(), hash(seed ^ 0x79c6_8e4a));
+    let seed = seed.wrapping_mul(0x9c8f_2d3b);
+    std::array::from_fn(|d| {
+        let sobol_rev = sobol_rev(shuffled_rev, d as u32);
+        let scrambled = owen_scramble_rev(sobol_rev, hash(seed ^ DIMENSION_KEYS[d]));
+        u32_to_f32_norm(scrambled.reverse_bits())
+    })
 }
 
 /// 24 random mantissa bits as a number in [0, 1): exactly representable, never 1.0.
@@ -145,7 +168,7 @@ impl Sampler {
     pub fn next_f32(&mut self) -> f32 {
         match &mut self.source {
             Source::Independent(rng) => uniform(rng.next_u32()),
-            Source::Sobol(stream) => stream.next_draw()[0],
+            Source::Sobol(stream) => stream.next_draw::<1>()[0],
         }
     }
 
@@ -166,7 +189,7 @@ impl Sampler {
                 Vec2::new(x, self.next_f32())
             }
             Source::Sobol(stream) => {
-                let [x, y, ..] = stream.next_draw();
+                let [x, y] = stream.next_draw::<2>();
                 Vec2::new(x, y)
             }
         }
@@ -176,6 +199,19 @@ impl Sampler {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn owen_sobol_is_the_crates_sample_4d_bit_for_bit() {
+        let mut rng = Pcg32::new(3, 5);
+        for _ in 0..20_000 {
+            let (index, seed) = (rng.next_u32() % SOBOL_LENGTH, rng.next_u32());
+            let four = sobol_burley::sample_4d(index, 0, seed);
+            let two = owen_sobol::<2>(index, seed);
+            let one = owen_sobol::<1>(index, seed);
+            assert_eq!(two.map(f32::to_bits), [four[0], four[1]].map(f32::to_bits));
+            assert_eq!(one[0].to_bits(), four[0].to_bits());
+        }
+    }
 
     fn first_numbers(mut sampler: Sampler, n: usize) -> Vec<f32> {
         (0..n).map(|_| sampler.next_f32()).collect()
