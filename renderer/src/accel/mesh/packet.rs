@@ -148,7 +148,12 @@ impl Packet {
                 self.t_min[i],
                 self.t_max[i],
             );
-            let hit = hit && active[i];
+            // `&`, not `&&`: a short-circuit makes the loop conditional, and LLVM
+            // if-converts it into masked stores (vpmaskmovd) to `bits` that the
+            // fold below reloads at once; the loads cannot be forwarded from
+            // masked stores and stall (on the AMD EPYC measured, packets ran at
+            // 5.4 Mrays/s instead of 10 on the knot's primary rays).
+            let hit = hit & active[i];
             bits[i] = (hit as u32) << i;
             entry[i] = if hit { near } else { f32::INFINITY };
         }
