@@ -7,6 +7,7 @@
 //! pixel inspector watch every ray an integrator traces.
 
 pub mod adaptive;
+mod lanes;
 mod options;
 pub mod path;
 pub mod recorder;
@@ -22,5 +23,5 @@ pub use path::{path, path_recorded};
 pub use recorder::{NoRecorder, Note, RayKind, Recorder};
 pub use sample_pixel::{TracedSample, sample_offset, sample_pixel, sample_pixel_recorded};
 pub use shading_context::ShadingContext;
-pub use trace_samples::{SampleRef, SampleResult, trace_samples};
+pub use trace_samples::{SampleRef, SampleResult, trace_samples, trace_samples_batched};
 pub use whitted::{whitted, whitted_recorded};

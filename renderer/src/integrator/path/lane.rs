@@ -1,14 +1,15 @@
-//! One path as a state machine that stops wherever it needs rays traced: a
-//! path waits for the closest hit of its next ray, then for the shadow rays
-//! of its vertex. Its arithmetic never depends on how the rays were traced,
-//! so one path traced alone ([`super::path_recorded`]) and the same path
-//! traced in a batch with others ([`super::batch`]) give the same radiance
-//! bit for bit.
+//! One path as a [`Lane`]: it waits for the closest hit of its next ray,
+//! then for the shadow rays of its vertex. Its arithmetic never depends on
+//! how the rays were traced, so one path traced alone
+//! ([`super::path_recorded`]) and the same path traced in a batch with
+//! others ([`crate::integrator::trace_samples`]) give the same radiance bit
+//! for bit.
 
 use super::{RR_DEPTH, SHADOW_SHORTENING, power_heuristic};
 use crate::geometry::offset::offset_ray_origin;
 use crate::geometry::ray::Ray;
 use crate::integrator::RenderOptions;
+use crate::integrator::lanes::{Lane, Next, ShadowRay, ShadowTarget};
 use crate::integrator::recorder::{EmitterLightSample, Note, Recorder};
 use crate::integrator::sampler::{BounceDraw, Sampler};
 use crate::integrator::shading_context::ShadingContext;
@@ -21,10 +22,10 @@ use glam::Vec3;
 /// waits on.
 pub(crate) struct PathLane<N> {
     /// Radiance gathered so far.
-    pub(crate) radiance: Vec3,
+    radiance: Vec3,
     throughput: Vec3,
     /// The ray whose closest hit the path waits for.
-    pub(crate) ray: Ray,
+    ray: Ray,
     /// Where the ray started and the BSDF density it was drawn with; `None`
     /// for the camera ray and after a delta lobe (no light sample competes).
     previous: Option<(Vec3, f32)>,
@@ -50,37 +51,14 @@ struct PendingVertex {
     next: Option<(BsdfSample, Vec3)>,
 }
 
-/// A shadow ray a vertex waits on, and the radiance it lets through
-/// (before the vertex's throughput) when nothing blocks it.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct ShadowRay {
-    /// The ray, its interval ending before the light.
-    pub(crate) ray: Ray,
-    /// f · irradiance for a point or directional light; f · L · weight / pdf
-    /// for a point on an emitter.
-    lit: Vec3,
-    /// Which light it goes toward.
-    target: ShadowTarget,
-}
-
-#[derive(Clone, Copy, Debug)]
-enum ShadowTarget {
-    Light(usize),
-    Emitter(EmitterLightSample),
-}
-
-/// Whether a path goes on after [`PathLane::shade`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Next {
-    /// Its next ray waits for its closest hit (after the shadow rays).
-    Trace,
-    /// The path is complete once its shadow rays are in.
-    Done,
-}
-
-impl<N: Copy> PathLane<N> {
+impl<N: Copy> Lane<N> for PathLane<N> {
     /// A path starting with the camera ray `ray`, drawing from `sampler`.
-    pub(crate) fn new<R: Recorder<Node = N>>(ray: Ray, sampler: Sampler, rec: &mut R) -> Self {
+    fn start<R: Recorder<Node = N>>(
+        _: &RenderOptions,
+        ray: Ray,
+        sampler: Sampler,
+        rec: &mut R,
+    ) -> Self {
         Self {
             radiance: Vec3::ZERO,
             throughput: Vec3::ONE,
@@ -94,11 +72,16 @@ impl<N: Copy> PathLane<N> {
         }
     }
 
-    /// Shades `hit`, the closest hit of [`PathLane::ray`] (`None` on a miss):
-    /// adds emission, appends the vertex's shadow rays to `shadows` (in the
-    /// order [`PathLane::finish_vertex`] must get their answers), and draws
-    /// the next ray.
-    pub(crate) fn shade<R: Recorder<Node = N>>(
+    fn ray(&self) -> &Ray {
+        &self.ray
+    }
+
+    fn radiance(&self) -> Vec3 {
+        self.radiance
+    }
+
+    /// Adds emission, appends the vertex's shadow rays, and draws the next ray.
+    fn shade<R: Recorder<Node = N>>(
         &mut self,
         world: &World,
         options: &RenderOptions,
@@ -172,10 +155,9 @@ impl<N: Copy> PathLane<N> {
         Next::Trace
     }
 
-    /// Adds the light of the shadow rays [`PathLane::shade`] appended, now
-    /// that `blocked` tells which of them something blocks; records them,
+    /// Adds the light of the shadow rays that nothing blocks; records them,
     /// then the next ray.
-    pub(crate) fn finish_vertex<R: Recorder<Node = N>>(
+    fn finish<R: Recorder<Node = N>>(
         &mut self,
         shadows: &[ShadowRay],
         blocked: &[bool],

@@ -11,21 +11,21 @@
 //!   are each sampled at every smooth vertex;
 //! - no ambient term: only emitters, lights and the `<sky>` bring light.
 //!
-//! A path is a [`PathLane`]: a state machine that stops for its closest hits
-//! and its shadow rays, so that [`batch::trace_paths`] can trace the rays of
-//! many paths together and [`path_recorded`] one path alone, with the same
-//! result.
+//! A path is a [`PathLane`] ([`super::lanes`]): a state machine that stops
+//! for its closest hits and its shadow rays, so that the film can trace the
+//! rays of many paths together ([`super::trace_samples`]) and
+//! [`path_recorded`] one path alone, with the same result.
 
-pub mod batch;
 mod lane;
 
 use super::RenderOptions;
+use super::lanes::trace_alone;
 use super::recorder::{NoRecorder, Recorder};
 use super::sampler::Sampler;
 use crate::geometry::ray::Ray;
 use crate::world::World;
 use glam::Vec3;
-use lane::{Next, PathLane};
+pub(crate) use lane::PathLane;
 
 /// The first scattering event counted by Russian roulette (Mitsuba's `rr_depth`).
 pub const RR_DEPTH: u32 = 5;
@@ -66,22 +66,5 @@ pub fn path_recorded<R: Recorder>(
     sampler: Sampler,
     rec: &mut R,
 ) -> Vec3 {
-    let mut lane = PathLane::new(*ray, sampler, rec);
-    let mut shadows = Vec::new();
-    let mut blocked = Vec::new();
-    loop {
-        let hit = world.intersect(&lane.ray, options.method);
-        shadows.clear();
-        let next = lane.shade(world, options, hit, &mut shadows, rec);
-        blocked.clear();
-        blocked.extend(
-            shadows
-                .iter()
-                .map(|s| world.occluded(&s.ray, options.method)),
-        );
-        lane.finish_vertex(&shadows, &blocked, rec);
-        if next == Next::Done {
-            return lane.radiance;
-        }
-    }
+    trace_alone::<PathLane<R::Node>, R>(world, options, ray, sampler, rec)
 }

@@ -1,11 +1,12 @@
-//! The batched path tracer: every sample's radiance is the one the same
-//! sample gets traced alone, bit for bit, whatever the batch size, the
-//! order of the samples or the thread count.
+//! Both integrators traced in batches: every sample's radiance is the one
+//! the same sample gets traced alone, bit for bit, whatever the batch
+//! size, the order of the samples or the thread count.
 
 use glam::Vec3;
-use renderer::integrator::path::batch::trace_paths;
 use renderer::integrator::sampler::Sampling;
-use renderer::integrator::{Integrator, SampleRef, SampleResult, sample_pixel};
+use renderer::integrator::{
+    Integrator, SampleRef, SampleResult, sample_pixel, trace_samples_batched,
+};
 use renderer::{Film, Method, RenderOptions, World};
 use std::path::Path;
 
@@ -34,16 +35,22 @@ fn bits(v: Vec3) -> [u32; 3] {
 }
 
 #[test]
-fn a_batched_path_is_the_path_traced_alone_bit_for_bit_for_any_batch_size() {
+fn a_batched_sample_is_the_sample_traced_alone_bit_for_bit_for_any_batch_size() {
     let worlds = [
         ("spheres.xml", reference("spheres.xml", 24, 18)),
         ("rough.xml", reference("rough.xml", 16, 16)),
         ("glass.xml", shipped("glass.xml", 20, 12)),
+        ("seed.xml", shipped("seed.xml", 20, 12)),
+    ];
+    let settings = [
+        (Integrator::Path, Sampling::Independent),
+        (Integrator::Path, Sampling::Sobol),
+        (Integrator::Whitted, Sampling::Independent),
     ];
     for (name, world) in &worlds {
-        for sampling in [Sampling::Independent, Sampling::Sobol] {
+        for (integrator, sampling) in settings {
             let options = RenderOptions {
-                integrator: Integrator::Path,
+                integrator,
                 method: Method::Robust,
                 sampling,
                 seed: 5,
@@ -67,12 +74,12 @@ fn a_batched_path_is_the_path_traced_alone_bit_for_bit_for_any_batch_size() {
                 .collect();
             for batch in [1, 2, 7, 64, 1000] {
                 let mut results = vec![SampleResult::default(); samples.len()];
-                trace_paths(world, &options, &samples, batch, &mut results);
+                trace_samples_batched(world, &options, &samples, batch, &mut results);
                 for ((s, result), expected) in samples.iter().zip(&results).zip(&alone) {
                     assert_eq!(
                         &bits(result.radiance),
                         expected,
-                        "{name} {sampling:?} batch {batch}: pixel ({}, {}) sample {}",
+                        "{name} {integrator:?} {sampling:?} batch {batch}: pixel ({}, {}) sample {}",
                         s.i,
                         s.j,
                         s.sample
@@ -84,26 +91,30 @@ fn a_batched_path_is_the_path_traced_alone_bit_for_bit_for_any_batch_size() {
 }
 
 #[test]
-fn a_path_traced_film_is_the_same_on_one_thread_and_on_all() {
-    let world = reference("cornell.xml", 40, 40);
-    let options = RenderOptions {
-        integrator: Integrator::Path,
-        sampling: Sampling::Sobol,
-        ..Default::default()
-    };
-    let all = Film::render(&world, &options, 3);
-    let one = rayon::ThreadPoolBuilder::new()
-        .num_threads(1)
-        .build()
-        .expect("a one-thread pool")
-        .install(|| Film::render(&world, &options, 3));
-    for j in 0..40 {
-        for i in 0..40 {
-            assert_eq!(
-                bits(all.pixel(i, j)),
-                bits(one.pixel(i, j)),
-                "pixel ({i}, {j})"
-            );
+fn a_film_is_the_same_on_one_thread_and_on_all() {
+    for (integrator, world) in [
+        (Integrator::Path, reference("cornell.xml", 40, 40)),
+        (Integrator::Whitted, shipped("glass.xml", 40, 40)),
+    ] {
+        let options = RenderOptions {
+            integrator,
+            sampling: Sampling::Sobol,
+            ..Default::default()
+        };
+        let all = Film::render(&world, &options, 3);
+        let one = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .expect("a one-thread pool")
+            .install(|| Film::render(&world, &options, 3));
+        for j in 0..40 {
+            for i in 0..40 {
+                assert_eq!(
+                    bits(all.pixel(i, j)),
+                    bits(one.pixel(i, j)),
+                    "{integrator:?} pixel ({i}, {j})"
+                );
+            }
         }
     }
 }
