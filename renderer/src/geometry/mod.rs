@@ -1,8 +1,9 @@
 //! Rays and what every intersection routine shares: the lecture's ray
 //! (P0, v) on an interval of α, spawning secondary rays off a surface, warps
-//! of uniform numbers onto disks, and the per-thread counters of the
-//! tracer's work.
+//! of uniform numbers onto disks, discrete distributions (alias tables),
+//! and the per-thread counters of the tracer's work.
 
+pub mod alias_table;
 pub mod counters;
 pub mod offset;
 pub mod ray;

@@ -10,6 +10,7 @@
 //! other shape over its area. An infinite plane cannot be sampled: rays find
 //! it by BSDF sampling alone.
 
+use crate::geometry::alias_table::AliasTable;
 use crate::geometry::ray::Ray;
 use crate::shapes::{Method, Shape, Triangle};
 use crate::world::Hit;
@@ -51,9 +52,9 @@ pub struct Emitters {
     emitters: Vec<Emitter>,
     /// Probability of choosing each emitter.
     pmf: Vec<f32>,
-    /// Running sums of `pmf`, the last exactly 1; empty when nothing emits
-    /// any power (no emitter can be drawn).
-    cdf: Vec<f32>,
+    /// Chooses an emitter in proportion to its power in O(1); `None` when
+    /// nothing emits any power (no emitter can be drawn).
+    choice: Option<AliasTable>,
     /// Per object id: its emitter, for analytic shapes.
     by_object: Vec<u32>,
     /// Per mesh instance: the emitter of its triangle 0 (its triangles follow in order).
@@ -124,22 +125,11 @@ impl Emitters {
         } else {
             vec![0.0; power.len()]
         };
-        let mut running = 0.0f64;
-        let drawable = if total > 0.0 { power.as_slice() } else { &[] };
-        let mut cdf: Vec<f32> = drawable
-            .iter()
-            .map(|&p| {
-                running += f64::from(p);
-                (running / total) as f32
-            })
-            .collect();
-        if let Some(last) = cdf.last_mut() {
-            *last = 1.0;
-        }
+        let choice = AliasTable::new(&power);
         Emitters {
             emitters,
             pmf,
-            cdf,
+            choice,
             by_object,
             by_instance,
         }
@@ -147,7 +137,7 @@ impl Emitters {
 
     /// Whether no emitter can be drawn (none, or none with power).
     pub fn is_empty(&self) -> bool {
-        self.cdf.is_empty()
+        self.choice.is_none()
     }
 
     /// The emitters, in index order.
@@ -176,13 +166,7 @@ impl Emitters {
     /// Draws an emitter with `u_select` and a point on it with `u`, as seen
     /// from `from`; `None` when nothing can be drawn.
     pub fn sample(&self, from: Vec3, u_select: f32, u: Vec2) -> Option<EmitterSample> {
-        if self.is_empty() {
-            return None;
-        }
-        let index = self
-            .cdf
-            .partition_point(|&c| c <= u_select)
-            .min(self.cdf.len() - 1);
+        let index = self.choice.as_ref()?.sample(u_select);
         let pmf = self.pmf[index];
         if !(pmf > 0.0) {
             return None;

@@ -1,0 +1,145 @@
+//! Walker's alias method (Vose's construction): draws index i with
+//! probability wᵢ / Σw in constant time, one uniform number, whatever the
+//! number of entries — for choosing among thousands of emissive triangles
+//! where a binary search over a CDF costs a dozen unpredictable branches.
+
+/// One bin: keep its own index with probability `keep`, else take `alias`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Bin {
+    keep: f32,
+    alias: u32,
+}
+
+/// A discrete distribution over 0..n, sampled in O(1).
+#[derive(Clone, Debug, PartialEq)]
+pub struct AliasTable {
+    bins: Vec<Bin>,
+}
+
+impl AliasTable {
+    /// The table of `weights` (negative or non-finite weights count as 0);
+    /// `None` when no weight is positive.
+    pub fn new(weights: &[f32]) -> Option<AliasTable> {
+        let clean = |w: f32| {
+            if w.is_finite() && w > 0.0 {
+                f64::from(w)
+            } else {
+                0.0
+            }
+        };
+        let total: f64 = weights.iter().map(|&w| clean(w)).sum();
+        if !(total > 0.0) || weights.len() > u32::MAX as usize {
+            return None;
+        }
+        let n = weights.len();
+        // Each bin's share scaled so that the mean is 1.
+        let mut scaled: Vec<f64> = weights
+            .iter()
+            .map(|&w| clean(w) * n as f64 / total)
+            .collect();
+        let mut bins: Vec<Bin> = (0..n as u32)
+            .map(|i| Bin {
+                keep: 1.0,
+                alias: i,
+            })
+            .collect();
+        let (mut small, mut large): (Vec<usize>, Vec<usize>) =
+            (0..n).partition(|&i| scaled[i] < 1.0);
+        while let (Some(&s), Some(&l)) = (small.last(), large.last()) {
+            small.pop();
+            bins[s] = Bin {
+                keep: scaled[s] as f32,
+                alias: l as u32,
+            };
+            scaled[l] -= 1.0 - scaled[s];
+            if scaled[l] < 1.0 {
+                large.pop();
+                small.push(l);
+            }
+        }
+        // What is left is 1 up to rounding: those bins keep themselves.
+        Some(AliasTable { bins })
+    }
+
+    /// The number of entries.
+    pub fn len(&self) -> usize {
+        self.bins.len()
+    }
+
+    /// True when there are no entries (never: [`AliasTable::new`] refuses that).
+    pub fn is_empty(&self) -> bool {
+        self.bins.is_empty()
+    }
+
+    /// The index drawn with the uniform number `u` in [0, 1).
+    #[inline]
+    pub fn sample(&self, u: f32) -> usize {
+        let n = self.bins.len();
+        let x = u * n as f32;
+        let i = (x as usize).min(n - 1);
+        let bin = self.bins[i];
+        if x - (i as f32) < bin.keep {
+            i
+        } else {
+            bin.alias as usize
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// The exact probability of each index under the table (in f64).
+    fn probabilities(table: &AliasTable) -> Vec<f64> {
+        let n = table.len() as f64;
+        let mut p = vec![0.0; table.len()];
+        for (i, bin) in table.bins.iter().enumerate() {
+            p[i] += f64::from(bin.keep) / n;
+            p[bin.alias as usize] += (1.0 - f64::from(bin.keep)) / n;
+        }
+        p
+    }
+
+    proptest! {
+        #[test]
+        fn each_index_is_drawn_in_proportion_to_its_weight(
+            weights in prop::collection::vec(prop_oneof![Just(0.0f32), 0.0f32..100.0], 1..200)
+        ) {
+            let total: f64 = weights.iter().map(|&w| f64::from(w)).sum();
+            let table = AliasTable::new(&weights);
+            prop_assume!(total > 0.0);
+            let table = table.expect("a positive weight");
+            for (i, p) in probabilities(&table).into_iter().enumerate() {
+                let want = f64::from(weights[i]) / total;
+                prop_assert!((p - want).abs() <= 1e-6, "index {}: {} vs {}", i, p, want);
+            }
+        }
+    }
+
+    #[test]
+    fn zero_weights_are_never_drawn_and_draws_cover_the_unit_interval() {
+        let table = AliasTable::new(&[0.0, 3.0, 0.0, 1.0, f32::NAN, -2.0]).expect("weights");
+        let mut counts = [0usize; 6];
+        let n = 100_000;
+        for k in 0..n {
+            counts[table.sample(k as f32 / n as f32)] += 1;
+        }
+        assert_eq!(
+            (counts[0], counts[2], counts[4], counts[5]),
+            (0, 0, 0, 0),
+            "{counts:?}"
+        );
+        let share = counts[1] as f64 / n as f64;
+        assert!((share - 0.75).abs() < 1e-3, "{counts:?}");
+        // The largest number below 1 still lands on a drawable index.
+        assert!([1, 3].contains(&table.sample(1.0 - f32::EPSILON / 2.0)));
+    }
+
+    #[test]
+    fn no_positive_weight_gives_no_table() {
+        assert_eq!(AliasTable::new(&[]), None);
+        assert_eq!(AliasTable::new(&[0.0, -1.0, f32::INFINITY]), None);
+    }
+}
