@@ -87,24 +87,49 @@ impl SceneBvh {
     }
 
     /// The closest item hit: `test(item, ray)` returns the α of the item's
-    /// closest hit inside `ray`'s interval, whose t_max is lowered to the
-    /// closest α found so far. Returns (item, α).
+    /// closest hit inside `ray`'s interval, which ends at the closest α found
+    /// so far (one float beyond it, for ties). Returns (item, α); of items
+    /// hit at the same α, the lowest item id, whatever order the traversal
+    /// met them in.
     #[inline(always)]
     pub fn closest(
         &self,
         ray: &Ray,
         mut test: impl FnMut(u32, &Ray) -> Option<f32>,
     ) -> Option<(u32, f32)> {
+        self.closest_with(ray, |item, ray| test(item, ray).map(|alpha| (alpha, ())))
+            .map(|(item, alpha, ())| (item, alpha))
+    }
+
+    /// [`SceneBvh::closest`] where `test` also returns what the caller wants
+    /// kept of the hit (a triangle and its barycentrics, say): the closest
+    /// hit's is returned with it.
+    #[inline(always)]
+    pub fn closest_with<T>(
+        &self,
+        ray: &Ray,
+        mut test: impl FnMut(u32, &Ray) -> Option<(f32, T)>,
+    ) -> Option<(u32, f32, T)> {
         let mut current = *ray;
-        let mut best = None;
+        let mut best: Option<(u32, f32, T)> = None;
         self.traverse(ray, |item, slab| {
-            if let Some(alpha) = test(item, &current)
-                && alpha > current.t_min
-                && alpha < current.t_max
+            if let Some((alpha, kept)) = test(item, &current)
+                && alpha > ray.t_min
+                && alpha < ray.t_max
             {
-                current.t_max = alpha;
-                slab.set_t_max(alpha);
-                best = Some((item, alpha));
+                let better = match &best {
+                    None => true,
+                    Some((best_item, best_alpha, _)) => {
+                        alpha < *best_alpha || (alpha == *best_alpha && item < *best_item)
+                    }
+                };
+                if better {
+                    // The next tests may still return this α: a tie that a
+                    // lower item id wins.
+                    current.t_max = alpha.next_up();
+                    slab.set_t_max(alpha);
+                    best = Some((item, alpha, kept));
+                }
             }
             false
         });
@@ -235,6 +260,40 @@ mod tests {
             hits += want.is_some() as u32;
         }
         assert!(hits > 200, "too few hits ({hits}) to mean anything");
+    }
+
+    #[test]
+    fn a_tie_goes_to_the_lowest_item_whatever_the_traversal_order() {
+        // 40 nested boxes, each holding every point the rays reach before
+        // α = 9, shifted along x so that rays going either way meet them in
+        // opposite orders; several items report the same α.
+        let boxes: Vec<Aabb> = (0..40)
+            .map(|i| {
+                let shift = Vec3::new(i as f32 * 0.25 - 5.0, 0.0, 0.0);
+                Aabb {
+                    min: Vec3::splat(-20.0) + shift,
+                    max: Vec3::splat(20.0) + shift,
+                }
+            })
+            .collect();
+        let bvh = SceneBvh::build(&boxes);
+        for dir in [Vec3::X, Vec3::NEG_X, Vec3::Y] {
+            let ray = Ray::new(Vec3::ZERO, dir);
+            // Items in `tied` report α = 5, the others α = 6 + (i mod 3).
+            let hits = |tied: fn(u32) -> bool| {
+                move |i: u32, r: &Ray| {
+                    let alpha = if tied(i) { 5.0 } else { 6.0 + (i % 3) as f32 };
+                    (alpha > r.t_min && alpha < r.t_max).then_some(alpha)
+                }
+            };
+            assert_eq!(
+                bvh.closest(&ray, hits(|i| i % 7 == 0)),
+                Some((0, 5.0)),
+                "dir {dir}"
+            );
+            let some = |i: u32| matches!(i, 9 | 23 | 31);
+            assert_eq!(bvh.closest(&ray, hits(some)), Some((9, 5.0)), "dir {dir}");
+        }
     }
 
     #[test]

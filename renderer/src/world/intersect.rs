@@ -13,47 +13,38 @@ impl World {
         crate::geometry::counters::count_ray();
         let mut tests = 0usize;
         let top = self.top.for_method(method);
-        // The triangle (or lone triangle's object) of the last hit the top
-        // level accepted: each accepted hit lies inside the interval shrunk
-        // by the one before, so the last is the nearest.
-        let mut last_triangle = None;
-        let mut last_lone = 0;
+        // Each item's hit keeps what `Hit` needs besides α: a mesh
+        // triangle, or the object of a lone triangle in the group.
         let found = top
             .bvh
-            .closest(ray, |item, ray| match top.items[item as usize] {
+            .closest_with(ray, |item, ray| match top.items[item as usize] {
                 Item::Shape(id) => {
                     tests += 1;
                     let alpha = self.analytic(id).intersect(ray, method)?;
-                    last_triangle = None;
-                    Some(alpha)
+                    Some((alpha, (id, None)))
                 }
                 Item::LoneTriangles => {
                     tests += 1;
                     let hit = self.top.lone_triangles().closest(ray)?;
-                    last_triangle = None;
-                    last_lone = hit.object;
-                    Some(hit.alpha)
+                    Some((hit.alpha, (hit.object, None)))
                 }
                 Item::Mesh(instance) => {
                     tests += 1;
-                    let hit = self.meshes[instance as usize].closest_hit(ray)?;
-                    last_triangle = Some(TriangleRef {
+                    let placed = &self.meshes[instance as usize];
+                    let hit = placed.closest_hit(ray)?;
+                    let triangle = TriangleRef {
                         instance,
                         triangle: hit.triangle,
                         beta: hit.beta,
                         gamma: hit.gamma,
-                    });
-                    Some(hit.alpha)
+                    };
+                    Some((hit.alpha, (placed.object, Some(triangle))))
                 }
             });
-        let nearest = found.map(|(item, alpha)| Hit {
-            object: match top.items[item as usize] {
-                Item::Shape(id) => id,
-                Item::Mesh(instance) => self.meshes[instance as usize].object,
-                Item::LoneTriangles => last_lone,
-            },
+        let nearest = found.map(|(_, alpha, (object, triangle))| Hit {
+            object,
             alpha,
-            triangle: last_triangle,
+            triangle,
         });
         let nearest = self.planes_last(ray, nearest, method, &mut tests);
         crate::geometry::counters::count_shape_tests(tests);
