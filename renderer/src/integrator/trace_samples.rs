@@ -1,5 +1,5 @@
 //! Tracing a list of samples, as a pass of the film does: the path tracer
-//! traces them in batches ([`super::lanes::trace_lanes`]), Whitted one by
+//! traces them in batches (`trace_lanes` in `integrator/lanes.rs`), Whitted one by
 //! one (as a lane it measured 8–18% slower than its recursion; it becomes
 //! one when batched ray kernels pay for that). Either way a sample's
 //! radiance is [`sample_pixel`]'s bit for bit.

@@ -2,7 +2,7 @@
 //! then for the shadow rays of its vertex. Its arithmetic never depends on
 //! how the rays were traced, so one path traced alone
 //! ([`super::path_recorded`]) and the same path traced in a batch with
-//! others ([`crate::integrator::trace_samples`]) give the same radiance bit
+//! others ([`crate::integrator::trace_samples()`]) give the same radiance bit
 //! for bit.
 
 use super::{RR_DEPTH, SHADOW_SHORTENING, power_heuristic};

@@ -11,9 +11,9 @@
 //!   are each sampled at every smooth vertex;
 //! - no ambient term: only emitters, lights and the `<sky>` bring light.
 //!
-//! A path is a [`PathLane`] ([`super::lanes`]): a state machine that stops
+//! A path is a `PathLane` (`integrator/lanes.rs`): a state machine that stops
 //! for its closest hits and its shadow rays, so that the film can trace the
-//! rays of many paths together ([`super::trace_samples`]) and
+//! rays of many paths together ([`super::trace_samples()`]) and
 //! [`path_recorded`] one path alone, with the same result.
 
 mod lane;
@@ -57,8 +57,8 @@ pub fn path(world: &World, ray: &Ray, options: &RenderOptions, sampler: Sampler)
 /// [`path`], telling `rec` about every ray it traces (the camera ray `ray`
 /// first), every emission it counts and every roulette decision. The path
 /// is traced alone, ray by ray, with the arithmetic of a batch's paths
-/// ([`PathLane`]): the radiance is bit for bit the same for any recorder and
-/// as in [`batch::trace_paths`].
+/// (a `PathLane`): the radiance is bit for bit the same for any recorder and
+/// as in the film's batches ([`super::trace_samples()`]).
 pub fn path_recorded<R: Recorder>(
     world: &World,
     ray: &Ray,
