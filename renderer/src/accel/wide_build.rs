@@ -15,9 +15,9 @@
 
 use super::binned_sah::{PrimRef, Span, split};
 use super::huge_pages;
-use super::scene::Aabb;
 use super::triangle_pack::{PACK, TrianglePack};
 use super::wide::{ChildRef, LEAF_TRIANGLES, WIDTH, WideNode};
+use ::scene::layout::Aabb;
 use glam::{Vec3, Vec3A};
 use rayon::prelude::*;
 

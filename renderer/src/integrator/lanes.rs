@@ -7,17 +7,57 @@
 
 use super::RenderOptions;
 use super::recorder::{EmitterLightSample, NoRecorder, Recorder};
-use super::sample_pixel::camera_sample;
 use super::sampler::Sampler;
-use super::trace_samples::{SampleRef, SampleResult};
 use crate::geometry::counters::shape_tests_on_this_thread;
 use crate::geometry::ray::Ray;
 use crate::world::{Hit, World};
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// Samples in flight per batch: enough that a step's rays can be traced
 /// together, few enough that the lanes' state stays in the L1 and L2 caches.
 pub(crate) const LANES_PER_BATCH: usize = 64;
+
+/// Sample `sample` of pixel (i, j).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SampleRef {
+    /// The pixel's column.
+    pub i: u32,
+    /// The pixel's row.
+    pub j: u32,
+    /// The sample index k.
+    pub sample: u32,
+}
+
+/// What a traced sample brought back.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SampleResult {
+    /// Its radiance: [`sample_pixel`](super::sample_pixel)'s, bit for bit.
+    pub radiance: Vec3,
+    /// The shape tests its rays cost.
+    pub shape_tests: u64,
+}
+
+/// The start of sample `sample` of pixel (i, j) (`None`: the centre ray):
+/// its random stream after the camera's draw, where the ray crosses the
+/// pixel, and the camera ray R_ij. Every way of tracing a sample starts here.
+#[inline(always)]
+pub(crate) fn camera_sample(
+    world: &World,
+    options: &RenderOptions,
+    i: u32,
+    j: u32,
+    sample: Option<u32>,
+) -> (Sampler, Vec2, Ray) {
+    let mut sampler =
+        Sampler::for_pixel_sample(options.sampling, options.seed, i, j, sample.unwrap_or(0));
+    let jitter = sampler.next_2d();
+    let offset = if sample.is_some() {
+        jitter
+    } else {
+        Vec2::splat(0.5)
+    };
+    (sampler, offset, world.camera.ray(i, j, offset))
+}
 
 /// A shadow ray a lane waits on, and the radiance it lets through (before
 /// the lane's weights) when nothing blocks it.

@@ -2,6 +2,7 @@
 //! camera ray through the jittered point on the view window, traced by the
 //! chosen integrator with the sample's own random numbers.
 
+use super::lanes::camera_sample;
 use super::recorder::{NoRecorder, Recorder};
 use super::sampler::Sampler;
 use super::{Integrator, RenderOptions, path::path_recorded, whitted::whitted_recorded};
@@ -47,28 +48,6 @@ pub fn sample_pixel_recorded<R: Recorder>(
         Integrator::Path => path_recorded(world, &ray, options, sampler, rec),
     };
     TracedSample { offset, ray, color }
-}
-
-/// The start of sample `sample` of pixel (i, j) (`None`: the centre ray):
-/// its random stream after the camera's draw, where the ray crosses the
-/// pixel, and the camera ray R_ij. Every way of tracing a sample starts here.
-#[inline(always)]
-pub(crate) fn camera_sample(
-    world: &World,
-    options: &RenderOptions,
-    i: u32,
-    j: u32,
-    sample: Option<u32>,
-) -> (Sampler, Vec2, Ray) {
-    let mut sampler =
-        Sampler::for_pixel_sample(options.sampling, options.seed, i, j, sample.unwrap_or(0));
-    let jitter = sampler.next_2d();
-    let offset = if sample.is_some() {
-        jitter
-    } else {
-        Vec2::splat(0.5)
-    };
-    (sampler, offset, world.camera.ray(i, j, offset))
 }
 
 /// (x, y) in [0, 1)², where sample `sample` of pixel (i, j) passes through

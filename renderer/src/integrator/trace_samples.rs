@@ -5,31 +5,11 @@
 //! radiance is [`sample_pixel`]'s bit for bit.
 
 use super::lanes::{LANES_PER_BATCH, trace_lanes};
+pub use super::lanes::{SampleRef, SampleResult};
 use super::path::PathLane;
 use super::{Integrator, RenderOptions, sample_pixel};
 use crate::geometry::counters::shape_tests_on_this_thread;
 use crate::world::World;
-use glam::Vec3;
-
-/// Sample `sample` of pixel (i, j).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct SampleRef {
-    /// The pixel's column.
-    pub i: u32,
-    /// The pixel's row.
-    pub j: u32,
-    /// The sample index k.
-    pub sample: u32,
-}
-
-/// What a traced sample brought back.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct SampleResult {
-    /// Its radiance: [`sample_pixel`]'s, bit for bit.
-    pub radiance: Vec3,
-    /// The shape tests its rays cost.
-    pub shape_tests: u64,
-}
 
 /// Traces every sample of `samples` with the integrator of `options` and
 /// writes each one's result to `results` (same length).
