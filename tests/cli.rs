@@ -355,31 +355,50 @@ fn inspect_prints_the_ray_tree_of_the_centre_pixel_of_seed_as_json() {
 fn inspected_sample_zero_equals_the_pixel_of_a_one_sample_render() {
     use exr::prelude::*;
     let dir = tempfile::tempdir().expect("tempdir");
-    let out = dir.path().join("glass.exr");
     let size = ["--width", "40", "--height", "25"];
-    let mut args = vec!["--spp", "1", "--seed", "11"];
-    args.extend_from_slice(&size);
-    render(&asset("glass.xml"), &out, &args);
-    let image = read_all_flat_layers_from_file(&out).expect("reads");
-    let channels: Vec<Vec<f32>> = image.layer_data[0]
-        .channel_data
-        .list
-        .iter()
-        .map(|c| c.sample_data.values_as_f32().collect())
-        .collect();
-    let glass = asset("glass.xml");
-    for (i, j) in [(9usize, 15usize), (20, 12), (33, 18)] {
-        let (si, sj) = (i.to_string(), j.to_string());
-        let mut args = vec![glass.to_str().expect("utf-8"), "--pixel", &si, &sj];
-        args.extend_from_slice(&["--sample", "0", "--seed", "11"]);
+    for (scene, integrator) in [("glass.xml", "whitted"), ("cornell.xml", "path")] {
+        let out = dir.path().join(format!("{scene}.exr"));
+        let mut args = vec!["--spp", "1", "--seed", "11", "--integrator", integrator];
         args.extend_from_slice(&size);
-        let json = inspect_json(&args);
-        assert_eq!(json["sample"], 0);
-        // JSON prints each f32 in its shortest round-tripping form.
-        let color = vec3(&json["color"]).map(|x| x as f32);
-        // EXR channels are stored alphabetically: B, G, R.
-        let pixel = [2, 1, 0].map(|c| channels[c][j * 40 + i]);
-        assert_eq!(color, pixel, "pixel ({i}, {j})");
+        render(&asset(scene), &out, &args);
+        let image = read_all_flat_layers_from_file(&out).expect("reads");
+        let channels: Vec<Vec<f32>> = image.layer_data[0]
+            .channel_data
+            .list
+            .iter()
+            .map(|c| c.sample_data.values_as_f32().collect())
+            .collect();
+        let path = asset(scene);
+        let mut bounces = 0;
+        for (i, j) in [(9usize, 15usize), (20, 12), (33, 18)] {
+            let (si, sj) = (i.to_string(), j.to_string());
+            let mut args = vec![path.to_str().expect("utf-8"), "--pixel", &si, &sj];
+            args.extend_from_slice(&["--sample", "0", "--seed", "11", "--integrator", integrator]);
+            args.extend_from_slice(&size);
+            let json = inspect_json(&args);
+            assert_eq!(
+                (&json["sample"], &json["integrator"]),
+                (&0.into(), &integrator.into())
+            );
+            // JSON prints each f32 in its shortest round-tripping form.
+            let color = vec3(&json["color"]).map(|x| x as f32);
+            // EXR channels are stored alphabetically: B, G, R.
+            let pixel = [2, 1, 0].map(|c| channels[c][j * 40 + i]);
+            assert_eq!(color, pixel, "{scene} {integrator}: pixel ({i}, {j})");
+            let rays = json["rays"].as_array().expect("rays");
+            bounces += rays
+                .iter()
+                .filter(|r| r["scatter"]["lobe"].is_string())
+                .count();
+            for shadow in rays.iter().filter(|r| r["kind"] == "shadow") {
+                assert!(
+                    shadow["light"].is_u64() || shadow["emitter"]["pdf"].is_f64(),
+                    "{shadow}"
+                );
+            }
+        }
+        // A path-traced sample records the BSDF sample of each bounce.
+        assert_eq!(bounces > 0, integrator == "path", "{scene} {integrator}");
     }
 }
 

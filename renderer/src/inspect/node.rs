@@ -158,7 +158,9 @@ pub enum ShadowTarget {
 /// The light test of a shadow ray.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ShadowTest {
-    /// The light or emitter the ray goes toward.
+    /// The light or emitter the ray goes toward (in JSON `"light": index`
+    /// or `"emitter": {…}`, beside the other fields).
+    #[serde(flatten)]
     pub target: ShadowTarget,
     /// True when something lies between the hit point and the light.
     pub blocked: bool,

@@ -50,7 +50,7 @@ pub enum Note {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct EmitterLightSample {
     /// The emitter's index in the world's emitters.
-    pub emitter: usize,
+    pub index: usize,
     /// The density in solid angle of the drawn direction, the choice of
     /// emitter included.
     pub pdf: f32,

@@ -281,7 +281,7 @@ fn target_label(target: ShadowTarget, cx: &Context<'_>) -> String {
             .get(k)
             .map(|light| light_label(k, light))
             .unwrap_or_else(|| format!("light {k}")),
-        ShadowTarget::Emitter(sample) => format!("emitter {}", sample.emitter),
+        ShadowTarget::Emitter(sample) => format!("emitter {}", sample.index),
     }
 }
 
@@ -387,7 +387,7 @@ fn details(ui: &mut egui::Ui, ray: &RayNode) {
                 match shadow.target {
                     ShadowTarget::Light(k) => row("light", format!("#{k}")),
                     ShadowTarget::Emitter(e) => {
-                        row("emitter", format!("#{}", e.emitter));
+                        row("emitter", format!("#{}", e.index));
                         row("pdf (solid angle)", n(e.pdf));
                         row("MIS weight", n(e.mis_weight));
                     }

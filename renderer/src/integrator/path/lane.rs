@@ -251,7 +251,7 @@ fn light_samples(
                     .with_t_max(s.distance * (1.0 - SHADOW_SHORTENING)),
                 lit: f * s.radiance * (mis_weight / s.pdf),
                 target: ShadowTarget::Emitter(EmitterLightSample {
-                    emitter: s.index,
+                    index: s.index,
                     pdf: s.pdf,
                     mis_weight,
                 }),
