@@ -8,26 +8,14 @@ use renderer::integrator::{
     Integrator, SampleRef, SampleResult, sample_pixel, trace_samples_batched,
 };
 use renderer::{Film, Method, RenderOptions, World};
-use std::path::Path;
+mod common;
 
 fn reference(name: &str, width: u32, height: u32) -> World {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../assets/reference")
-        .join(name);
-    let mut scene = scene::read_file(&path).expect("a reference scene parses");
-    scene.camera.width = width;
-    scene.camera.height = height;
-    World::from_scene(&scene).expect("a reference scene is valid")
+    common::asset_world("reference", name, width, height)
 }
 
 fn shipped(name: &str, width: u32, height: u32) -> World {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../assets/scenes")
-        .join(name);
-    let mut scene = scene::read_file(&path).expect("a shipped scene parses");
-    scene.camera.width = width;
-    scene.camera.height = height;
-    World::from_scene(&scene).expect("a shipped scene is valid")
+    common::asset_world("scenes", name, width, height)
 }
 
 fn bits(v: Vec3) -> [u32; 3] {

@@ -6,7 +6,7 @@ use renderer::inspect::{Inspection, RayNode, ShadowTarget, SurfaceHit};
 use renderer::integrator::RayKind;
 use renderer::integrator::sample_pixel;
 use renderer::{Film, Method, RenderOptions, World, inspect_pixel};
-use std::path::Path;
+mod common;
 
 const METHODS: [Method; 2] = [Method::Lecture, Method::Robust];
 
@@ -17,13 +17,7 @@ fn world_from_xml(xml: &str) -> World {
 
 /// A shipped scene rendered at `width` × `height`.
 fn shipped(name: &str, width: u32, height: u32) -> World {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../assets/scenes")
-        .join(name);
-    let mut scene = scene::read_file(&path).expect("a shipped scene parses");
-    scene.camera.width = width;
-    scene.camera.height = height;
-    World::from_scene(&scene).expect("a shipped scene is valid")
+    common::asset_world("scenes", name, width, height)
 }
 
 fn inspect(world: &World, options: &RenderOptions, i: u32, j: u32, k: Option<u32>) -> Inspection {

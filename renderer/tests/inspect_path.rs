@@ -9,7 +9,7 @@ use renderer::integrator::sampler::Sampling;
 use renderer::integrator::{Integrator, RayKind, sample_pixel};
 use renderer::shading::bsdf::Lobe;
 use renderer::{Film, Method, RenderOptions, World, inspect_pixel};
-use std::path::Path;
+mod common;
 
 /// A small closed room lit by an emissive sphere, an emissive triangle and a
 /// point light, with every BSDF the path tracer has: matte, plastic with a
@@ -37,13 +37,7 @@ fn room() -> World {
 
 /// A reference scene shipped with raylab, at `width` × `height`.
 fn reference(name: &str, width: u32, height: u32) -> World {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../assets/reference")
-        .join(name);
-    let mut scene = scene::read_file(&path).expect("a reference scene parses");
-    scene.camera.width = width;
-    scene.camera.height = height;
-    World::from_scene(&scene).expect("a reference scene is valid")
+    common::asset_world("reference", name, width, height)
 }
 
 fn path_options(sampling: Sampling, method: Method) -> RenderOptions {
