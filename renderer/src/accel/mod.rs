@@ -32,6 +32,7 @@ pub mod reference;
 pub mod scene;
 mod simd;
 pub mod slab;
+pub mod sphere_pack;
 mod stack;
 pub mod triangle_pack;
 pub mod wide;

@@ -45,6 +45,24 @@ impl SceneBvh {
     /// empty box (min > max on some axis) can never be hit and are left out.
     /// Boxes must be finite.
     pub fn build(bounds: &[Aabb]) -> SceneBvh {
+        Self::build_with(bounds, 1)
+    }
+
+    /// [`SceneBvh::build`] with leaves of up to `leaf_max` (1..=8) items, in
+    /// runs of at most four ([`SceneBvh::runs`]): for a caller that tests a
+    /// run's items together (spheres in a [`SpherePack`]) through
+    /// [`SceneBvh::closest_run_with`] and [`SceneBvh::any_run`].
+    ///
+    /// [`SpherePack`]: super::sphere_pack::SpherePack
+    pub fn build_runs(bounds: &[Aabb], leaf_max: usize) -> SceneBvh {
+        let mut bvh = Self::build_with(bounds, leaf_max);
+        // A run's items are tested together, never box by box.
+        bvh.few.clear();
+        bvh
+    }
+
+    /// The BVH with leaves of up to `leaf_max` items.
+    fn build_with(bounds: &[Aabb], leaf_max: usize) -> SceneBvh {
         let ids: Vec<u32> = (0..bounds.len() as u32)
             .filter(|&i| {
                 let b = bounds[i as usize];
@@ -63,8 +81,7 @@ impl SceneBvh {
         let all = ids
             .iter()
             .fold(Aabb::EMPTY, |acc, &i| acc.union(bounds[i as usize]));
-        // One item per leaf: every item is culled by its own box.
-        let (nodes, runs, _) = build_wide_refs(&mut refs, 1);
+        let (nodes, runs, _) = build_wide_refs(&mut refs, leaf_max);
         let few = if ids.len() <= FEW_ITEMS {
             ids.iter().map(|&i| (i, bounds[i as usize])).collect()
         } else {
@@ -82,6 +99,14 @@ impl SceneBvh {
     /// The box around every item in the BVH (empty when there is none).
     pub fn bounds(&self) -> Aabb {
         self.bounds
+    }
+
+    /// The item ids of each leaf run, in run order (the `run` that
+    /// [`SceneBvh::closest_run_with`] hands its test indexes this).
+    pub fn runs(&self) -> impl Iterator<Item = &[u32]> {
+        self.runs
+            .iter()
+            .map(|&(first, count)| &self.items[first as usize..(first + count) as usize])
     }
 
     /// Number of items in the BVH.
@@ -127,30 +152,42 @@ impl SceneBvh {
         ray: &Ray,
         mut test: impl FnMut(u32, &Ray) -> Option<(f32, T)>,
     ) -> Option<(u32, f32, T)> {
-        let mut current = *ray;
-        let mut best: Option<(u32, f32, T)> = None;
+        let mut closest = Closest::new(ray);
         self.traverse(ray, |item, slab| {
-            if let Some((alpha, kept)) = test(item, &current)
-                && alpha > ray.t_min
-                && alpha < ray.t_max
-            {
-                let better = match &best {
-                    None => true,
-                    Some((best_item, best_alpha, _)) => {
-                        alpha < *best_alpha || (alpha == *best_alpha && item < *best_item)
-                    }
-                };
-                if better {
-                    // The next tests may still return this α: a tie that a
-                    // lower item id wins.
-                    current.t_max = alpha.next_up();
-                    slab.set_t_max(alpha);
-                    best = Some((item, alpha, kept));
-                }
-            }
+            closest.offer(item, test(item, &closest.ray), slab);
             false
         });
-        best
+        closest.best
+    }
+
+    /// [`SceneBvh::closest_with`] over the leaf runs of a BVH built by
+    /// [`SceneBvh::build_runs`]: `test(run, ray)` tests every item of run
+    /// `run` (an index into [`SceneBvh::runs`]); of runs hit at the same α,
+    /// the lowest run wins.
+    #[inline(always)]
+    pub fn closest_run_with<T>(
+        &self,
+        ray: &Ray,
+        mut test: impl FnMut(u32, &Ray) -> Option<(f32, T)>,
+    ) -> Option<(u32, f32, T)> {
+        let mut closest = Closest::new(ray);
+        self.walk_runs(ray, |run, slab| {
+            closest.offer(run, test(run, &closest.ray), slab);
+            false
+        });
+        closest.best
+    }
+
+    /// True when `test(run, ray)` is true for some leaf run the ray may
+    /// reach (see [`SceneBvh::closest_run_with`]); stops at the first.
+    #[inline(always)]
+    pub fn any_run(&self, ray: &Ray, mut test: impl FnMut(u32, &Ray) -> bool) -> bool {
+        let mut hit = false;
+        self.walk_runs(ray, |run, _| {
+            hit = test(run, ray);
+            hit
+        });
+        hit
     }
 
     /// True when `test(item, ray)` is true for some item the ray may reach;
@@ -197,17 +234,29 @@ impl SceneBvh {
             }
             return;
         }
+        self.walk_runs(ray, |run, slab| {
+            let (first, count) = self.runs[run as usize];
+            let items = &self.items[first as usize..(first + count) as usize];
+            items.iter().any(|&item| leaf(item, slab))
+        });
+    }
+
+    /// Calls `leaf(run, slab)` for every leaf run (an index into `runs`)
+    /// whose box the ray may hit, nearest box first, through the nodes;
+    /// `leaf` may lower the slab's t_max, and stops the walk by returning true.
+    #[inline(always)]
+    fn walk_runs(&self, ray: &Ray, mut leaf: impl FnMut(u32, &mut SlabRay) -> bool) {
+        if self.nodes.is_empty() {
+            return;
+        }
         let mut wide = WideRay::new(ray);
         let mut stack = Stack::<(ChildRef, f32), 64>::new();
         let mut next = Some(ChildRef::node(0));
         while let Some(current) = next {
             if let Some(range) = current.packs() {
-                for &(first, count) in &self.runs[range] {
-                    let run = &self.items[first as usize..(first + count) as usize];
-                    for &item in run {
-                        if leaf(item, &mut wide.slab) {
-                            return;
-                        }
+                for run in range {
+                    if leaf(run as u32, &mut wide.slab) {
+                        return;
                     }
                 }
             } else {
@@ -243,6 +292,53 @@ impl SceneBvh {
                     Some(_) => {}
                 }
             };
+        }
+    }
+}
+
+/// The closest hit so far of a walk whose hits are offered one by one, and
+/// the ray each next test is given: its t_max one float beyond the closest
+/// α, so that a tie still reaches the caller (the lowest id wins it).
+struct Closest<T> {
+    /// The ray the next test gets.
+    ray: Ray,
+    /// The interval a hit must lie in (the caller's ray's).
+    t_min: f32,
+    t_max: f32,
+    /// (id, α, what the caller keeps) of the closest hit so far.
+    best: Option<(u32, f32, T)>,
+}
+
+impl<T> Closest<T> {
+    #[inline(always)]
+    fn new(ray: &Ray) -> Self {
+        Self {
+            ray: *ray,
+            t_min: ray.t_min,
+            t_max: ray.t_max,
+            best: None,
+        }
+    }
+
+    /// Keeps `found`, the hit of item or run `id`, when it is inside the
+    /// interval and closer than the best so far (or as close, with a lower
+    /// id); then the walk's boxes beyond it are skipped.
+    #[inline(always)]
+    fn offer(&mut self, id: u32, found: Option<(f32, T)>, slab: &mut SlabRay) {
+        let Some((alpha, kept)) = found else { return };
+        if !(alpha > self.t_min && alpha < self.t_max) {
+            return;
+        }
+        let better = match &self.best {
+            None => true,
+            Some((best_id, best_alpha, _)) => {
+                alpha < *best_alpha || (alpha == *best_alpha && id < *best_id)
+            }
+        };
+        if better {
+            self.ray.t_max = alpha.next_up();
+            slab.set_t_max(alpha);
+            self.best = Some((id, alpha, kept));
         }
     }
 }

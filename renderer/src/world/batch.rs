@@ -64,28 +64,26 @@ impl World {
             tests += self.meshes.len();
             if has_shapes {
                 let search = hit.map_or(*ray, |h| ray.with_t_max(h.alpha));
-                let mut last_lone = 0;
-                let shape = top
-                    .bvh
-                    .closest(&search, |item, ray| match top.items[item as usize] {
-                        Item::Shape(id) => {
-                            tests += 1;
-                            self.analytic(id).intersect(ray, method)
-                        }
-                        Item::LoneTriangles => {
-                            tests += 1;
-                            let hit = self.top.lone_triangles().closest(ray)?;
-                            last_lone = hit.object;
-                            Some(hit.alpha)
-                        }
-                        Item::Mesh(_) => None,
-                    });
-                if let Some((item, alpha)) = shape {
-                    let object = match top.items[item as usize] {
-                        Item::Shape(object) => object,
-                        Item::LoneTriangles => last_lone,
-                        Item::Mesh(_) => unreachable!("meshes were traced above"),
-                    };
+                let shape =
+                    top.bvh
+                        .closest_with(&search, |item, ray| match top.items[item as usize] {
+                            Item::Shape(id) => {
+                                tests += 1;
+                                Some((self.analytic(id).intersect(ray, method)?, id))
+                            }
+                            Item::LoneTriangles => {
+                                tests += 1;
+                                let hit = self.top.lone_triangles().closest(ray)?;
+                                Some((hit.alpha, hit.object))
+                            }
+                            Item::LoneSpheres => {
+                                tests += 1;
+                                let hit = self.top.lone_spheres().closest(ray)?;
+                                Some((hit.alpha, hit.object))
+                            }
+                            Item::Mesh(_) => None,
+                        });
+                if let Some((_, alpha, object)) = shape {
                     *hit = Some(Hit {
                         object,
                         alpha,

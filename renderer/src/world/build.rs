@@ -6,7 +6,7 @@ use super::blas_cache;
 use super::emitters::Emitters;
 use super::light::Light;
 use super::placed_mesh::PlacedMesh;
-use super::top_level::TopLevels;
+use super::top_level::{Lone, TopLevels};
 use super::{Item, Object, RenderError, World};
 use crate::accel::Aabb;
 use crate::camera::Camera;
@@ -41,7 +41,7 @@ impl World {
         let meshes = place_meshes(&resolved.objects);
         let mut objects = Vec::with_capacity(resolved.objects.len());
         let (mut items, mut bounds, mut unbounded) = (Vec::new(), Vec::new(), Vec::new());
-        let mut lone_triangles = Vec::new();
+        let mut lone = Lone::default();
         let mut next_instance = 0u32;
         let mut magnitudes = Vec::with_capacity(resolved.objects.len());
         let largest = |min: Vec3, max: Vec3| min.abs().max(max.abs()).max_element();
@@ -80,8 +80,10 @@ impl World {
                         min: b.min - Vec3::splat(pad),
                         max: b.max + Vec3::splat(pad),
                     });
-                    if let Shape::Triangle(t) = shape {
-                        lone_triangles.push((id, [t.t0, t.t1, t.t2]));
+                    match shape {
+                        Shape::Triangle(t) => lone.triangles.push((id, [t.t0, t.t1, t.t2])),
+                        Shape::Sphere(s) => lone.spheres.push((id, s, bounds[bounds.len() - 1])),
+                        _ => {}
                     }
                 }
                 None => {
@@ -113,7 +115,7 @@ impl World {
             meshes,
             lights,
             ambient,
-            top: TopLevels::new(items, &bounds, &lone_triangles),
+            top: TopLevels::new(items, &bounds, &lone),
             unbounded,
             magnitudes,
         })

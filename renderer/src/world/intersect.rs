@@ -28,6 +28,11 @@ impl World {
                     let hit = self.top.lone_triangles().closest(ray)?;
                     Some((hit.alpha, (hit.object, None)))
                 }
+                Item::LoneSpheres => {
+                    tests += 1;
+                    let hit = self.top.lone_spheres().closest(ray)?;
+                    Some((hit.alpha, (hit.object, None)))
+                }
                 Item::Mesh(instance) => {
                     tests += 1;
                     let placed = &self.meshes[instance as usize];
@@ -89,6 +94,7 @@ impl World {
             tests += 1;
             match top.items[item as usize] {
                 Item::LoneTriangles => self.top.lone_triangles().any(ray),
+                Item::LoneSpheres => self.top.lone_spheres().any(ray),
                 Item::Shape(id) => self.analytic(id).intersect(ray, method).is_some(),
                 Item::Mesh(instance) => self.meshes[instance as usize].any_hit(ray),
             }

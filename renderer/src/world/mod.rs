@@ -11,6 +11,7 @@ pub mod emitters;
 mod hit;
 mod intersect;
 pub mod light;
+mod lone_spheres;
 pub mod placed_mesh;
 mod top_level;
 
@@ -64,6 +65,8 @@ enum Item {
     Mesh(u32),
     /// The world's [`top_level::LoneTriangles`].
     LoneTriangles,
+    /// The world's [`lone_spheres::LoneSpheres`].
+    LoneSpheres,
 }
 
 /// A scene prepared for rendering: built once per render, never edited.

@@ -10,6 +10,7 @@
 //!
 //! [`Triangle::hit`]: crate::shapes::Triangle::hit
 
+use super::lone_spheres::LoneSpheres;
 use super::{Hit, Item};
 
 /// Lone triangles are grouped in a BVH of their own from this many on:
@@ -18,7 +19,7 @@ use super::{Hit, Item};
 pub(super) const GROUPED_TRIANGLES: usize = 4;
 use crate::accel::{Aabb, MeshBvh, SceneBvh};
 use crate::geometry::ray::Ray;
-use crate::shapes::Method;
+use crate::shapes::{Method, Sphere};
 use glam::Vec3;
 
 /// Items in a BVH over their boxes.
@@ -92,48 +93,72 @@ impl LoneTriangles {
 pub(super) struct TopLevels {
     /// Every bounded object ([`Method::Lecture`]).
     pub(super) all: TopLevel,
-    /// [`Method::Robust`]'s: the lone triangles grouped in
-    /// `lone_triangles`, one item; `None` when they are not grouped (then
-    /// `all` serves both methods).
+    /// [`Method::Robust`]'s: the lone triangles and the lone spheres each
+    /// grouped in one item (`lone_triangles`, `lone_spheres`); `None` when
+    /// neither is grouped (then `all` serves both methods).
     pub(super) robust: Option<TopLevel>,
     /// The grouped lone triangles ([`Item::LoneTriangles`]).
     pub(super) lone_triangles: Option<LoneTriangles>,
+    /// The grouped lone spheres ([`Item::LoneSpheres`]).
+    pub(super) lone_spheres: Option<LoneSpheres>,
+}
+
+/// The objects a world may group for [`Method::Robust`]: `<triangle>`s
+/// (object id and corners) and `<sphere>`s (object id, the sphere, and its
+/// box as the top level has it).
+#[derive(Default)]
+pub(super) struct Lone {
+    pub(super) triangles: Vec<(u32, [Vec3; 3])>,
+    pub(super) spheres: Vec<(u32, Sphere, Aabb)>,
 }
 
 impl TopLevels {
-    /// The top levels over `items` (boxed by `bounds`) for both methods;
-    /// `lone_triangles` (object id and corners) are grouped for the robust
-    /// one when there are enough of them.
-    pub(super) fn new(
-        items: Vec<Item>,
-        bounds: &[Aabb],
-        lone_triangles: &[(u32, [Vec3; 3])],
-    ) -> TopLevels {
-        let grouped = LoneTriangles::new(lone_triangles);
-        let robust = grouped.as_ref().map(|group| {
-            let mut lone = Vec::new();
-            for &(id, _) in lone_triangles {
-                lone.resize(lone.len().max(id as usize + 1), false);
-                lone[id as usize] = true;
+    /// The top levels over `items` (boxed by `bounds`) for both methods; the
+    /// `lone` triangles and spheres are grouped for the robust one when
+    /// there are enough of them.
+    pub(super) fn new(items: Vec<Item>, bounds: &[Aabb], lone: &Lone) -> TopLevels {
+        let lone_triangles = LoneTriangles::new(&lone.triangles);
+        let (spheres, sphere_bounds): (Vec<(u32, Sphere)>, Vec<Aabb>) =
+            lone.spheres.iter().map(|&(id, s, b)| ((id, s), b)).unzip();
+        let lone_spheres = LoneSpheres::new(&spheres, &sphere_bounds);
+        let mut grouped_ids = Vec::new();
+        if lone_triangles.is_some() {
+            grouped_ids.extend(lone.triangles.iter().map(|t| t.0));
+        }
+        if lone_spheres.is_some() {
+            grouped_ids.extend(spheres.iter().map(|s| s.0));
+        }
+        let robust = (!grouped_ids.is_empty()).then(|| {
+            let mut grouped = Vec::new();
+            for &id in &grouped_ids {
+                grouped.resize(grouped.len().max(id as usize + 1), false);
+                grouped[id as usize] = true;
             }
-            let is_lone = |item: &Item| match *item {
-                Item::Shape(id) => lone.get(id as usize).copied().unwrap_or(false),
-                Item::Mesh(_) | Item::LoneTriangles => false,
+            let is_grouped = |item: &Item| match *item {
+                Item::Shape(id) => grouped.get(id as usize).copied().unwrap_or(false),
+                Item::Mesh(_) | Item::LoneTriangles | Item::LoneSpheres => false,
             };
             let (mut robust_items, mut robust_bounds): (Vec<Item>, Vec<Aabb>) = items
                 .iter()
                 .zip(bounds)
-                .filter(|(item, _)| !is_lone(item))
+                .filter(|(item, _)| !is_grouped(item))
                 .map(|(item, b)| (*item, *b))
                 .unzip();
-            robust_items.push(Item::LoneTriangles);
-            robust_bounds.push(group.bounds());
+            if let Some(group) = &lone_triangles {
+                robust_items.push(Item::LoneTriangles);
+                robust_bounds.push(group.bounds());
+            }
+            if let Some(group) = &lone_spheres {
+                robust_items.push(Item::LoneSpheres);
+                robust_bounds.push(group.bounds());
+            }
             TopLevel::new(robust_items, &robust_bounds)
         });
         TopLevels {
             all: TopLevel::new(items, bounds),
             robust,
-            lone_triangles: grouped,
+            lone_triangles,
+            lone_spheres,
         }
     }
 
@@ -152,6 +177,14 @@ impl TopLevels {
         self.lone_triangles
             .as_ref()
             .expect("an Item::LoneTriangles exists only with its group")
+    }
+
+    /// The grouped lone spheres, which only [`Item::LoneSpheres`] refers to.
+    #[inline(always)]
+    pub(super) fn lone_spheres(&self) -> &LoneSpheres {
+        self.lone_spheres
+            .as_ref()
+            .expect("an Item::LoneSpheres exists only with its group")
     }
 }
 
