@@ -172,6 +172,9 @@ impl MeshBvh {
     /// [`MeshBvh::closest_hit`], compiled into its caller.
     #[inline(always)]
     fn closest_hit_inline(&self, ray: &Ray) -> Option<MeshHit> {
+        if let Some(leaf) = self.lone_leaf() {
+            return mesh_hit(self.nearest_in_leaf::<false>(ray, leaf));
+        }
         let mut walk = Walk::new(ray, self.root());
         while self.step::<false>(&mut walk) {}
         walk.closest()
@@ -180,6 +183,9 @@ impl MeshBvh {
     /// [`MeshBvh::any_hit`], compiled into its caller.
     #[inline(always)]
     fn any_hit_inline(&self, ray: &Ray) -> bool {
+        if let Some(leaf) = self.lone_leaf() {
+            return self.nearest_in_leaf::<true>(ray, leaf).is_some();
+        }
         let mut walk = Walk::new(ray, self.root());
         while self.step::<true>(&mut walk) {}
         walk.best.is_some()
@@ -244,6 +250,38 @@ impl MeshBvh {
                 }
             }
         }
+    }
+
+    /// The packs of a mesh that is one leaf (at most
+    /// [`super::wide::LEAF_TRIANGLES`] triangles; a Cornell box's floor and
+    /// light, say), which a ray tests without a walk: no node, so no
+    /// reciprocal direction or stack to prepare.
+    #[inline(always)]
+    fn lone_leaf(&self) -> Option<std::ops::Range<usize>> {
+        self.start?.packs()
+    }
+
+    /// The closest hit among the packs `range` in the ray's interval (the
+    /// first found with `ANY`), as a walk would find it through the leaf.
+    #[inline(always)]
+    fn nearest_in_leaf<const ANY: bool>(
+        &self,
+        ray: &Ray,
+        range: std::ops::Range<usize>,
+    ) -> LaneBest<'_> {
+        let triangle_ray = WatertightRay::new(ray);
+        let mut t_max = ray.t_max;
+        let mut best = None;
+        for pack in &self.packs[range] {
+            if let Some(hit) = pack.nearest(&triangle_ray, ray.t_min, t_max) {
+                t_max = hit.alpha;
+                best = Some((pack, hit));
+                if ANY {
+                    break;
+                }
+            }
+        }
+        best
     }
 
     /// Where every walk starts (decided at build: [`start_of`]).
