@@ -8,9 +8,7 @@
 //!   it builds slower and traces slower). One ray at a time ([`MeshBvh::closest_hit`]), or
 //!   a batch ([`MeshBvh::closest_hits`]): coherent rays in packets of eight
 //!   that share each node's loads, incoherent ones several at a time,
-//!   interleaved, to hide memory latency. A mesh of at most
-//!   [`mesh::FLAT_TRIANGLES`] triangles (a Cornell box's walls) skips the
-//!   tree: its triangles are tested eight at a time ([`triangle_block`]).
+//!   interleaved, to hide memory latency.
 //! - [`SceneBvh`]: the top level over items known only by their boxes (mesh
 //!   instances, analytic shapes), the same 8-wide nodes by the same binned
 //!   SAH, leaves of up to eight items; the caller intersects each item.
@@ -29,7 +27,6 @@ mod binned_sah;
 mod huge_pages;
 pub mod instance;
 pub mod mesh;
-mod mesh_hit;
 mod ploc;
 pub mod reference;
 pub mod scene;
@@ -37,7 +34,6 @@ mod simd;
 pub mod slab;
 pub mod sphere_pack;
 mod stack;
-pub mod triangle_block;
 pub mod triangle_pack;
 pub mod wide;
 mod wide_build;

@@ -7,9 +7,6 @@ use glam::{DVec3, Vec2, Vec3};
 use serde::Serialize;
 use wide::f32x4;
 
-mod block;
-pub use block::BlockHits;
-
 /// The triangle T with vertices t0, t1, t2 (edges v1 = t1 − t0, v2 = t2 − t0).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Triangle {
