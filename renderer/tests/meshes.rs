@@ -7,6 +7,7 @@ use glam::{Mat4, Vec2, Vec3};
 use renderer::World;
 use renderer::film::aov::{Aov, render_aov};
 use renderer::geometry::ray::Ray;
+use renderer::shading::bsdf::PreparedBsdf;
 use renderer::shapes::Method;
 use scene::{
     MeshInstance, MeshSource, ModelFile, ModelMaterial, Object, Scene, Shape, Texture,
@@ -188,6 +189,49 @@ fn a_base_colour_texture_multiplies_the_albedo_at_the_interpolated_uv() {
     };
     assert_eq!(albedo_at(0.1), Vec3::new(0.5, 0.0, 0.0));
     assert_eq!(albedo_at(0.9), Vec3::new(0.0, 0.0, 0.5));
+}
+
+#[test]
+fn a_hits_surface_looked_up_at_once_is_what_the_separate_look_ups_give() {
+    // A textured, tilted-normal mesh and, in the knot scene, mesh instances,
+    // spheres and an infinite plane.
+    let mut textured = model(quad(), &[Mat4::IDENTITY]);
+    textured.textures = vec![Arc::new(Texture {
+        width: 2,
+        height: 1,
+        texels: vec![[255, 0, 0, 255], [0, 0, 255, 255]].into(),
+        wrap_u: Wrap::ClampToEdge,
+        wrap_v: Wrap::ClampToEdge,
+    })];
+    textured.materials[0].base_color_texture = Some(0);
+    let mut knot = scene::generate::knot_scene(3000);
+    knot.objects
+        .extend(scene::generate::spheres_scene(40).objects);
+    (knot.camera.width, knot.camera.height) = (64, 36);
+    for scene in [scene_with(Arc::new(textured), Vec3::ZERO), knot] {
+        let world = World::from_scene(&scene).expect("world");
+        let mut hits = 0;
+        for ray in renderer::diagnostics::throughput::primary_rays(&world) {
+            let Some(hit) = world.intersect(&ray, Method::Robust) else {
+                continue;
+            };
+            hits += 1;
+            let at = world.hit_surface(&ray, &hit);
+            let surface = world.surface(&ray, hit);
+            let material = world.material(hit);
+            assert_eq!(at.surface, surface);
+            assert_eq!(at.shading_normal, world.shading_normal(hit, &surface));
+            assert_eq!(
+                scene::Material {
+                    color: at.color,
+                    ..*at.material
+                },
+                material
+            );
+            assert_eq!(*at.bsdf, PreparedBsdf::new(&material));
+        }
+        assert!(hits > 100, "{hits} hits");
+    }
 }
 
 #[test]

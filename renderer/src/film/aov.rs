@@ -41,8 +41,8 @@ pub fn aov_at(world: &World, aov: Aov, method: Method, i: u32, j: u32) -> [f32; 
         (Aov::Object, None) => [-1.0, 0.0, 0.0],
         (Aov::Normal, Some(h)) => world.surface(&ray, h).normal.to_array(),
         (Aov::Albedo, Some(h)) => {
-            let point = world.surface(&ray, h).point;
-            albedo_at(&world.material(h), point).to_array()
+            let at = world.hit_surface(&ray, &h);
+            albedo_at(at.material.base, at.color, at.surface.point).to_array()
         }
         (Aov::Normal | Aov::Albedo, None) => [0.0; 3],
     }

@@ -5,18 +5,26 @@
 
 use crate::geometry::offset::offset_ray_origin;
 use crate::geometry::ray::Ray;
+use crate::shading::bsdf::{Bsdf, PreparedBsdf};
+use crate::shading::texture::albedo_at;
 use crate::shapes::Surface;
-use crate::world::{Hit, World};
+use crate::world::{Hit, HitSurface, World};
 use glam::Vec3;
 use scene::Material;
 
 /// A ray's hit, ready to shade.
 #[derive(Clone, Copy, Debug)]
-pub struct ShadingContext {
+pub struct ShadingContext<'w> {
     /// The hit point and the shape's own (outward) geometric normal.
     pub surface: Surface,
-    /// The material at the hit (a mesh's texture applied).
-    pub material: Material,
+    /// The material of the object (or mesh instance) hit; its colour
+    /// before a texture, see `color`.
+    pub material: &'w Material,
+    /// The material's colour at the hit (a mesh's texture applied).
+    pub color: Vec3,
+    /// The material's BSDF as prepared with the world (the colour at the
+    /// hit and `front` still to add).
+    pub bsdf: &'w PreparedBsdf,
     /// True when the ray arrived on the side the geometric normal faces.
     pub front: bool,
     /// The unit geometric normal on the side the ray came from.
@@ -28,7 +36,7 @@ pub struct ShadingContext {
     pub magnitude: f32,
 }
 
-impl ShadingContext {
+impl<'w> ShadingContext<'w> {
     /// The context of `hit`, which `ray` found in `world`. Which side the
     /// ray came from follows the geometric normal; the shading normal is
     /// turned to that side.
@@ -38,21 +46,39 @@ impl ShadingContext {
     /// `World::intersect` wrote it with narrow ones, and the stalled loads
     /// cost 4–5% of a Whitted pass of `seed.xml` (same instruction count).
     #[inline(always)]
-    pub fn new(world: &World, ray: &Ray, hit: &Hit) -> Self {
-        let hit = *hit;
-        let surface = world.surface(ray, hit);
-        let material = world.material(hit);
+    pub fn new(world: &'w World, ray: &Ray, hit: &Hit) -> Self {
+        let HitSurface {
+            surface,
+            shading_normal,
+            material,
+            color,
+            bsdf,
+        } = world.hit_surface(ray, hit);
         let front = ray.dir.dot(surface.normal) < 0.0;
-        let shading_normal = world.shading_normal(hit, &surface);
         let toward_ray = |n: Vec3| if front { n } else { -n };
         Self {
             surface,
             material,
+            color,
+            bsdf,
             front,
             geometric: toward_ray(surface.normal),
             shading_normal: toward_ray(shading_normal),
             magnitude: world.magnitude(hit.object),
         }
+    }
+
+    /// The albedo at the hit: the colour, or for marble the solid texture
+    /// through it.
+    #[inline]
+    pub fn albedo(&self) -> Vec3 {
+        albedo_at(self.material.base, self.color, self.point())
+    }
+
+    /// The BSDF at the hit.
+    #[inline]
+    pub fn bsdf(&self) -> Bsdf {
+        self.bsdf.at(self.albedo(), self.front)
     }
 
     /// The hit point.

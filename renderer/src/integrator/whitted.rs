@@ -19,7 +19,6 @@ use crate::geometry::ray::Ray;
 use crate::shading::bsdf::rough_conductor::RoughConductor;
 use crate::shading::bsdf::{Bsdf, ShadingFrame, conductor_reflectance};
 use crate::shading::optics::{fresnel_dielectric, reflect, refract};
-use crate::shading::texture::albedo_at;
 use crate::world::World;
 use glam::Vec3;
 use scene::BaseMaterial;
@@ -57,7 +56,7 @@ fn trace<R: Recorder>(
     };
     let at = ShadingContext::new(world, ray, &hit);
     rec.hit(node, ray, hit, &at.surface, at.front);
-    let (material, front, n, point) = (&at.material, at.front, at.shading_normal, at.point());
+    let (material, front, n) = (at.material, at.front, at.shading_normal);
     let mut radiance = if front { material.emission } else { Vec3::ZERO };
     rec.local(node, radiance);
 
@@ -77,7 +76,7 @@ fn trace<R: Recorder>(
     };
     match material.base {
         BaseMaterial::Matte | BaseMaterial::Plastic | BaseMaterial::Marble => {
-            let albedo = albedo_at(material, point);
+            let albedo = at.albedo();
             let diffuse_weight = 1.0 - material.reflectivity;
             rec.local(node, diffuse_weight * (albedo * world.ambient));
             let at = shading(albedo);
@@ -95,9 +94,9 @@ fn trace<R: Recorder>(
         BaseMaterial::Mirror | BaseMaterial::Metal => {
             // A rough conductor (see `rough_conductor_direct`) mirrors 1 − roughness.
             let mut mirrored = 1.0;
-            if let Bsdf::RoughConductor(conductor) = Bsdf::new(material, material.color, front) {
+            if let Bsdf::RoughConductor(conductor) = at.bsdf.at(at.color, front) {
                 let roughness = material.roughness.clamp(0.0, 1.0);
-                let at = shading(material.color);
+                let at = shading(at.color);
                 radiance +=
                     rough_conductor_direct(world, options, &at, &conductor, roughness, rec, node);
                 mirrored = 1.0 - roughness;
@@ -105,7 +104,7 @@ fn trace<R: Recorder>(
             if can_recurse {
                 let metal = material.base == BaseMaterial::Metal;
                 let reflectance =
-                    mirrored * conductor_reflectance(material.color, metal, -ray.dir.dot(n));
+                    mirrored * conductor_reflectance(at.color, metal, -ray.dir.dot(n));
                 if reflectance != Vec3::ZERO {
                     radiance += reflectance
                         * bounce(rec, RayKind::Reflection, reflect(ray.dir, n), reflectance);
@@ -131,9 +130,9 @@ fn trace<R: Recorder>(
                 );
                 radiance += fresnel * reflected;
                 if let Some(dir) = refract(ray.dir, n, eta) {
-                    let tint = (1.0 - fresnel) * material.color;
+                    let tint = (1.0 - fresnel) * at.color;
                     let transmitted = bounce(rec, RayKind::Refraction, dir, tint);
-                    radiance += (1.0 - fresnel) * material.color * transmitted;
+                    radiance += (1.0 - fresnel) * at.color * transmitted;
                 } else {
                     rec.note(node, Note::TotalInternalReflection);
                 }
@@ -149,7 +148,7 @@ fn trace<R: Recorder>(
 struct Shading<'a> {
     /// The hit, with its normals turned toward the ray (shadow rays start
     /// off the geometric one).
-    hit: &'a ShadingContext,
+    hit: &'a ShadingContext<'a>,
     albedo: Vec3,
     to_eye: Vec3,
 }
@@ -166,7 +165,7 @@ fn direct<R: Recorder>(
     rec: &mut R,
     node: R::Node,
 ) -> Vec3 {
-    let (material, albedo, n) = (&at.hit.material, at.albedo, at.hit.shading_normal);
+    let (material, albedo, n) = (at.hit.material, at.albedo, at.hit.shading_normal);
     let ambient = albedo * world.ambient;
     ambient
         + lights(

@@ -4,11 +4,14 @@ use glam::Vec3;
 use noise::{Fbm, NoiseFn, Perlin};
 use std::sync::LazyLock;
 
-/// The material's albedo at `point`: its colour, or for marble the solid texture through it.
-pub fn albedo_at(material: &scene::Material, point: Vec3) -> Vec3 {
-    match material.base {
-        scene::BaseMaterial::Marble => marble(point, material.color),
-        _ => material.color,
+/// The albedo at `point` of a material of base `base` and colour `color`
+/// there (a mesh's texture applied): the colour, or for marble the solid
+/// texture through it.
+#[inline]
+pub fn albedo_at(base: scene::BaseMaterial, color: Vec3, point: Vec3) -> Vec3 {
+    match base {
+        scene::BaseMaterial::Marble => marble(point, color),
+        _ => color,
     }
 }
 

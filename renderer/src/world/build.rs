@@ -10,6 +10,7 @@ use super::top_level::{Lone, TopLevels};
 use super::{Item, Object, RenderError, World};
 use crate::accel::Aabb;
 use crate::camera::Camera;
+use crate::shading::bsdf::PreparedBsdf;
 use crate::shapes::Shape;
 use glam::{Affine3A, Vec3};
 use scene::{Geometry, ResolvedObject, ResolvedScene, Scene};
@@ -111,6 +112,11 @@ impl World {
             sky: resolved.sky,
             objects,
             materials: resolved.objects.iter().map(|o| o.material).collect(),
+            bsdfs: resolved
+                .objects
+                .iter()
+                .map(|o| PreparedBsdf::new(&o.material))
+                .collect(),
             names: resolved.objects.iter().map(|o| o.name.clone()).collect(),
             meshes,
             lights,

@@ -9,6 +9,7 @@ pub mod blas_cache;
 mod build;
 pub mod emitters;
 mod hit;
+mod hit_surface;
 mod intersect;
 pub mod light;
 mod lone_spheres;
@@ -17,10 +18,12 @@ mod top_level;
 
 pub use batch::BATCHED_INSTANCES;
 pub use hit::{Hit, TriangleRef};
+pub use hit_surface::HitSurface;
 
 use crate::accel::Aabb;
 use crate::camera::{Camera, CameraError};
 use crate::geometry::ray::Ray;
+use crate::shading::bsdf::PreparedBsdf;
 use crate::shapes::{Shape, Surface};
 use emitters::Emitters;
 use glam::Vec3;
@@ -79,6 +82,9 @@ pub struct World {
     /// One material per object (for a model shown with its file's
     /// materials, what the object's own settings say; instances carry theirs).
     pub materials: Vec<Material>,
+    /// One prepared BSDF per object, of its material (a model's instances
+    /// carry theirs).
+    bsdfs: Vec<PreparedBsdf>,
     /// One name per object.
     pub names: Vec<String>,
     /// Every mesh instance, grouped by object.

@@ -3,6 +3,7 @@
 
 use crate::accel::{Aabb, Instance, MeshBvh, MeshHit};
 use crate::geometry::ray::Ray;
+use crate::shading::bsdf::PreparedBsdf;
 use crate::shading::image_texture;
 use crate::shapes::Surface;
 use glam::{Affine3A, Vec2, Vec3};
@@ -23,6 +24,9 @@ pub struct PlacedMesh {
     pub instance: Instance,
     /// The material the instance is shaded with.
     pub material: Material,
+    /// Its BSDF as far as it holds over the whole instance (the texture's
+    /// colour added at each hit).
+    pub bsdf: PreparedBsdf,
     /// The base-colour texture multiplied with `material.color`, if any.
     pub texture: Option<Arc<Texture>>,
     /// The world-space bounding box.
@@ -46,6 +50,7 @@ impl PlacedMesh {
             bounds: instance.world_bounds(bvh.bounds()),
             bvh,
             instance,
+            bsdf: PreparedBsdf::new(&material),
             material,
             texture,
         }
@@ -69,11 +74,30 @@ impl PlacedMesh {
         self.mesh.triangles[triangle as usize]
     }
 
+    /// The hit's surface, shading normal and colour, the triangle looked up
+    /// once: what [`PlacedMesh::surface`], [`PlacedMesh::shading_normal`]
+    /// and [`PlacedMesh::base_color`] give, bit for bit.
+    #[inline]
+    pub fn shading_point(&self, hit: &MeshHit) -> MeshPoint {
+        let corners = self.corners(hit.triangle);
+        let surface = self.surface_at(corners, hit);
+        MeshPoint {
+            surface,
+            shading_normal: self.shading_normal_at(corners, hit, surface.normal),
+            color: self.base_color_at(corners, hit),
+        }
+    }
+
     /// The hit point (interpolated in mesh space, then placed) and the
     /// geometric normal: (t1 − t0) × (t2 − t0) taken to world space by the
     /// inverse transpose, so that a mirroring transform keeps it outward.
     pub fn surface(&self, hit: &MeshHit) -> Surface {
-        let [a, b, c] = self.corners(hit.triangle);
+        self.surface_at(self.corners(hit.triangle), hit)
+    }
+
+    /// [`PlacedMesh::surface`] of the triangle with these corners.
+    #[inline]
+    fn surface_at(&self, [a, b, c]: [u32; 3], hit: &MeshHit) -> Surface {
         let p = &self.mesh.positions;
         let (p0, p1, p2) = (p[a as usize], p[b as usize], p[c as usize]);
         let local = p0 + hit.beta * (p1 - p0) + hit.gamma * (p2 - p0);
@@ -91,8 +115,13 @@ impl PlacedMesh {
     /// The interpolated vertex normal in world space (smooth shading), or
     /// `geometric` when the mesh has none or it degenerates.
     pub fn shading_normal(&self, hit: &MeshHit, geometric: Vec3) -> Vec3 {
+        self.shading_normal_at(self.corners(hit.triangle), hit, geometric)
+    }
+
+    /// [`PlacedMesh::shading_normal`] of the triangle with these corners.
+    #[inline]
+    fn shading_normal_at(&self, [a, b, c]: [u32; 3], hit: &MeshHit, geometric: Vec3) -> Vec3 {
         let n = &self.mesh.normals;
-        let [a, b, c] = self.corners(hit.triangle);
         let (Some(n0), Some(n1), Some(n2)) =
             (n.get(a as usize), n.get(b as usize), n.get(c as usize))
         else {
@@ -106,8 +135,12 @@ impl PlacedMesh {
 
     /// The interpolated texture coordinate, if the mesh has them.
     pub fn uv(&self, hit: &MeshHit) -> Option<Vec2> {
+        self.uv_at(self.corners(hit.triangle), hit)
+    }
+
+    /// [`PlacedMesh::uv`] of the triangle with these corners.
+    fn uv_at(&self, [a, b, c]: [u32; 3], hit: &MeshHit) -> Option<Vec2> {
         let uv = &self.mesh.uvs;
-        let [a, b, c] = self.corners(hit.triangle);
         let (u0, u1, u2) = (
             uv.get(a as usize)?,
             uv.get(b as usize)?,
@@ -118,9 +151,30 @@ impl PlacedMesh {
 
     /// The albedo at the hit: the material's colour times the texture, if any.
     pub fn base_color(&self, hit: &MeshHit) -> Vec3 {
-        match (&self.texture, self.uv(hit)) {
-            (Some(texture), Some(uv)) => self.material.color * image_texture::sample(texture, uv),
-            _ => self.material.color,
+        self.base_color_at(self.corners(hit.triangle), hit)
+    }
+
+    /// [`PlacedMesh::base_color`] of the triangle with these corners; the
+    /// texture coordinate is only interpolated for a textured instance.
+    #[inline]
+    fn base_color_at(&self, corners: [u32; 3], hit: &MeshHit) -> Vec3 {
+        let Some(texture) = &self.texture else {
+            return self.material.color;
+        };
+        match self.uv_at(corners, hit) {
+            Some(uv) => self.material.color * image_texture::sample(texture, uv),
+            None => self.material.color,
         }
     }
+}
+
+/// What [`PlacedMesh::shading_point`] finds at a hit.
+#[derive(Clone, Copy, Debug)]
+pub struct MeshPoint {
+    /// The hit point and the geometric normal.
+    pub surface: Surface,
+    /// The interpolated vertex normal (or the geometric one).
+    pub shading_normal: Vec3,
+    /// The material's colour times the texture there.
+    pub color: Vec3,
 }

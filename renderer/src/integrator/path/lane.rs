@@ -14,7 +14,6 @@ use crate::integrator::recorder::{EmitterLightSample, Note, Recorder};
 use crate::integrator::sampler::{BounceDraw, Sampler};
 use crate::integrator::shading_context::ShadingContext;
 use crate::shading::bsdf::{Bsdf, BsdfSample, ShadingFrame};
-use crate::shading::texture::albedo_at;
 use crate::world::{Hit, World};
 use glam::Vec3;
 
@@ -97,7 +96,7 @@ impl<N: Copy> Lane<N> for PathLane<N> {
         };
         let at = ShadingContext::new(world, &ray, &hit);
         rec.hit(self.node, &ray, hit, &at.surface, at.front);
-        let material = &at.material;
+        let material = at.material;
         if at.front && material.emission != Vec3::ZERO {
             let weight = match (self.previous, world.emitters.index_of(&hit)) {
                 (Some((from, bsdf_pdf)), Some(index)) => power_heuristic(
@@ -117,7 +116,7 @@ impl<N: Copy> Lane<N> for PathLane<N> {
         }
         let frame = ShadingFrame::new(at.shading_normal);
         let wo = frame.to_local(-ray.dir);
-        let bsdf = Bsdf::new(material, albedo_at(material, at.point()), at.front);
+        let bsdf = at.bsdf();
         if bsdf.has_smooth() {
             self.sampler.seek_bounce(self.depth, BounceDraw::Light);
             light_samples(world, &at, frame, wo, &bsdf, &mut self.sampler, shadows);

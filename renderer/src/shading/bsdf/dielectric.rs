@@ -15,19 +15,6 @@ pub struct SmoothDielectric {
 }
 
 impl SmoothDielectric {
-    /// Glass of index `ior` (inside; 1 outside) met from outside when `front`.
-    pub fn new(ior: f32, tint: Vec3, front: bool) -> Self {
-        let ior = if ior > 0.0 && ior.is_finite() {
-            ior
-        } else {
-            1.0
-        };
-        Self {
-            eta: if front { 1.0 / ior } else { ior },
-            tint,
-        }
-    }
-
     /// Reflects with probability F, else refracts (weight tint · η²: the
     /// radiance a ray carries changes by (η_i / η_t)² across the interface).
     pub fn sample(&self, wo: Vec3, u: f32) -> BsdfSample {

@@ -12,10 +12,12 @@
 pub mod dielectric;
 pub mod ggx;
 pub mod lambert;
+pub mod prepared;
 pub mod rough_conductor;
 pub mod rough_dielectric;
 pub mod shading_frame;
 
+pub use prepared::PreparedBsdf;
 pub use shading_frame::ShadingFrame;
 
 use crate::shading::optics::fresnel_schlick;
@@ -24,7 +26,7 @@ use glam::{Vec2, Vec3};
 use lambert::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
 use rough_conductor::RoughConductor;
 use rough_dielectric::RoughDielectric;
-use scene::{BaseMaterial, Material};
+use scene::Material;
 use std::f32::consts::FRAC_1_PI;
 
 /// A scattering function at one shading point.
@@ -133,50 +135,13 @@ impl BsdfSample {
 }
 
 impl Bsdf {
-    /// The BSDF of `material` with albedo `albedo` (the colour, or marble's
-    /// texture at the point); `front` tells whether the ray arrived on the
-    /// outer side (glass: whether it enters).
-    pub fn new(material: &Material, albedo: Vec3, front: bool) -> Bsdf {
-        // GGX α = roughness²; below the smallest α the surface is smooth.
-        let alpha = material.roughness * material.roughness;
-        let rough = alpha >= Ggx::MIN_ALPHA;
-        match material.base {
-            BaseMaterial::Matte | BaseMaterial::Plastic | BaseMaterial::Marble => {
-                let mirror = material.reflectivity.clamp(0.0, 1.0);
-                let specular = material.specular.clamp(0.0, 1.0);
-                Bsdf::Layered(Layered {
-                    albedo,
-                    diffuse: (1.0 - mirror) * (1.0 - specular),
-                    glossy: (1.0 - mirror) * specular,
-                    mirror,
-                    ggx: Ggx::from_shininess(material.shininess),
-                })
-            }
-            BaseMaterial::Mirror | BaseMaterial::Metal => {
-                let (f0, schlick) = (material.color, material.base == BaseMaterial::Metal);
-                if rough {
-                    Bsdf::RoughConductor(RoughConductor {
-                        f0,
-                        schlick,
-                        ggx: Ggx::new(alpha),
-                    })
-                } else {
-                    Bsdf::Conductor { f0, schlick }
-                }
-            }
-            BaseMaterial::Glass => {
-                let smooth = dielectric::SmoothDielectric::new(material.ior, material.color, front);
-                if rough {
-                    Bsdf::RoughDielectric(RoughDielectric {
-                        eta: smooth.eta,
-                        tint: smooth.tint,
-                        ggx: Ggx::new(alpha),
-                    })
-                } else {
-                    Bsdf::Dielectric(smooth)
-                }
-            }
-        }
+    /// The BSDF of `material` where its colour is `color` (the albedo of
+    /// matte, plastic and marble — marble's texture at the point —, the
+    /// reflectance of mirror and metal, the tint of glass); `front` tells
+    /// whether the ray arrived on the outer side (glass: whether it enters).
+    /// A renderer prepares each material once ([`PreparedBsdf`]) instead.
+    pub fn new(material: &Material, color: Vec3, front: bool) -> Bsdf {
+        PreparedBsdf::new(material).at(color, front)
     }
 
     /// Whether any part is not a delta lobe, so that sampling a light helps.

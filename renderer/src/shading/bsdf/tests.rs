@@ -6,6 +6,7 @@ use super::*;
 use crate::integrator::sampler::Sampler;
 use glam::Vec3;
 use proptest::prelude::*;
+use scene::BaseMaterial;
 use scene::materials::builtin;
 
 fn every_material() -> Vec<(String, Material)> {
