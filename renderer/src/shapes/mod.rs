@@ -24,7 +24,7 @@ pub use placement::Placement;
 pub use plane::Plane;
 pub use sphere::{Sphere, SphereQuadratic, SphereRoots};
 pub use torus::Torus;
-pub use triangle::{Triangle, TriangleHit, WatertightRay};
+pub use triangle::{Triangle, TriangleHit, TriangleSampler, WatertightRay};
 
 use crate::geometry::ray::Ray;
 use glam::Vec3;

@@ -329,22 +329,60 @@ impl Triangle {
     /// A point drawn uniformly over the triangle (barycentrics from the unit
     /// square folded along its diagonal), with the normal (t1 − t0) × (t2 − t0).
     pub fn sample_area(&self, u: Vec2) -> Option<AreaSample> {
+        Some(self.area_sampler()?.sample(u))
+    }
+
+    /// What [`Triangle::sample_area`] computes before it draws, made once
+    /// (an emitter draws from it at every path vertex); `None` for a
+    /// triangle of no area.
+    pub fn area_sampler(&self) -> Option<TriangleSampler> {
         let (v1, v2) = (self.t1 - self.t0, self.t2 - self.t0);
         let n = v1.cross(v2);
         let area = 0.5 * n.length();
         if !(area > 0.0) {
             return None;
         }
+        Some(TriangleSampler {
+            t0: self.t0,
+            v1,
+            v2,
+            normal: n / (2.0 * area),
+            pdf_area: 1.0 / area,
+        })
+    }
+}
+
+/// A triangle prepared for drawing points uniformly over it
+/// ([`Triangle::area_sampler`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TriangleSampler {
+    /// t0.
+    t0: Vec3,
+    /// t1 − t0.
+    v1: Vec3,
+    /// t2 − t0.
+    v2: Vec3,
+    /// The unit normal (t1 − t0) × (t2 − t0) / ‖…‖.
+    normal: Vec3,
+    /// 1 / area: the density of every point.
+    pub pdf_area: f32,
+}
+
+impl TriangleSampler {
+    /// The point drawn from `u` ∈ [0, 1)² (barycentrics from the unit square
+    /// folded along its diagonal), with the normal and density.
+    #[inline]
+    pub fn sample(&self, u: Vec2) -> AreaSample {
         let (b, c) = if u.x + u.y > 1.0 {
             (1.0 - u.x, 1.0 - u.y)
         } else {
             (u.x, u.y)
         };
-        Some(AreaSample {
-            point: self.t0 + b * v1 + c * v2,
-            normal: n / (2.0 * area),
-            pdf_area: 1.0 / area,
-        })
+        AreaSample {
+            point: self.t0 + b * self.v1 + c * self.v2,
+            normal: self.normal,
+            pdf_area: self.pdf_area,
+        }
     }
 }
 
@@ -450,6 +488,29 @@ mod tests {
             }
         }
     }
+    proptest! {
+        /// The density an emitter reports for a point a BSDF ray found
+        /// (`Shape::pdf_area`, for MIS) is bit for bit the one its prepared
+        /// sampler draws with, on any triangle.
+        #[test]
+        fn the_prepared_sampler_draws_with_the_shapes_own_density(
+            c in proptest::array::uniform9(-50.0f32..50.0), ux in 0.0f32..1.0, uy in 0.0f32..1.0,
+        ) {
+            let t = Triangle::new(
+                Vec3::new(c[0], c[1], c[2]), Vec3::new(c[3], c[4], c[5]), Vec3::new(c[6], c[7], c[8]),
+            );
+            let shape = super::super::Shape::Triangle(t);
+            match t.area_sampler() {
+                Some(sampler) => {
+                    let drawn = sampler.sample(Vec2::new(ux, uy));
+                    prop_assert_eq!(drawn.pdf_area.to_bits(), shape.pdf_area(drawn.point).to_bits());
+                    prop_assert_eq!(Some(drawn), t.sample_area(Vec2::new(ux, uy)));
+                }
+                None => prop_assert!(t.sample_area(Vec2::new(ux, uy)).is_none()),
+            }
+        }
+    }
+
     /// Four triangles with small integer corners, so rays through their
     /// edges and vertices (exact zero edge functions) come up often.
     fn lattice_triangle() -> impl Strategy<Value = [Vec3; 3]> {
