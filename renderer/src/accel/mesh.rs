@@ -14,7 +14,7 @@ use super::scene::Aabb;
 use super::simd::{prefetch, with_widest_simd};
 use super::stack::Stack;
 use super::triangle_pack::{PACK, TrianglePack};
-use super::wide::{ChildRef, WIDTH, WideNode, WideRay};
+use super::wide::{ChildRef, WIDTH, WideNode, WideRay, pop_within, push_children_nearest_last};
 use super::wide_build::build_wide;
 use crate::geometry::ray::Ray;
 use crate::shapes::WatertightRay;
@@ -314,39 +314,19 @@ impl MeshBvh {
             }
         } else {
             let node = &self.nodes[current.0 as usize];
-            let (mut mask, t_near) = walk.ray.child_hits(node);
+            let (mask, t_near) = walk.ray.child_hits(node);
             if mask != 0 {
-                // The hit children, nearest last.
-                let mut hits = [(ChildRef::EMPTY, 0.0f32); WIDTH];
-                let mut n = 0;
-                while mask != 0 {
-                    let i = mask.trailing_zeros() as usize;
-                    mask &= mask - 1;
-                    let mut j = n;
-                    while j > 0 && hits[j - 1].1 < t_near[i] {
-                        hits[j] = hits[j - 1];
-                        j -= 1;
-                    }
-                    let child = node.children[i];
-                    self.prefetch(child);
-                    hits[j] = (child, t_near[i]);
-                    n += 1;
-                }
-                for &h in &hits[..n - 1] {
-                    walk.stack.push(h);
-                }
-                walk.next = Some(hits[n - 1].0);
+                walk.next = Some(push_children_nearest_last(
+                    node,
+                    mask,
+                    &t_near,
+                    &mut walk.stack,
+                    |child| self.prefetch(child),
+                ));
                 return true;
             }
         }
-        // The next waiting child that may still hold a closer hit.
-        walk.next = loop {
-            match walk.stack.pop() {
-                None => break None,
-                Some((child, t_near)) if t_near <= walk.ray.slab.t_max_wide => break Some(child),
-                Some(_) => {}
-            }
-        };
+        walk.next = pop_within(&mut walk.stack, walk.ray.slab.t_max_wide);
         walk.next.is_some()
     }
 

@@ -8,7 +8,7 @@
 use super::binned_sah::PrimRef;
 use super::slab::SlabRay;
 use super::stack::Stack;
-use super::wide::{ChildRef, WIDTH, WideNode, WideRay};
+use super::wide::{ChildRef, WideNode, WideRay, pop_within, push_children_nearest_last};
 use super::wide_build::build_wide_refs;
 use crate::geometry::ray::Ray;
 pub use ::scene::layout::Aabb;
@@ -261,37 +261,19 @@ impl SceneBvh {
                 }
             } else {
                 let node = &self.nodes[current.0 as usize];
-                let (mut mask, t_near) = wide.child_hits(node);
+                let (mask, t_near) = wide.child_hits(node);
                 if mask != 0 {
-                    // The hit children, nearest last.
-                    let mut hits = [(ChildRef::EMPTY, 0.0f32); WIDTH];
-                    let mut n = 0;
-                    while mask != 0 {
-                        let i = mask.trailing_zeros() as usize;
-                        mask &= mask - 1;
-                        let mut j = n;
-                        while j > 0 && hits[j - 1].1 < t_near[i] {
-                            hits[j] = hits[j - 1];
-                            j -= 1;
-                        }
-                        hits[j] = (node.children[i], t_near[i]);
-                        n += 1;
-                    }
-                    for &h in &hits[..n - 1] {
-                        stack.push(h);
-                    }
-                    next = Some(hits[n - 1].0);
+                    next = Some(push_children_nearest_last(
+                        node,
+                        mask,
+                        &t_near,
+                        &mut stack,
+                        |_| {},
+                    ));
                     continue;
                 }
             }
-            // The next waiting child that may still hold a closer hit.
-            next = loop {
-                match stack.pop() {
-                    None => break None,
-                    Some((child, t_near)) if t_near <= wide.slab.t_max_wide => break Some(child),
-                    Some(_) => {}
-                }
-            };
+            next = pop_within(&mut stack, wide.slab.t_max_wide);
         }
     }
 }

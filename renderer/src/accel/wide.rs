@@ -10,6 +10,7 @@
 //! child, one that starts beyond the closest hit found meanwhile.
 
 use super::slab::{SlabRay, box_entry};
+use super::stack::Stack;
 use super::triangle_pack::PACK;
 
 /// Children per node.
@@ -156,6 +157,58 @@ impl WideRay {
         }
         let mask = bits.iter().fold(0, |m, b| m | b);
         (mask, t_near)
+    }
+}
+
+/// The children of `node` whose bits are set in `mask` (from
+/// [`WideRay::child_hits`], with their entry distances `t_near`): all but the
+/// nearest are pushed on `stack`, nearest last, and the nearest is returned
+/// to visit next. `each` sees every child as it is sorted in (a walk
+/// prefetches it). `mask` must not be 0.
+#[inline(always)]
+pub(crate) fn push_children_nearest_last<const N: usize>(
+    node: &WideNode,
+    mut mask: u32,
+    t_near: &[f32; WIDTH],
+    stack: &mut Stack<(ChildRef, f32), N>,
+    mut each: impl FnMut(ChildRef),
+) -> ChildRef {
+    debug_assert_ne!(mask, 0, "a node with no child hit");
+    let mut hits = [(ChildRef::EMPTY, 0.0f32); WIDTH];
+    let mut n = 0;
+    while mask != 0 {
+        let i = mask.trailing_zeros() as usize;
+        mask &= mask - 1;
+        let mut j = n;
+        while j > 0 && hits[j - 1].1 < t_near[i] {
+            hits[j] = hits[j - 1];
+            j -= 1;
+        }
+        let child = node.children[i];
+        each(child);
+        hits[j] = (child, t_near[i]);
+        n += 1;
+    }
+    for &h in &hits[..n - 1] {
+        stack.push(h);
+    }
+    hits[n - 1].0
+}
+
+/// The next child waiting on `stack` that may still hold a hit closer than
+/// `t_max_wide` (the slab's widened t_max); children entered beyond it are
+/// dropped. `None` when the walk is over.
+#[inline(always)]
+pub(crate) fn pop_within<const N: usize>(
+    stack: &mut Stack<(ChildRef, f32), N>,
+    t_max_wide: f32,
+) -> Option<ChildRef> {
+    loop {
+        match stack.pop() {
+            None => return None,
+            Some((child, t_near)) if t_near <= t_max_wide => return Some(child),
+            Some(_) => {}
+        }
     }
 }
 
