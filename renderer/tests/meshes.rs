@@ -168,17 +168,22 @@ fn shading_normals_interpolate_the_vertex_normals() {
     }
 }
 
-#[test]
-fn a_base_colour_texture_multiplies_the_albedo_at_the_interpolated_uv() {
-    // Left half red, right half blue (2×1 texels), clamped at the edges.
-    let mut model = model(quad(), &[Mat4::IDENTITY]);
-    model.textures = vec![Arc::new(Texture {
+/// A 2×1 texture, its left half red and its right half blue, clamped at
+/// the edges.
+fn red_blue_texture() -> Arc<Texture> {
+    Arc::new(Texture {
         width: 2,
         height: 1,
         texels: vec![[255, 0, 0, 255], [0, 0, 255, 255]].into(),
         wrap_u: Wrap::ClampToEdge,
         wrap_v: Wrap::ClampToEdge,
-    })];
+    })
+}
+
+#[test]
+fn a_base_colour_texture_multiplies_the_albedo_at_the_interpolated_uv() {
+    let mut model = model(quad(), &[Mat4::IDENTITY]);
+    model.textures = vec![red_blue_texture()];
     model.materials[0].material.color = Vec3::splat(0.5);
     model.materials[0].base_color_texture = Some(0);
     let world = World::from_scene(&scene_with(Arc::new(model), Vec3::ZERO)).expect("valid");
@@ -196,13 +201,7 @@ fn a_hits_surface_looked_up_at_once_is_what_the_separate_look_ups_give() {
     // A textured, tilted-normal mesh and, in the knot scene, mesh instances,
     // spheres and an infinite plane.
     let mut textured = model(quad(), &[Mat4::IDENTITY]);
-    textured.textures = vec![Arc::new(Texture {
-        width: 2,
-        height: 1,
-        texels: vec![[255, 0, 0, 255], [0, 0, 255, 255]].into(),
-        wrap_u: Wrap::ClampToEdge,
-        wrap_v: Wrap::ClampToEdge,
-    })];
+    textured.textures = vec![red_blue_texture()];
     textured.materials[0].base_color_texture = Some(0);
     let mut knot = scene::generate::knot_scene(3000);
     knot.objects
