@@ -17,6 +17,7 @@
 //!
 //!     cargo run --release -- SPP [SIZE]          # µs per path, relMSE vs the reference
 //!     LANES=1 cargo run --release -- 16          # the same code with 1 of 8 lanes used
+//!     SCALAR_RAYS=1 cargo run --release -- 16   # rays traced by raylab's World, one at a time
 //!     DEPTH=3 cargo run --release -- 64          # another max_depth
 //!     cargo run --release -- 0 0 IMAGE.exr       # relMSE and mean of a raylab render
 //!
@@ -536,6 +537,84 @@ impl Camera {
     }
 }
 
+/// With `SCALAR_RAYS=1`: each lane's rays are traced by raylab itself
+/// (`World::intersect` / `World::occluded`, one ray at a time, its BVHs and
+/// exact shapes), the rest stays 8-wide: what SIMD shading alone gains.
+static SCALAR_RAYS: std::sync::LazyLock<bool> =
+    std::sync::LazyLock::new(|| std::env::var("SCALAR_RAYS").is_ok());
+
+/// raylab's world of the reference Cornell box.
+fn world() -> renderer::world::World {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../assets/reference/cornell.xml"
+    );
+    let text = std::fs::read_to_string(path).expect("cornell.xml");
+    let scene = scene::read_str(&text, path).expect("parses");
+    renderer::world::World::from_scene(&scene).expect("valid")
+}
+
+/// Closest hits through raylab, lane by lane: t (+∞ on a miss), the
+/// geometric normal, the albedo and whether the light was hit.
+fn closest_world(w: &renderer::world::World, o: V, d: V, live: F) -> (F, V, V, F) {
+    let (ox, oy, oz) = (o.x.to_array(), o.y.to_array(), o.z.to_array());
+    let (dx, dy, dz) = (d.x.to_array(), d.y.to_array(), d.z.to_array());
+    let live = live.to_array();
+    let mut t = [f32::INFINITY; W];
+    let mut n = [[0.0f32; W]; 3];
+    let mut a = [[0.0f32; W]; 3];
+    let mut light = [0.0f32; W];
+    for l in 0..W {
+        if live[l].to_bits() == 0 {
+            continue;
+        }
+        let ray = renderer::geometry::ray::Ray::new(
+            Vec3::new(ox[l], oy[l], oz[l]),
+            Vec3::new(dx[l], dy[l], dz[l]),
+        );
+        let Some(hit) = w.intersect(&ray, renderer::shapes::Method::Robust) else {
+            continue;
+        };
+        let at = w.hit_surface(&ray, &hit);
+        t[l] = hit.alpha;
+        for k in 0..3 {
+            n[k][l] = at.surface.normal[k];
+            a[k][l] = at.color[k];
+        }
+        if hit.object == 10 || hit.object == 11 {
+            light[l] = f32::from_bits(u32::MAX);
+        }
+    }
+    let v3 = |c: [[f32; W]; 3]| V {
+        x: F::from(c[0]),
+        y: F::from(c[1]),
+        z: F::from(c[2]),
+    };
+    (F::from(t), v3(n), v3(a), F::from(light))
+}
+
+/// Shadow rays through raylab, lane by lane.
+fn occluded_world(w: &renderer::world::World, o: V, d: V, t_max: F, active: F) -> F {
+    let (ox, oy, oz) = (o.x.to_array(), o.y.to_array(), o.z.to_array());
+    let (dx, dy, dz) = (d.x.to_array(), d.y.to_array(), d.z.to_array());
+    let (t_max, active) = (t_max.to_array(), active.to_array());
+    let mut blocked = [0.0f32; W];
+    for l in 0..W {
+        if active[l].to_bits() == 0 {
+            continue;
+        }
+        let ray = renderer::geometry::ray::Ray::new(
+            Vec3::new(ox[l], oy[l], oz[l]),
+            Vec3::new(dx[l], dy[l], dz[l]),
+        )
+        .with_t_max(t_max[l]);
+        if w.occluded(&ray, renderer::shapes::Method::Robust) {
+            blocked[l] = f32::from_bits(u32::MAX);
+        }
+    }
+    F::from(blocked)
+}
+
 static MAX_DEPTH: std::sync::LazyLock<i32> = std::sync::LazyLock::new(|| {
     std::env::var("DEPTH")
         .ok()
@@ -544,7 +623,13 @@ static MAX_DEPTH: std::sync::LazyLock<i32> = std::sync::LazyLock::new(|| {
 });
 const RR_DEPTH: i32 = 5;
 
-fn render(s: &Scene, cam: &Camera, spp: u32, film: &mut [Vec3]) -> u64 {
+fn render(
+    s: &Scene,
+    world: Option<&renderer::world::World>,
+    cam: &Camera,
+    spp: u32,
+    film: &mut [Vec3],
+) -> u64 {
     let pixels = cam.w * cam.h;
     let total = (pixels as u64) * spp as u64;
     let mut next: u64 = 0;
@@ -646,23 +731,30 @@ fn render(s: &Scene, cam: &Camera, spp: u32, film: &mut [Vec3]) -> u64 {
         }
         let live = F::from(alive.map(|a| if a { f32::from_bits(u32::MAX) } else { 0.0 }));
         // Closest hits.
-        let (t, id) = closest(s, o, d);
+        let (t, mut n, albedo, on_light) = match world {
+            Some(w) => closest_world(w, o, d, live),
+            None => {
+                let (t, id) = closest(s, o, d);
+                let p = o.add(d.mul(t));
+                // Normals: triangles from the table, boxes from the face.
+                let mut n = gather(&s.normal, id);
+                for (k, b) in s.boxes.iter().enumerate() {
+                    let on = id.simd_eq(F::splat((s.tris.len() + k) as f32));
+                    if on.any() {
+                        n = V::sel(on, box_normal(b, p), n);
+                    }
+                }
+                let on_light = id.simd_eq(F::splat(s.lights[0] as f32))
+                    | id.simd_eq(F::splat(s.lights[1] as f32));
+                (t, n, gather(&s.albedo, id), on_light)
+            }
+        };
         let hit = live & t.simd_lt(F::splat(f32::INFINITY));
         let p = o.add(d.mul(t));
-        // Normals: triangles from the table, boxes from the face.
-        let mut n = gather(&s.normal, id);
-        for (k, b) in s.boxes.iter().enumerate() {
-            let on = id.simd_eq(F::splat((s.tris.len() + k) as f32));
-            if on.any() {
-                n = V::sel(on, box_normal(b, p), n);
-            }
-        }
         let cos_o = n.dot(d);
         let front = cos_o.simd_lt(F::ZERO);
         n = V::sel(front, n, n.mul(-F::ONE));
         // Emission (front of the light), MIS against light sampling.
-        let on_light =
-            id.simd_eq(F::splat(s.lights[0] as f32)) | id.simd_eq(F::splat(s.lights[1] as f32));
         let emit = hit & on_light & front;
         if emit.any() {
             let light_pdf = pmf_over_area * t * t / (-cos_o);
@@ -680,7 +772,6 @@ fn render(s: &Scene, cam: &Camera, spp: u32, film: &mut [Vec3]) -> u64 {
                 (depth_v + i32x8::splat(1)).simd_lt(i32x8::splat(*MAX_DEPTH)),
             );
         if going.any() {
-            let albedo = gather(&s.albedo, id);
             let eps = F::splat(8e-6);
             let origin = p.add(n.mul(eps));
             // Light sample: a triangle of the light, a point on it.
@@ -707,7 +798,11 @@ fn render(s: &Scene, cam: &Camera, spp: u32, film: &mut [Vec3]) -> u64 {
                 let light_pdf = pmf_over_area * dist2 / cos_l;
                 let bsdf_pdf = cos_s * inv_pi;
                 let mis = (light_pdf * light_pdf) / (light_pdf * light_pdf + bsdf_pdf * bsdf_pdf);
-                let blocked = occluded(s, origin, wi, dist * F::splat(1.0 - 1e-4), valid);
+                let t_max = dist * F::splat(1.0 - 1e-4);
+                let blocked = match world {
+                    Some(w) => occluded_world(w, origin, wi, t_max, valid),
+                    None => occluded(s, origin, wi, t_max, valid),
+                };
                 let lit = valid & !blocked;
                 let scale = lit.select(cos_s * inv_pi * mis / light_pdf, F::ZERO);
                 rad = rad.add(beta.mulv(albedo).mulv(le).mul(scale));
@@ -777,7 +872,8 @@ fn main() {
     };
     let mut film = vec![Vec3::ZERO; (size * size) as usize];
     let start = Instant::now();
-    let paths = render(&s, &cam, spp, &mut film);
+    let w = SCALAR_RAYS.then(world);
+    let paths = render(&s, w.as_ref(), &cam, spp, &mut film);
     let secs = start.elapsed().as_secs_f64();
     for p in &mut film {
         *p /= spp as f32;
