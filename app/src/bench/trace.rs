@@ -47,6 +47,9 @@ pub struct SceneFigures {
     pub edit_rebuild_seconds: f64,
     /// Bytes of the mesh BVHs (nodes and triangle copies) per triangle.
     pub bytes_per_triangle: Option<f64>,
+    /// The most memory one worker holds for a pass (its chunk of samples
+    /// and the path tracer's batch of lanes), whatever the image's size.
+    pub pass_bytes_per_thread: usize,
     /// One closest-hit ray per pixel centre P_ij.
     pub primary: PerThreads<CastFigures>,
     /// The same primary rays in batches (`World::intersect_batch`: runs of
@@ -145,6 +148,7 @@ pub fn measure(
         mesh_bvh_build_seconds_one_thread: build_one,
         edit_rebuild_seconds: edit,
         bytes_per_triangle: (triangles > 0).then(|| bytes as f64 / triangles as f64),
+        pass_bytes_per_thread: Film::pass_bytes_per_thread(&world),
         primary,
         primary_batched,
         incoherent,
@@ -199,6 +203,10 @@ pub fn print_table(f: &SceneFigures) {
     if let Some(b) = f.bytes_per_triangle {
         println!("  acceleration structure    {b:>9.1} bytes per triangle");
     }
+    println!(
+        "  pass memory per worker    {:>9.1} KiB (chunk of samples + batch of paths, any image size)",
+        f.pass_bytes_per_thread as f64 / 1024.0
+    );
     let row = |name: &str, c: &PerThreads<CastFigures>| {
         println!(
             "  {name:<25} {:>9.2} Mrays/s on 1 thread, {:>7.2} on {} ({:.0}% hit, {} rays)",

@@ -3,17 +3,23 @@
 //! of [`sample_pixel`](crate::integrator::sample_pixel), so a film is the same for any number of threads and
 //! every sample can be re-traced exactly.
 
-use super::Film;
-use super::preview::{PreviewSamples, for_each_with_known};
+use super::preview::{PreviewSamples, for_each_with_known_in};
+use super::{Film, PixelStats};
 use crate::geometry::counters::rays_on_this_thread;
 use crate::integrator::adaptive::{Adaptive, pixels_needing_samples};
 use crate::integrator::{RenderOptions, SampleRef, SampleResult, trace_samples};
 use crate::world::World;
+use glam::Vec3;
 use rayon::prelude::*;
 use scene::color::luminance;
 
 /// Rows per parallel work item: bands of rows are the tiles rayon shares out.
 const BAND_ROWS: usize = 4;
+
+/// Pixels of a band a worker gathers, traces and accumulates at a time:
+/// enough for the path tracer's batches to stay full, few enough that a
+/// worker's lists stay in its caches and do not grow with the image's width.
+pub const PASS_CHUNK: usize = 1024;
 
 impl Film {
     /// Adds one sample to every pixel that needs one (a pixel's k-th sample
@@ -86,59 +92,51 @@ impl Film {
                     return (0, 1, 0, 0);
                 }
                 let rays_before = rays_on_this_thread();
-                // The band's samples: those a preview already holds, and those
-                // to trace (together, so the path tracer can batch them).
-                let mut found: Vec<(usize, SampleResult)> = Vec::with_capacity(counts.len());
-                let mut todo: Vec<(usize, SampleRef)> = Vec::with_capacity(counts.len());
-                for row in 0..counts.len() / width {
+                // The band's samples, at most PASS_CHUNK at a time (so a
+                // worker's memory does not grow with the image's width):
+                // those a preview already holds, and those to trace
+                // (together, so the path tracer can batch them).
+                let mut chunk = Chunk::with_capacity(PASS_CHUNK.min(counts.len()));
+                let (mut bad, mut traced) = (0, 0);
+                let rows_in_band = counts.len() / width;
+                for row in 0..rows_in_band {
                     let j = (band * BAND_ROWS + row) as u32;
                     let needing_row = needing.map(|n| &n[j as usize * width..][..width]);
                     let known_row = known
                         .and_then(|k| k.row(j))
                         .map(|row| (row, row.stride as usize));
-                    for_each_with_known(width, known_row, |i, sample| {
-                        if needing_row.is_some_and(|n| !n[i]) {
-                            return;
+                    let mut start = 0;
+                    while start < width {
+                        let end = (start + PASS_CHUNK - chunk.len()).min(width);
+                        for_each_with_known_in(start..end, known_row, |i, sample| {
+                            if needing_row.is_some_and(|n| !n[i]) {
+                                return;
+                            }
+                            let at = row * width + i;
+                            match sample {
+                                Some((radiance, tests)) => chunk.found.push((
+                                    at,
+                                    SampleResult {
+                                        radiance,
+                                        shape_tests: u64::from(tests),
+                                    },
+                                )),
+                                None => chunk.todo.push((
+                                    at,
+                                    SampleRef {
+                                        i: i as u32,
+                                        j,
+                                        sample: counts[at],
+                                    },
+                                )),
+                            }
+                        });
+                        start = end;
+                        let last = row + 1 == rows_in_band && end == width;
+                        if chunk.len() == PASS_CHUNK || last {
+                            let (b, t) = chunk.trace_and_add(world, options, rows, stats, counts);
+                            (bad, traced) = (bad + b, traced + t);
                         }
-                        let at = row * width + i;
-                        match sample {
-                            Some((radiance, tests)) => found.push((
-                                at,
-                                SampleResult {
-                                    radiance,
-                                    shape_tests: u64::from(tests),
-                                },
-                            )),
-                            None => todo.push((
-                                at,
-                                SampleRef {
-                                    i: i as u32,
-                                    j,
-                                    sample: counts[at],
-                                },
-                            )),
-                        }
-                    });
-                }
-                let samples: Vec<SampleRef> = todo.iter().map(|&(_, s)| s).collect();
-                let mut traced_results = vec![SampleResult::default(); samples.len()];
-                trace_samples(world, options, &samples, &mut traced_results);
-                found.extend(todo.iter().map(|&(at, _)| at).zip(traced_results));
-                let (mut bad, mut traced) = (0, 0);
-                for (at, result) in found {
-                    let (acc, stat, count) = (&mut rows[at], &mut stats[at], &mut counts[at]);
-                    let value = result.radiance;
-                    *count += 1;
-                    traced += 1;
-                    stat.add_cost(result.shape_tests);
-                    // Welford's weight of this sample. A pixel that lost
-                    // a NaN sample still counts it (rare, and the mean
-                    // then treats it as black).
-                    if value.is_finite() {
-                        *acc += value;
-                        stat.add(luminance(value), 1.0 / *count as f32);
-                    } else {
-                        bad += 1;
                     }
                 }
                 let rays = rays_on_this_thread() - rays_before;
@@ -156,6 +154,18 @@ impl Film {
         skipped == 0
     }
 
+    /// The most memory one worker holds while it adds its share of a pass
+    /// of `world` (bytes): one chunk's sample lists and the path tracer's
+    /// batch of lanes. It does not depend on the image's size.
+    pub fn pass_bytes_per_thread(world: &World) -> usize {
+        use std::mem::size_of;
+        let lists = size_of::<(usize, SampleResult)>()
+            + size_of::<(usize, SampleRef)>()
+            + size_of::<SampleRef>()
+            + size_of::<SampleResult>();
+        PASS_CHUNK * lists + crate::integrator::path_batch_bytes(world)
+    }
+
     /// A film with `spp` passes of `world`.
     pub fn render(world: &World, options: &RenderOptions, spp: u32) -> Film {
         let mut film = Film::new(world.camera.w, world.camera.h);
@@ -163,5 +173,158 @@ impl Film {
             film.add_pass(world, options);
         }
         film
+    }
+}
+
+/// The samples of a band a worker is gathering: those a preview holds
+/// (`found`, by index in the band) and those to trace (`todo`).
+struct Chunk {
+    found: Vec<(usize, SampleResult)>,
+    todo: Vec<(usize, SampleRef)>,
+    /// Scratch: `todo`'s samples and their results, for the tracer.
+    samples: Vec<SampleRef>,
+    results: Vec<SampleResult>,
+}
+
+impl Chunk {
+    fn with_capacity(n: usize) -> Self {
+        Chunk {
+            found: Vec::with_capacity(n),
+            todo: Vec::with_capacity(n),
+            samples: Vec::with_capacity(n),
+            results: Vec::with_capacity(n),
+        }
+    }
+
+    /// Samples gathered so far.
+    fn len(&self) -> usize {
+        self.found.len() + self.todo.len()
+    }
+
+    /// Traces the samples to trace, adds every sample to the band's pixels
+    /// (`rows`, `stats`, `counts`), and empties the chunk. Returns the
+    /// samples lost to NaN or infinity, and the samples added.
+    fn trace_and_add(
+        &mut self,
+        world: &World,
+        options: &RenderOptions,
+        rows: &mut [Vec3],
+        stats: &mut [PixelStats],
+        counts: &mut [u32],
+    ) -> (u64, u64) {
+        self.samples.clear();
+        self.samples.extend(self.todo.iter().map(|&(_, s)| s));
+        self.results.clear();
+        self.results
+            .resize(self.samples.len(), SampleResult::default());
+        trace_samples(world, options, &self.samples, &mut self.results);
+        let traced = self
+            .todo
+            .iter()
+            .map(|&(at, _)| at)
+            .zip(self.results.iter().copied());
+        let (mut bad, mut added) = (0, 0);
+        for (at, result) in self.found.drain(..).chain(traced) {
+            let (acc, stat, count) = (&mut rows[at], &mut stats[at], &mut counts[at]);
+            let value = result.radiance;
+            *count += 1;
+            added += 1;
+            stat.add_cost(result.shape_tests);
+            // Welford's weight of this sample. A pixel that lost a NaN
+            // sample still counts it (rare, and the mean then treats it as
+            // black).
+            if value.is_finite() {
+                *acc += value;
+                stat.add(luminance(value), 1.0 / *count as f32);
+            } else {
+                bad += 1;
+            }
+        }
+        self.todo.clear();
+        (bad, added)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::film::preview::PreviewSamples;
+    use crate::integrator::{Integrator, sample_pixel};
+    use scene::{Object, Scene, Shape};
+
+    /// A world wider than a chunk: a band's pixels span several chunks, and
+    /// chunks span rows.
+    fn wide_world(width: u32, height: u32) -> World {
+        let scene = Scene {
+            camera: scene::Camera {
+                width,
+                height,
+                ..Default::default()
+            },
+            objects: ["sphere", "box", "floor"]
+                .map(|tag| Object {
+                    name: None,
+                    shape: Shape::default_for_tag(tag).expect("tag"),
+                    material: None,
+                    params: Default::default(),
+                })
+                .to_vec(),
+            ..Default::default()
+        };
+        World::from_scene(&scene).expect("valid")
+    }
+
+    #[test]
+    fn a_pass_traced_chunk_by_chunk_holds_each_pixels_own_sample() {
+        let (w, h) = (PASS_CHUNK as u32 + 301, 6);
+        let world = wide_world(w, h);
+        for integrator in [Integrator::Whitted, Integrator::Path] {
+            let options = RenderOptions {
+                integrator,
+                ..RenderOptions::default()
+            };
+            let film = Film::render(&world, &options, 1);
+            let linear = film.linear();
+            let lit = linear.iter().filter(|p| p.max_element() > 0.0).count();
+            assert!(
+                lit > linear.len() / 4,
+                "{integrator:?}: the scene is in view ({lit} lit)"
+            );
+            for j in 0..h {
+                for i in 0..w {
+                    let want = sample_pixel(&world, &options, i, j, 0);
+                    let got = linear[(j * w + i) as usize];
+                    assert_eq!(got, want, "{integrator:?}: pixel ({i}, {j})");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn preview_samples_on_both_sides_of_a_chunk_edge_are_reused_exactly() {
+        let (w, h) = (PASS_CHUNK as u32 + 301, 6);
+        let world = wide_world(w, h);
+        let options = RenderOptions::default();
+        // A stride that does not divide the chunk: runs straddle its edges.
+        let known = PreviewSamples::trace(&world, &options, 3, None);
+        let mut traced = Film::new(w, h);
+        let mut reusing = Film::new(w, h);
+        traced.add_pass(&world, &options);
+        assert!(reusing.add_pass_reusing(&world, &options, &known, &|| false));
+        assert_eq!(reusing.linear(), traced.linear(), "bit for bit");
+        assert_eq!(reusing.cost_per_sample(), traced.cost_per_sample());
+        assert!(
+            reusing.rays() < traced.rays(),
+            "the known samples were not traced again"
+        );
+    }
+
+    #[test]
+    fn a_workers_pass_memory_is_bounded_whatever_the_image_size() {
+        let small = Film::pass_bytes_per_thread(&wide_world(64, 36));
+        let uhd = Film::pass_bytes_per_thread(&wide_world(3840, 2160));
+        assert_eq!(small, uhd, "independent of the image's size");
+        assert!(uhd <= 256 * 1024, "{uhd} bytes per worker at 3840×2160");
+        println!("pass memory per worker: {uhd} bytes");
     }
 }

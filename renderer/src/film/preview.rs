@@ -183,14 +183,25 @@ pub fn preview(world: &World, options: &RenderOptions, stride: u32) -> Vec<Vec3>
 pub(super) fn for_each_with_known(
     len: usize,
     known: Option<(PreviewRow, usize)>,
+    visit: impl FnMut(usize, Option<(Vec3, u32)>),
+) {
+    for_each_with_known_in(0..len, known, visit);
+}
+
+/// [`for_each_with_known`] for the indices of `range` only.
+pub(super) fn for_each_with_known_in(
+    range: std::ops::Range<usize>,
+    known: Option<(PreviewRow, usize)>,
     mut visit: impl FnMut(usize, Option<(Vec3, u32)>),
 ) {
-    let step = known.map_or(len, |(_, step)| step).max(1);
-    for (run, start) in (0..len).step_by(step).enumerate() {
-        for index in start..(start + step).min(len) {
+    let step = known.map_or(range.len(), |(_, step)| step).max(1);
+    // The run holding the range's first index, and where it starts.
+    let first_run = range.start / step;
+    for (run, start) in (first_run * step..range.end).step_by(step).enumerate() {
+        for index in start.max(range.start)..(start + step).min(range.end) {
             let sample = known
                 .filter(|_| index == start)
-                .map(|(row, _)| (row.values[run], row.tests[run]));
+                .map(|(row, _)| (row.values[first_run + run], row.tests[first_run + run]));
             visit(index, sample);
         }
     }

@@ -156,6 +156,21 @@ pub(crate) fn trace_alone<L: Lane<R::Node>, R: Recorder>(
     }
 }
 
+/// The most memory [`trace_lanes`] holds at once for lanes `L` in `world`
+/// with up to `batch` lanes: the lanes, their hits and steps, and the
+/// shadow rays of one step (each lane at most one per light and one toward
+/// an emitter). It does not depend on how many samples are traced.
+pub(crate) fn lanes_bytes<L>(world: &World, batch: usize) -> usize {
+    use std::mem::size_of;
+    let per_lane = size_of::<Slot<L>>()
+        + size_of::<Option<Hit>>()
+        + size_of::<(usize, usize)>()
+        + size_of::<Next>();
+    let shadows_per_lane = world.lights.len() + 1;
+    let per_shadow = size_of::<ShadowRay>() + size_of::<bool>();
+    batch * (per_lane + shadows_per_lane * per_shadow)
+}
+
 /// A lane in flight and the sample it belongs to.
 struct Slot<L> {
     index: usize,

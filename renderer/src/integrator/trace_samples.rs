@@ -22,6 +22,12 @@ pub fn trace_samples(
     trace_samples_batched(world, options, samples, LANES_PER_BATCH, results);
 }
 
+/// The most memory [`trace_samples`] holds at once for the path tracer's
+/// batch in `world` (bytes), whatever the number of samples.
+pub fn path_batch_bytes(world: &World) -> usize {
+    super::lanes::lanes_bytes::<PathLane<()>>(world, LANES_PER_BATCH)
+}
+
 /// [`trace_samples`] with up to `batch` samples in flight at a time; the
 /// results do not depend on `batch`.
 pub fn trace_samples_batched(
