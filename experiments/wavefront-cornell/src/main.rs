@@ -3,8 +3,8 @@
 //! (`assets/reference/cornell.xml`) written as an 8-wide SIMD wavefront.
 //! Every stage — random numbers, intersection, shading, light sampling,
 //! shadow rays, roulette — runs on 8 paths at once in structure-of-arrays
-//! registers (`wide::f32x8`), and a finished lane is refilled with the next
-//! sample. The estimator is raylab's `path` integrator's: next-event
+//! registers (`wide::f32x8`; 16 in `f32x16` with `--features x16`), and a
+//! finished lane is refilled with the next sample. The estimator is raylab's `path` integrator's: next-event
 //! estimation plus BSDF sampling weighted by the power heuristic, max_depth 8,
 //! Russian roulette from depth 5; random numbers are independent (a hash of
 //! pixel, sample and draw), not Sobol.
@@ -19,21 +19,29 @@
 //!     LANES=1 cargo run --release -- 16          # the same code with 1 of 8 lanes used
 //!     SCALAR_RAYS=1 cargo run --release -- 16   # rays traced by raylab's World, one at a time
 //!     DEPTH=3 cargo run --release -- 64          # another max_depth
+//!     RUSTFLAGS="-C target-feature=+avx2,+avx512f,+avx512bw,+avx512dq,+avx512vl" \
+//!       cargo run --release --features x16 --target-dir target-x16 -- 16   # 16 lanes, AVX-512
 //!     cargo run --release -- 0 0 IMAGE.exr       # relMSE and mean of a raylab render
 //!
 //! `.cargo/config.toml` builds for AVX2 (what raylab's kernels dispatch to);
 //! without it the same code is 4 lanes twice (SSE2). The film digest it
-//! prints is the same for every LANES value and both instruction sets: a
-//! lane's arithmetic never depends on its neighbours.
+//! prints is the same for every LANES value, 8 or 16 lanes and every
+//! instruction set: a lane's arithmetic never depends on its neighbours.
 
 use glam::{Mat3, Vec3};
 use renderer::diagnostics::metrics::rel_mse;
 use renderer::diagnostics::reference_image::read_exr_rgb;
 use std::time::Instant;
-use wide::{f32x8, i32x8, u32x8};
+#[cfg(not(feature = "x16"))]
+use wide::{f32x8 as F, i32x8 as I, u32x8 as U};
+#[cfg(feature = "x16")]
+use wide::{f32x16 as F, i32x16 as I, u32x16 as U};
 
+/// Paths per register: 8 (AVX2), or 16 with `--features x16` (AVX-512).
+#[cfg(not(feature = "x16"))]
 const W: usize = 8;
-type F = f32x8;
+#[cfg(feature = "x16")]
+const W: usize = 16;
 
 #[derive(Clone, Copy)]
 struct V {
@@ -304,7 +312,7 @@ fn watertight(r: &Sheared, c: &[Vec3; 3]) -> F {
 static WATERTIGHT: std::sync::LazyLock<bool> =
     std::sync::LazyLock::new(|| std::env::var("WT").is_ok());
 
-/// Closest hit of 8 rays: (t, primitive id as float; +∞ / -1 for a miss).
+/// Closest hit of W rays: (t, primitive id as float; +∞ / -1 for a miss).
 #[inline(always)]
 fn closest(s: &Scene, o: V, d: V) -> (F, F) {
     let eps = F::splat(1e-6);
@@ -433,19 +441,19 @@ fn box_normal(b: &Cuboid, p: V) -> V {
 
 /// Counter-based random numbers: lowbias32 of (lane key + draw).
 #[inline(always)]
-fn hash(mut x: u32x8) -> u32x8 {
+fn hash(mut x: U) -> U {
     x ^= x >> 16;
-    x *= u32x8::splat(0x7feb_352d);
+    x *= U::splat(0x7feb_352d);
     x ^= x >> 15;
-    x *= u32x8::splat(0x846c_a68b);
+    x *= U::splat(0x846c_a68b);
     x ^= x >> 16;
     x
 }
 
 #[inline(always)]
-fn uniform(key: &mut u32x8) -> F {
-    *key += u32x8::splat(0x9e37_79b9);
-    let bits: i32x8 = bytemuck::cast(hash(*key) >> 8);
+fn uniform(key: &mut U) -> F {
+    *key += U::splat(0x9e37_79b9);
+    let bits: I = bytemuck::cast(hash(*key) >> 8);
     bits.round_float() * F::splat(1.0 / 16_777_216.0)
 }
 
@@ -640,7 +648,7 @@ fn render(
     let mut rad = V::splat(Vec3::ZERO);
     let mut depth = [0i32; W];
     let mut prev_pdf = F::ZERO; // 0: camera ray (no MIS)
-    let mut key = u32x8::ZERO;
+    let mut key = U::ZERO;
     let mut pixel = [u32::MAX; W];
     let mut alive = [false; W];
     let le = V::splat(s.le);
@@ -686,11 +694,11 @@ fn render(
                 next += 1;
                 paths += 1;
                 let mut k =
-                    u32x8::splat(p.wrapping_mul(0x2545_f491) ^ sample.wrapping_mul(0x9e37_79b9));
+                    U::splat(p.wrapping_mul(0x2545_f491) ^ sample.wrapping_mul(0x9e37_79b9));
                 k = hash(k);
                 let kk = k.to_array()[0];
-                let ux = (hash(u32x8::splat(kk ^ 1)).to_array()[0] >> 8) as f32 / 16_777_216.0;
-                let uy = (hash(u32x8::splat(kk ^ 2)).to_array()[0] >> 8) as f32 / 16_777_216.0;
+                let ux = (hash(U::splat(kk ^ 1)).to_array()[0] >> 8) as f32 / 16_777_216.0;
+                let uy = (hash(U::splat(kk ^ 2)).to_array()[0] >> 8) as f32 / 16_777_216.0;
                 let dir = cam.dir(p % cam.w, p / cam.w, ux, uy);
                 (ox[l], oy[l], oz[l]) = (cam.eye.x, cam.eye.y, cam.eye.z);
                 (dx[l], dy[l], dz[l]) = (dir.x, dir.y, dir.z);
@@ -727,7 +735,7 @@ fn render(
                 z: F::from(rz),
             };
             prev_pdf = F::from(pp);
-            key = u32x8::from(keys);
+            key = U::from(keys);
         }
         let live = F::from(alive.map(|a| if a { f32::from_bits(u32::MAX) } else { 0.0 }));
         // Closest hits.
@@ -766,11 +774,9 @@ fn render(
             let add = beta.mulv(le).mul(emit.select(w, F::ZERO));
             rad = rad.add(add);
         }
-        let depth_v = i32x8::from(depth);
-        let going = hit
-            & bytemuck::cast::<i32x8, F>(
-                (depth_v + i32x8::splat(1)).simd_lt(i32x8::splat(*MAX_DEPTH)),
-            );
+        let depth_v = I::from(depth);
+        let going =
+            hit & bytemuck::cast::<I, F>((depth_v + I::splat(1)).simd_lt(I::splat(*MAX_DEPTH)));
         if going.any() {
             let eps = F::splat(8e-6);
             let origin = p.add(n.mul(eps));
