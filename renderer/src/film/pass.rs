@@ -121,14 +121,14 @@ impl Film {
                                         shape_tests: u64::from(tests),
                                     },
                                 )),
-                                None => chunk.todo.push((
-                                    at,
-                                    SampleRef {
+                                None => {
+                                    chunk.at.push(at);
+                                    chunk.samples.push(SampleRef {
                                         i: i as u32,
                                         j,
                                         sample: counts[at],
-                                    },
-                                )),
+                                    });
+                                }
                             }
                         });
                         start = end;
@@ -158,12 +158,7 @@ impl Film {
     /// of `world` (bytes): one chunk's sample lists and the path tracer's
     /// batch of lanes. It does not depend on the image's size.
     pub fn pass_bytes_per_thread(world: &World) -> usize {
-        use std::mem::size_of;
-        let lists = size_of::<(usize, SampleResult)>()
-            + size_of::<(usize, SampleRef)>()
-            + size_of::<SampleRef>()
-            + size_of::<SampleResult>();
-        PASS_CHUNK * lists + crate::integrator::path_batch_bytes(world)
+        PASS_CHUNK * Chunk::BYTES_PER_SAMPLE + crate::integrator::path_batch_bytes(world)
     }
 
     /// A film with `spp` passes of `world`.
@@ -177,20 +172,27 @@ impl Film {
 }
 
 /// The samples of a band a worker is gathering: those a preview holds
-/// (`found`, by index in the band) and those to trace (`todo`).
+/// (`found`, by index in the band) and those to trace (`samples`, with their
+/// indices in `at`).
 struct Chunk {
     found: Vec<(usize, SampleResult)>,
-    todo: Vec<(usize, SampleRef)>,
-    /// Scratch: `todo`'s samples and their results, for the tracer.
+    at: Vec<usize>,
     samples: Vec<SampleRef>,
+    /// Scratch: the traced samples' results.
     results: Vec<SampleResult>,
 }
 
 impl Chunk {
+    /// Bytes a chunk's lists hold per sample of capacity.
+    const BYTES_PER_SAMPLE: usize = std::mem::size_of::<(usize, SampleResult)>()
+        + std::mem::size_of::<usize>()
+        + std::mem::size_of::<SampleRef>()
+        + std::mem::size_of::<SampleResult>();
+
     fn with_capacity(n: usize) -> Self {
         Chunk {
             found: Vec::with_capacity(n),
-            todo: Vec::with_capacity(n),
+            at: Vec::with_capacity(n),
             samples: Vec::with_capacity(n),
             results: Vec::with_capacity(n),
         }
@@ -198,7 +200,7 @@ impl Chunk {
 
     /// Samples gathered so far.
     fn len(&self) -> usize {
-        self.found.len() + self.todo.len()
+        self.found.len() + self.samples.len()
     }
 
     /// Traces the samples to trace, adds every sample to the band's pixels
@@ -212,17 +214,11 @@ impl Chunk {
         stats: &mut [PixelStats],
         counts: &mut [u32],
     ) -> (u64, u64) {
-        self.samples.clear();
-        self.samples.extend(self.todo.iter().map(|&(_, s)| s));
         self.results.clear();
         self.results
             .resize(self.samples.len(), SampleResult::default());
         trace_samples(world, options, &self.samples, &mut self.results);
-        let traced = self
-            .todo
-            .iter()
-            .map(|&(at, _)| at)
-            .zip(self.results.iter().copied());
+        let traced = self.at.drain(..).zip(self.results.iter().copied());
         let (mut bad, mut added) = (0, 0);
         for (at, result) in self.found.drain(..).chain(traced) {
             let (acc, stat, count) = (&mut rows[at], &mut stats[at], &mut counts[at]);
@@ -240,7 +236,7 @@ impl Chunk {
                 bad += 1;
             }
         }
-        self.todo.clear();
+        self.samples.clear();
         (bad, added)
     }
 }
@@ -249,29 +245,13 @@ impl Chunk {
 mod tests {
     use super::*;
     use crate::film::preview::PreviewSamples;
+    use crate::film::preview::tests::world_of;
     use crate::integrator::{Integrator, sample_pixel};
-    use scene::{Object, Scene, Shape};
 
     /// A world wider than a chunk: a band's pixels span several chunks, and
     /// chunks span rows.
     fn wide_world(width: u32, height: u32) -> World {
-        let scene = Scene {
-            camera: scene::Camera {
-                width,
-                height,
-                ..Default::default()
-            },
-            objects: ["sphere", "box", "floor"]
-                .map(|tag| Object {
-                    name: None,
-                    shape: Shape::default_for_tag(tag).expect("tag"),
-                    material: None,
-                    params: Default::default(),
-                })
-                .to_vec(),
-            ..Default::default()
-        };
-        World::from_scene(&scene).expect("valid")
+        world_of(&["sphere", "box", "floor"], width, height)
     }
 
     #[test]

@@ -221,29 +221,36 @@ pub(super) fn trace_with_cost(
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::film::Film;
     use scene::{Object, Scene, Shape};
 
-    fn world() -> World {
+    /// A world of the default shapes of `tags` seen by the default camera
+    /// at `width` × `height` (shared with the pass's tests).
+    pub(in crate::film) fn world_of(tags: &[&str], width: u32, height: u32) -> World {
         let scene = Scene {
             camera: scene::Camera {
-                width: 37,
-                height: 21,
+                width,
+                height,
                 ..Default::default()
             },
-            objects: ["cone", "sphere", "box", "floor"]
+            objects: tags
+                .iter()
                 .map(|tag| Object {
                     name: None,
                     shape: Shape::default_for_tag(tag).expect("tag"),
                     material: None,
                     params: Default::default(),
                 })
-                .to_vec(),
+                .collect(),
             ..Default::default()
         };
         World::from_scene(&scene).expect("valid")
+    }
+
+    fn world() -> World {
+        world_of(&["cone", "sphere", "box", "floor"], 37, 21)
     }
 
     #[test]
