@@ -562,24 +562,30 @@ fn world() -> renderer::world::World {
     renderer::world::World::from_scene(&scene).expect("valid")
 }
 
+/// Each lane's ray as raylab's `Ray` (`None` for lanes off in `on`).
+fn lane_rays(o: V, d: V, on: F) -> [Option<renderer::geometry::ray::Ray>; W] {
+    let (ox, oy, oz) = (o.x.to_array(), o.y.to_array(), o.z.to_array());
+    let (dx, dy, dz) = (d.x.to_array(), d.y.to_array(), d.z.to_array());
+    let on = on.to_array();
+    std::array::from_fn(|l| {
+        (on[l].to_bits() != 0).then(|| {
+            renderer::geometry::ray::Ray::new(
+                Vec3::new(ox[l], oy[l], oz[l]),
+                Vec3::new(dx[l], dy[l], dz[l]),
+            )
+        })
+    })
+}
+
 /// Closest hits through raylab, lane by lane: t (+∞ on a miss), the
 /// geometric normal, the albedo and whether the light was hit.
 fn closest_world(w: &renderer::world::World, o: V, d: V, live: F) -> (F, V, V, F) {
-    let (ox, oy, oz) = (o.x.to_array(), o.y.to_array(), o.z.to_array());
-    let (dx, dy, dz) = (d.x.to_array(), d.y.to_array(), d.z.to_array());
-    let live = live.to_array();
     let mut t = [f32::INFINITY; W];
     let mut n = [[0.0f32; W]; 3];
     let mut a = [[0.0f32; W]; 3];
     let mut light = [0.0f32; W];
-    for l in 0..W {
-        if live[l].to_bits() == 0 {
-            continue;
-        }
-        let ray = renderer::geometry::ray::Ray::new(
-            Vec3::new(ox[l], oy[l], oz[l]),
-            Vec3::new(dx[l], dy[l], dz[l]),
-        );
+    for (l, ray) in lane_rays(o, d, live).into_iter().enumerate() {
+        let Some(ray) = ray else { continue };
         let Some(hit) = w.intersect(&ray, renderer::shapes::Method::Robust) else {
             continue;
         };
@@ -603,20 +609,11 @@ fn closest_world(w: &renderer::world::World, o: V, d: V, live: F) -> (F, V, V, F
 
 /// Shadow rays through raylab, lane by lane.
 fn occluded_world(w: &renderer::world::World, o: V, d: V, t_max: F, active: F) -> F {
-    let (ox, oy, oz) = (o.x.to_array(), o.y.to_array(), o.z.to_array());
-    let (dx, dy, dz) = (d.x.to_array(), d.y.to_array(), d.z.to_array());
-    let (t_max, active) = (t_max.to_array(), active.to_array());
+    let t_max = t_max.to_array();
     let mut blocked = [0.0f32; W];
-    for l in 0..W {
-        if active[l].to_bits() == 0 {
-            continue;
-        }
-        let ray = renderer::geometry::ray::Ray::new(
-            Vec3::new(ox[l], oy[l], oz[l]),
-            Vec3::new(dx[l], dy[l], dz[l]),
-        )
-        .with_t_max(t_max[l]);
-        if w.occluded(&ray, renderer::shapes::Method::Robust) {
+    for (l, ray) in lane_rays(o, d, active).into_iter().enumerate() {
+        let Some(ray) = ray else { continue };
+        if w.occluded(&ray.with_t_max(t_max[l]), renderer::shapes::Method::Robust) {
             blocked[l] = f32::from_bits(u32::MAX);
         }
     }
