@@ -20,6 +20,7 @@ pub mod film;
 pub mod geometry;
 pub mod inspect;
 pub mod integrator;
+pub mod packet;
 pub mod progressive;
 pub mod shading;
 pub mod shapes;

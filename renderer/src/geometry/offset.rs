@@ -8,7 +8,7 @@ use glam::Vec3;
 /// margin against acne, while 64 ε ≈ 7.6 × 10⁻⁶ of the largest coordinate
 /// stays below a gap of 10⁻⁵ of it, so such a gap lets no light through
 /// (`raylab stability` measures both).
-const OFFSET_EPSILONS: f32 = 64.0;
+pub(crate) const OFFSET_EPSILONS: f32 = 64.0;
 
 /// Moves a hit point off its surface to the side `normal` points to, by
 /// 64 ε · m along the normal, where m is the largest of `magnitude` (the

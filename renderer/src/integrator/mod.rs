@@ -15,6 +15,7 @@ mod sample_pixel;
 pub mod sampler;
 mod shading_context;
 pub mod trace_samples;
+mod wavefront;
 pub mod whitted;
 
 pub use adaptive::Adaptive;

@@ -1,5 +1,7 @@
 //! Tracing a list of samples, as a pass of the film does: the path tracer
-//! traces them in batches (`trace_lanes` in `integrator/lanes.rs`), Whitted one by
+//! traces them eight at a time in SIMD lanes where the wavefront covers the
+//! world (`integrator/wavefront/`), else in batches of scalar lanes
+//! (`trace_lanes` in `integrator/lanes.rs`), Whitted one by
 //! one (as a lane it measured 8–18% slower than its recursion; it becomes
 //! one when batched ray kernels pay for that). Either way a sample's
 //! radiance is [`sample_pixel`]'s bit for bit.
@@ -7,8 +9,10 @@
 use super::lanes::{LANES_PER_BATCH, trace_lanes};
 pub use super::lanes::{SampleRef, SampleResult};
 use super::path::PathLane;
+use super::wavefront::{WavefrontScene, trace_wavefront};
 use super::{Integrator, RenderOptions, sample_pixel};
 use crate::geometry::counters::shape_tests_on_this_thread;
+use crate::shapes::Method;
 use crate::world::World;
 
 /// Traces every sample of `samples` with the integrator of `options` and
@@ -20,6 +24,14 @@ pub fn trace_samples(
     results: &mut [SampleResult],
 ) {
     trace_samples_batched(world, options, samples, LANES_PER_BATCH, results);
+}
+
+/// The wavefront view of `world` when the wavefront path tracer covers it
+/// (it tests shapes with the robust formulas only).
+fn wavefront_scene(world: &World, options: &RenderOptions) -> Option<WavefrontScene> {
+    (options.method == Method::Robust)
+        .then(|| WavefrontScene::new(world))
+        .flatten()
 }
 
 /// The most memory [`trace_samples`] holds at once for the path tracer's
@@ -38,7 +50,10 @@ pub fn trace_samples_batched(
     results: &mut [SampleResult],
 ) {
     match options.integrator {
-        Integrator::Path => trace_lanes::<PathLane<()>>(world, options, samples, batch, results),
+        Integrator::Path => match wavefront_scene(world, options) {
+            Some(scene) => trace_wavefront(world, &scene, options, samples, results),
+            None => trace_lanes::<PathLane<()>>(world, options, samples, batch, results),
+        },
         Integrator::Whitted => {
             for (s, result) in samples.iter().zip(results.iter_mut()) {
                 let before = shape_tests_on_this_thread();

@@ -31,6 +31,17 @@ impl Cuboid {
         }
     }
 
+    /// Where the box stands: its centre and rotation (object space has the
+    /// box's centre at the origin, its edges along x, y, z).
+    pub(crate) fn placement(&self) -> &Placement {
+        &self.placement
+    }
+
+    /// Half the edge lengths, along the box's own axes.
+    pub(crate) fn half(&self) -> Vec3 {
+        self.half
+    }
+
     /// α of the nearest hit with t_min < α < t_max, or `None`.
     ///
     /// The box is closed: a ray that only grazes a face, edge or corner hits.

@@ -123,6 +123,11 @@ impl World {
         }
     }
 
+    /// The BSDF of an object's material as prepared with the world.
+    pub(crate) fn prepared_bsdf(&self, object: u32) -> &PreparedBsdf {
+        &self.bsdfs[object as usize]
+    }
+
     /// The analytic shape of an object known to be one.
     fn analytic(&self, object: u32) -> &Shape {
         match &self.objects[object as usize] {

@@ -32,7 +32,7 @@ pub const RR_DEPTH: u32 = 5;
 
 /// A shadow ray toward an area light stops this fraction short of the
 /// sampled point, so that it cannot hit the emitter itself.
-const SHADOW_SHORTENING: f32 = 1.0e-4;
+pub(crate) const SHADOW_SHORTENING: f32 = 1.0e-4;
 
 /// The power heuristic (β = 2): the weight of a sample drawn with density
 /// `own` where another strategy would have drawn it with density `other`.

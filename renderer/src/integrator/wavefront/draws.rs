@@ -1,0 +1,107 @@
+//! The parts of a bounce the wavefront still takes lane by lane: random
+//! numbers (each lane has its own stream), the choice of an emitter and a
+//! point on it, and the warp of a cosine-weighted direction. Each is the
+//! scalar path tracer's own code, so the numbers are its numbers.
+
+use crate::geometry::ray::Ray;
+use crate::integrator::sampler::{BounceDraw, Sampler};
+use crate::packet::{FloatLanes, Vec3s, WIDTH, lane_set};
+use crate::shading::bsdf::lambert::sample_cosine_hemisphere;
+use crate::world::World;
+use glam::Vec3;
+
+/// Each lane's point drawn on an emitter, as seen from its shading point.
+pub(super) struct EmitterDraws<F> {
+    /// Lanes that drew a point (`Emitters::sample` gave one).
+    pub(super) found: F,
+    /// Unit directions toward the points.
+    pub(super) to_light: Vec3s<F>,
+    /// Distances to the points.
+    pub(super) distance: F,
+    /// Radiance arriving from them.
+    pub(super) radiance: Vec3s<F>,
+    /// Densities in solid angle, the choice of emitter included.
+    pub(super) pdf: F,
+}
+
+/// For each lane of `lanes`, its light sample at bounce `depth`: seeks its
+/// stream to the bounce's light numbers, draws which emitter and where
+/// (three numbers), and asks the world's emitters for that point as seen
+/// from `point`.
+#[inline(always)]
+pub(super) fn emitter_draws<F: FloatLanes>(
+    world: &World,
+    lanes: F,
+    samplers: &mut [Sampler; WIDTH],
+    depth: &[u32; WIDTH],
+    point: Vec3s<F>,
+) -> EmitterDraws<F> {
+    let mut found = [0.0f32; WIDTH];
+    let mut to_light = [Vec3::X; WIDTH];
+    let mut distance = [0.0f32; WIDTH];
+    let mut radiance = [Vec3::ZERO; WIDTH];
+    let mut pdf = [1.0f32; WIDTH];
+    for k in 0..WIDTH {
+        if !lane_set(lanes, k) {
+            continue;
+        }
+        let sampler = &mut samplers[k];
+        sampler.seek_bounce(depth[k], BounceDraw::Light);
+        let u_select = sampler.next_f32();
+        let u = sampler.next_2d();
+        if let Some(s) = world.emitters.sample(point.lane(k), u_select, u) {
+            found[k] = 1.0;
+            to_light[k] = s.to_light;
+            distance[k] = s.distance;
+            radiance[k] = s.radiance;
+            pdf[k] = s.pdf;
+        }
+    }
+    EmitterDraws {
+        found: F::from_array(found).simd_gt(F::ZERO),
+        to_light: Vec3s::from_lanes(&to_light),
+        distance: F::from_array(distance),
+        radiance: Vec3s::from_lanes(&radiance),
+        pdf: F::from_array(pdf),
+    }
+}
+
+/// For each lane of `lanes`, its BSDF sample's numbers at bounce `depth`:
+/// seeks to the bounce's scattering numbers, draws the lobe's number (a
+/// Lambertian surface has one lobe, but the draw keeps the stream's
+/// layout) and the direction, warped to a cosine-weighted local direction.
+#[inline(always)]
+pub(super) fn scatter_draws<F: FloatLanes>(
+    lanes: F,
+    samplers: &mut [Sampler; WIDTH],
+    depth: &[u32; WIDTH],
+) -> Vec3s<F> {
+    let mut wi = [Vec3::Z; WIDTH];
+    for k in 0..WIDTH {
+        if !lane_set(lanes, k) {
+            continue;
+        }
+        let sampler = &mut samplers[k];
+        sampler.seek_bounce(depth[k], BounceDraw::Scatter);
+        let _u_lobe = sampler.next_f32();
+        wi[k] = sample_cosine_hemisphere(sampler.next_2d());
+    }
+    Vec3s::from_lanes(&wi)
+}
+
+/// For each lane of `lanes`, Russian roulette's number (the bounce's last draw).
+#[inline(always)]
+pub(super) fn roulette_draws<F: FloatLanes>(lanes: F, samplers: &mut [Sampler; WIDTH]) -> F {
+    let mut u = [0.0f32; WIDTH];
+    for k in 0..WIDTH {
+        if lane_set(lanes, k) {
+            u[k] = samplers[k].next_f32();
+        }
+    }
+    F::from_array(u)
+}
+
+/// A stand-in ray for a dead lane: it hits nothing (t_max = 0).
+pub(super) fn dead_ray() -> Ray {
+    Ray::new(Vec3::ZERO, Vec3::Z).with_t_max(0.0)
+}

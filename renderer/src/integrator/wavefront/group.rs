@@ -1,0 +1,309 @@
+//! Eight paths in flight, one per lane, and one bounce of all of them.
+
+use super::draws::{dead_ray, emitter_draws, roulette_draws, scatter_draws};
+use super::lane_math::{Frame, offset_origins, power_heuristics};
+use super::scene::{ObjectTable, WavefrontScene};
+use crate::geometry::counters::{count_ray, count_shape_tests};
+use crate::integrator::lanes::{SampleRef, SampleResult, camera_sample};
+use crate::integrator::path::{RR_DEPTH, SHADOW_SHORTENING};
+use crate::integrator::sampler::Sampler;
+use crate::integrator::{RenderOptions, path::power_heuristic};
+use crate::packet::{FloatLanes, IntLanes, Rays, Vec3s, WIDTH, lane_set, mask_from};
+use crate::world::World;
+use glam::Vec3;
+use std::f32::consts::FRAC_1_PI;
+
+/// Eight paths: each lane's radiance so far, throughput and next ray, as
+/// `PathLane` keeps them for one path.
+pub(super) struct PathGroup<F: FloatLanes> {
+    /// Per lane, the index of its sample in the caller's list; `None` for a
+    /// dead lane.
+    sample: [Option<usize>; WIDTH],
+    /// Per lane, its random stream.
+    samplers: [Sampler; WIDTH],
+    /// The rays whose closest hits the lanes wait for.
+    rays: Rays<F>,
+    /// Radiance gathered so far.
+    radiance: Vec3s<F>,
+    /// Path throughput.
+    throughput: Vec3s<F>,
+    /// Where each lane's ray started and the BSDF density it was drawn with
+    /// (valid where `has_previous`: not for camera rays).
+    previous_point: Vec3s<F>,
+    /// The density of the previous BSDF sample.
+    previous_pdf: F,
+    /// Lanes whose ray was drawn from a BSDF (MIS applies to what it hits).
+    has_previous: F,
+    /// Scattering events so far.
+    depth: [u32; WIDTH],
+    /// Shape tests each lane's rays cost so far.
+    shape_tests: [u64; WIDTH],
+}
+
+impl<F: FloatLanes> PathGroup<F> {
+    /// Eight dead lanes.
+    #[inline(always)]
+    pub(super) fn new() -> Self {
+        let dead = dead_ray();
+        Self {
+            sample: [None; WIDTH],
+            samplers: std::array::from_fn(|_| Sampler::for_sample(0, 0, 0, 0)),
+            rays: Rays::from_lanes(&[dead; WIDTH]),
+            radiance: Vec3s::ZERO,
+            throughput: Vec3s::ZERO,
+            previous_point: Vec3s::ZERO,
+            previous_pdf: F::ZERO,
+            has_previous: F::ZERO,
+            depth: [0; WIDTH],
+            shape_tests: [0; WIDTH],
+        }
+    }
+
+    /// Whether any lane is tracing.
+    #[inline(always)]
+    pub(super) fn any_live(&self) -> bool {
+        self.sample.iter().any(Option::is_some)
+    }
+
+    /// Lane `lane` starts sample `s` (the `index`th of the caller's list)
+    /// with its camera ray, as the scalar path tracer does.
+    #[inline(always)]
+    pub(super) fn start(
+        &mut self,
+        world: &World,
+        options: &RenderOptions,
+        lane: usize,
+        index: usize,
+        s: SampleRef,
+    ) {
+        let (sampler, _, ray) = camera_sample(world, options, s.i, s.j, Some(s.sample));
+        self.sample[lane] = Some(index);
+        self.samplers[lane] = sampler;
+        self.rays.origin.set_lane(lane, ray.origin);
+        self.rays.dir.set_lane(lane, ray.dir);
+        self.rays.t_max.as_mut_array()[lane] = ray.t_max;
+        self.radiance.set_lane(lane, Vec3::ZERO);
+        self.throughput.set_lane(lane, Vec3::ONE);
+        self.has_previous.as_mut_array()[lane] = 0.0;
+        self.depth[lane] = 0;
+        self.shape_tests[lane] = 0;
+    }
+
+    /// Ends lane `lane` (finished by the last [`PathGroup::step`]): its
+    /// sample's index and result; the lane is dead until started again.
+    #[inline(always)]
+    pub(super) fn take(&mut self, lane: usize) -> (usize, SampleResult) {
+        let index = self.sample[lane]
+            .take()
+            .expect("only a finished lane is taken");
+        self.rays.t_max.as_mut_array()[lane] = 0.0;
+        let result = SampleResult {
+            radiance: self.radiance.lane(lane),
+            shape_tests: self.shape_tests[lane],
+        };
+        (index, result)
+    }
+
+    /// The live lanes.
+    #[inline(always)]
+    fn live(&self) -> F {
+        mask_from(|k| self.sample[k].is_some())
+    }
+
+    /// Counts one ray and `tests` shape tests for every lane of `lanes`.
+    #[inline(always)]
+    fn count(&mut self, lanes: F, tests: usize) {
+        for k in 0..WIDTH {
+            if lane_set(lanes, k) {
+                count_ray();
+                count_shape_tests(tests);
+                self.shape_tests[k] += tests as u64;
+            }
+        }
+    }
+
+    /// One bounce of every live lane: the closest hits of their rays,
+    /// emission, a light sample with its shadow ray and a BSDF sample for
+    /// the next ray, exactly as `PathLane::shade` and `PathLane::finish`.
+    /// Returns the lanes that finished (bit k for lane k); their results
+    /// are ready to [`PathGroup::take`].
+    #[inline(always)]
+    pub(super) fn step(
+        &mut self,
+        world: &World,
+        scene: &WavefrontScene,
+        options: &RenderOptions,
+    ) -> u32 {
+        let live = self.live();
+        let primitives = scene.shapes.len();
+        let hits = scene.shapes.closest(&self.rays);
+        self.count(live, primitives);
+        let hit = live & hits.alpha.simd_lt(F::INFINITY);
+        // A ray that escapes sees the sky.
+        let miss = live & !hit;
+        let sky = self.radiance + self.throughput.mul_lanes(Vec3s::splat(world.sky));
+        self.radiance = Vec3s::select(miss, sky, self.radiance);
+        let mut finished = miss.to_bitmask();
+        if !hit.any() {
+            return finished;
+        }
+
+        let (point, normal) = scene.shapes.surface(&self.rays, &hits);
+        let at = Surfaces::gather(&scene.objects, hit, hits.object);
+        let dir = self.rays.dir;
+        let front = dir.dot(normal).simd_lt(F::ZERO);
+        // The geometric normal turned toward the ray; on these shapes it
+        // is also the shading normal.
+        let n = Vec3s::select(front, normal, -normal);
+
+        // Emission seen from the front, weighted against light sampling.
+        let emitting = hit & front & at.emission.nonzero();
+        for k in (0..WIDTH).filter(|&k| lane_set(emitting, k)) {
+            let emitter = at.emitter[k];
+            let weight = if lane_set(self.has_previous, k) && emitter >= 0 {
+                power_heuristic(
+                    self.previous_pdf.as_array()[k],
+                    world.emitters.pdf(
+                        self.previous_point.lane(k),
+                        emitter as usize,
+                        point.lane(k),
+                        normal.lane(k),
+                    ),
+                )
+            } else {
+                1.0
+            };
+            let gained = self.throughput.lane(k) * weight * at.emission.lane(k);
+            self.radiance.set_lane(k, self.radiance.lane(k) + gained);
+        }
+
+        // The depth limit ends a path at its hit.
+        let depth = self.depth;
+        let last = hit & mask_from(|k| depth[k] + 1 >= options.max_depth);
+        finished |= last.to_bitmask();
+        let go = hit & !last;
+        if !go.any() {
+            return finished;
+        }
+
+        let frame = Frame::new(n);
+        // wo = frame.to_local(−v), of which a Lambertian lobe needs only z.
+        let wo_z = (-dir).dot(frame.n);
+        let lambert = at.diffuse * F::splat(FRAC_1_PI);
+        let above = offset_origins(point, n, at.magnitude);
+
+        // The light sample: a point drawn on the emitters, its BSDF value
+        // and MIS weight, and the shadow ray toward it.
+        let light = emitter_draws(world, go, &mut self.samplers, &self.depth, point);
+        let toward = light.to_light.dot(n).simd_gt(F::ZERO);
+        let wi_z = light.to_light.dot(frame.n);
+        let dark_side = wi_z.simd_le(F::ZERO) | wo_z.simd_le(F::ZERO);
+        let f = Vec3s::select(dark_side, Vec3s::ZERO, at.albedo * (lambert * wi_z));
+        let bsdf_pdf = dark_side.select(
+            F::ZERO,
+            at.diffuse * (wi_z.max(F::ZERO) * F::splat(FRAC_1_PI)),
+        );
+        let mis = power_heuristics(light.pdf, bsdf_pdf);
+        let lit = f.mul_lanes(light.radiance) * (mis / light.pdf);
+        let shadowed = go & light.found & toward & f.nonzero();
+        let lit_by = self.throughput;
+
+        // The BSDF sample: a cosine-weighted direction, the throughput's
+        // weight f·cos/pdf, the next ray off the side it leaves by.
+        let wi = scatter_draws(go, &mut self.samplers, &self.depth);
+        let dark_side = wi.z.simd_le(F::ZERO) | wo_z.simd_le(F::ZERO);
+        let f_cos = Vec3s::select(dark_side, Vec3s::ZERO, at.albedo * (lambert * wi.z));
+        let pdf = dark_side.select(
+            F::ZERO,
+            at.diffuse * (wi.z.max(F::ZERO) * F::splat(FRAC_1_PI)),
+        );
+        let moving = go & pdf.simd_gt(F::ZERO);
+        let wi_world = frame.to_world(wi);
+        let throughput = Vec3s::select(
+            moving,
+            self.throughput.mul_lanes(f_cos.div_lanes(pdf)),
+            self.throughput,
+        );
+        let side = Vec3s::select(wi_world.dot(n).simd_ge(F::ZERO), n, -n);
+        let origin = offset_origins(point, side, at.magnitude);
+
+        // Russian roulette from the RR_DEPTH-th scattering event on.
+        let roulette = moving & mask_from(|k| depth[k] + 1 >= RR_DEPTH);
+        let u_roulette = roulette_draws(roulette, &mut self.samplers);
+        let keep = throughput.max_element().min(F::splat(0.95));
+        let killed = roulette & !u_roulette.simd_lt(keep);
+        let throughput = Vec3s::select(roulette & !killed, throughput.div_lanes(keep), throughput);
+        let dark = moving & !killed & !throughput.max_element().simd_gt(F::ZERO);
+        let going_on = moving & !killed & !dark;
+        self.throughput = throughput;
+        self.rays.origin = Vec3s::select(going_on, origin, self.rays.origin);
+        self.rays.dir = Vec3s::select(going_on, wi_world, self.rays.dir);
+        self.rays.t_max = going_on.select(F::splat(f32::INFINITY), F::ZERO);
+        self.previous_point = Vec3s::select(going_on, point, self.previous_point);
+        self.previous_pdf = going_on.select(pdf, self.previous_pdf);
+        self.has_previous = going_on;
+        for (k, depth) in self.depth.iter_mut().enumerate() {
+            if lane_set(going_on, k) {
+                *depth += 1;
+            }
+        }
+        finished |= (go & !going_on).to_bitmask();
+
+        // The shadow rays, then the light they let through.
+        let shadows = Rays {
+            origin: above,
+            dir: light.to_light,
+            t_max: shadowed.select(light.distance * F::splat(1.0 - SHADOW_SHORTENING), F::ZERO),
+        };
+        let blocked = if shadowed.any() {
+            self.count(shadowed, primitives);
+            scene.shapes.occluded(&shadows)
+        } else {
+            F::ZERO
+        };
+        let sum = Vec3s::select(shadowed & !blocked, lit, Vec3s::ZERO);
+        self.radiance = Vec3s::select(go, self.radiance + lit_by.mul_lanes(sum), self.radiance);
+        finished
+    }
+}
+
+/// What the objects hit are made of, gathered lane by lane.
+struct Surfaces<F: FloatLanes> {
+    albedo: Vec3s<F>,
+    diffuse: F,
+    emission: Vec3s<F>,
+    emitter: [i32; WIDTH],
+    magnitude: F,
+}
+
+impl<F: FloatLanes> Surfaces<F> {
+    /// The table's entries of the objects `object` in the lanes of `hit`.
+    #[inline(always)]
+    fn gather(table: &ObjectTable, hit: F, object: F::Ints) -> Self {
+        let ids = object.to_array();
+        let id = |k: usize| {
+            if lane_set(hit, k) {
+                ids[k] as usize
+            } else {
+                usize::MAX
+            }
+        };
+        let vec3s = |column: &[Vec3]| {
+            Vec3s::from_lanes(&std::array::from_fn(|k| {
+                column.get(id(k)).copied().unwrap_or(Vec3::ZERO)
+            }))
+        };
+        let floats = |column: &[f32]| {
+            F::from_array(std::array::from_fn::<f32, WIDTH, _>(|k| {
+                column.get(id(k)).copied().unwrap_or(0.0)
+            }))
+        };
+        Self {
+            albedo: vec3s(&table.albedo),
+            diffuse: floats(&table.diffuse),
+            emission: vec3s(&table.emission),
+            emitter: std::array::from_fn(|k| table.emitter.get(id(k)).copied().unwrap_or(-1)),
+            magnitude: floats(&table.magnitude),
+        }
+    }
+}

@@ -1,0 +1,104 @@
+//! The wavefront path tracer: eight paths at once, one per SIMD lane, every
+//! stage of a bounce — the closest hit, the surface, emission, the light
+//! sample and its shadow ray, the BSDF sample, roulette — done for the
+//! eight together on structures of arrays ([`crate::packet`]). A finished
+//! lane takes the next sample at once, so the lanes stay full.
+//!
+//! It computes exactly what the scalar path tracer ([`super::path`], a
+//! `PathLane`) computes, in the same order, lane by lane: the same random
+//! numbers from the same streams, the same formulas without fused
+//! multiply–add. Each sample's radiance is therefore the scalar one bit for
+//! bit — the pixel inspector, which traces one sample alone with the scalar
+//! lane, sees exactly the film's sample — and a test holds it to that over
+//! every pixel of the scenes it covers.
+//!
+//! It covers the worlds whose every part it has lanes for
+//! ([`WavefrontScene::new`]): lone triangles, boxes and spheres tested all
+//! at once by every ray ([`PacketShapes`]), Lambertian materials, area
+//! emitters and a constant sky. Every other world is traced by the scalar
+//! lanes, unchanged.
+
+mod draws;
+mod group;
+mod lane_math;
+mod scene;
+
+pub(crate) use scene::WavefrontScene;
+
+use super::RenderOptions;
+use super::lanes::{SampleRef, SampleResult};
+use crate::packet::{FloatLanes, WIDTH, WithLanes, dispatch};
+use crate::world::World;
+use group::PathGroup;
+
+/// Traces every sample of `samples` with the wavefront path tracer over
+/// `scene` (prepared from `world`) and writes each one's result to
+/// `results`; each radiance is the scalar path tracer's bit for bit. Runs
+/// with the widest SIMD lanes this CPU has.
+pub(crate) fn trace_wavefront(
+    world: &World,
+    scene: &WavefrontScene,
+    options: &RenderOptions,
+    samples: &[SampleRef],
+    results: &mut [SampleResult],
+) {
+    assert_eq!(samples.len(), results.len(), "one result per sample");
+    dispatch(Trace {
+        world,
+        scene,
+        options,
+        samples,
+        results,
+    });
+}
+
+/// A call of [`trace_wavefront`], to run with some lane type.
+struct Trace<'a> {
+    world: &'a World,
+    scene: &'a WavefrontScene,
+    options: &'a RenderOptions,
+    samples: &'a [SampleRef],
+    results: &'a mut [SampleResult],
+}
+
+impl WithLanes for Trace<'_> {
+    type Output = ();
+
+    /// Fills the lanes, steps them all, refills the finished ones, until
+    /// every sample is done.
+    #[inline(always)]
+    fn run<F: FloatLanes>(self) {
+        let Trace {
+            world,
+            scene,
+            options,
+            samples,
+            results,
+        } = self;
+        let mut next = 0;
+        let mut group = PathGroup::<F>::new();
+        for lane in 0..WIDTH {
+            if next < samples.len() {
+                group.start(world, options, lane, next, samples[next]);
+                next += 1;
+            }
+        }
+        while group.any_live() {
+            let finished = group.step(world, scene, options);
+            for lane in 0..WIDTH {
+                if finished & (1 << lane) == 0 {
+                    continue;
+                }
+                let (index, result) = group.take(lane);
+                results[index] = result;
+                if next < samples.len() {
+                    group.start(world, options, lane, next, samples[next]);
+                    next += 1;
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests;

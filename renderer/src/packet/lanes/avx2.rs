@@ -1,0 +1,289 @@
+//! [`FloatLanes`] in one AVX register, for CPUs with AVX2, chosen at run
+//! time by [`super::dispatch`].
+//!
+//! The operations are `std::arch` intrinsics, which are only sound on a CPU
+//! that has the instructions. Soundness rests on one invariant: **a value
+//! of [`Avx2`] or [`Avx2Ints`] only comes into existence on such a CPU.**
+//! Values are made only by the trait's constructors, and those are only
+//! reached through [`Avx2Token::run`], whose token exists only once
+//! `is_x86_feature_detected!` has confirmed AVX2 (the constants are plain
+//! bit patterns, made without any instruction). Every `unsafe` block below
+//! relies on this.
+//!
+//! Each operation is the AVX form of the one `wide` uses for SSE, so both
+//! types give the same bits.
+
+#![allow(unsafe_code)]
+
+use super::{FloatLanes, IntLanes, WIDTH, WithLanes};
+use std::arch::x86_64::*;
+use std::ops::{Add, BitAnd, BitOr, BitXor, Div, Mul, Neg, Not, Sub};
+
+/// Proof that this CPU has AVX2: made only by [`Avx2Token::detect`].
+#[derive(Clone, Copy, Debug)]
+pub struct Avx2Token(());
+
+impl Avx2Token {
+    /// The token, when this CPU has AVX2.
+    #[inline]
+    pub fn detect() -> Option<Self> {
+        is_x86_feature_detected!("avx2").then_some(Self(()))
+    }
+
+    /// Runs `job` with [`Avx2`] lanes, compiled for AVX2.
+    #[inline]
+    pub fn run<W: WithLanes>(self, job: W) -> W::Output {
+        // SAFETY: the token exists, so this CPU has AVX2.
+        unsafe { run_avx2(job) }
+    }
+}
+
+/// `job` with AVX2 lanes, in a function compiled for AVX2 so that the
+/// intrinsics inline into it.
+#[target_feature(enable = "avx2")]
+fn run_avx2<W: WithLanes>(job: W) -> W::Output {
+    job.run::<Avx2>()
+}
+
+/// Eight `f32`s in one AVX register.
+#[derive(Clone, Copy, Debug)]
+#[repr(transparent)]
+pub struct Avx2(__m256);
+
+/// Eight `i32`s in one AVX register.
+#[derive(Clone, Copy, Debug)]
+#[repr(transparent)]
+pub struct Avx2Ints(__m256i);
+
+/// A constant's bit pattern as lanes: no instruction runs.
+const fn bits(x: f32) -> Avx2 {
+    // SAFETY: `__m256` is eight `f32`s; any bit pattern is valid.
+    Avx2(unsafe { std::mem::transmute::<[f32; WIDTH], __m256>([x; WIDTH]) })
+}
+
+impl PartialEq for Avx2 {
+    fn eq(&self, o: &Self) -> bool {
+        self.to_array() == o.to_array()
+    }
+}
+
+impl PartialEq for Avx2Ints {
+    fn eq(&self, o: &Self) -> bool {
+        self.to_array() == o.to_array()
+    }
+}
+
+macro_rules! binary {
+    ($trait:ident, $method:ident, $intrinsic:ident) => {
+        impl $trait for Avx2 {
+            type Output = Self;
+            #[inline(always)]
+            fn $method(self, o: Self) -> Self {
+                // SAFETY: an `Avx2` exists, so this CPU has AVX2 (module invariant).
+                Self(unsafe { $intrinsic(self.0, o.0) })
+            }
+        }
+    };
+}
+
+binary!(Add, add, _mm256_add_ps);
+binary!(Sub, sub, _mm256_sub_ps);
+binary!(Mul, mul, _mm256_mul_ps);
+binary!(Div, div, _mm256_div_ps);
+binary!(BitAnd, bitand, _mm256_and_ps);
+binary!(BitOr, bitor, _mm256_or_ps);
+binary!(BitXor, bitxor, _mm256_xor_ps);
+
+impl Neg for Avx2 {
+    type Output = Self;
+    #[inline(always)]
+    fn neg(self) -> Self {
+        self ^ bits(-0.0)
+    }
+}
+
+impl Not for Avx2 {
+    type Output = Self;
+    #[inline(always)]
+    fn not(self) -> Self {
+        self ^ bits(f32::from_bits(u32::MAX))
+    }
+}
+
+impl Add for Avx2Ints {
+    type Output = Self;
+    #[inline(always)]
+    fn add(self, o: Self) -> Self {
+        // SAFETY: module invariant.
+        Self(unsafe { _mm256_add_epi32(self.0, o.0) })
+    }
+}
+
+impl Avx2 {
+    /// The comparison `P` (a `_CMP_*` predicate) lane by lane.
+    #[inline(always)]
+    fn compare<const P: i32>(self, o: Self) -> Self {
+        // SAFETY: module invariant.
+        Self(unsafe { _mm256_cmp_ps::<P>(self.0, o.0) })
+    }
+
+    /// Mask of the NaN lanes.
+    #[inline(always)]
+    fn is_nan(self) -> Self {
+        self.compare::<_CMP_UNORD_Q>(self)
+    }
+}
+
+impl FloatLanes for Avx2 {
+    type Ints = Avx2Ints;
+    const ZERO: Self = bits(0.0);
+    const ONE: Self = bits(1.0);
+    const INFINITY: Self = bits(f32::INFINITY);
+    const NEG_INFINITY: Self = bits(f32::NEG_INFINITY);
+
+    #[inline(always)]
+    fn splat(x: f32) -> Self {
+        // SAFETY: module invariant.
+        Self(unsafe { _mm256_set1_ps(x) })
+    }
+    #[inline(always)]
+    fn from_array(lanes: [f32; WIDTH]) -> Self {
+        // SAFETY: module invariant; the load reads the eight `f32`s of `lanes`.
+        Self(unsafe { _mm256_loadu_ps(lanes.as_ptr()) })
+    }
+    #[inline(always)]
+    fn to_array(self) -> [f32; WIDTH] {
+        *self.as_array()
+    }
+    #[inline(always)]
+    fn as_array(&self) -> &[f32; WIDTH] {
+        // SAFETY: `Avx2` is a transparent `__m256`, eight `f32`s, and the
+        // array's alignment (4) is less than the register's (32).
+        unsafe { &*(self as *const Self).cast::<[f32; WIDTH]>() }
+    }
+    #[inline(always)]
+    fn as_mut_array(&mut self) -> &mut [f32; WIDTH] {
+        // SAFETY: as `as_array`; every bit pattern is a valid `f32`.
+        unsafe { &mut *(self as *mut Self).cast::<[f32; WIDTH]>() }
+    }
+    #[inline(always)]
+    fn simd_lt(self, o: Self) -> Self {
+        self.compare::<_CMP_LT_OQ>(o)
+    }
+    #[inline(always)]
+    fn simd_le(self, o: Self) -> Self {
+        self.compare::<_CMP_LE_OQ>(o)
+    }
+    #[inline(always)]
+    fn simd_gt(self, o: Self) -> Self {
+        self.compare::<_CMP_GT_OQ>(o)
+    }
+    #[inline(always)]
+    fn simd_ge(self, o: Self) -> Self {
+        self.compare::<_CMP_GE_OQ>(o)
+    }
+    #[inline(always)]
+    fn simd_eq(self, o: Self) -> Self {
+        self.compare::<_CMP_EQ_OQ>(o)
+    }
+    #[inline(always)]
+    fn simd_ne(self, o: Self) -> Self {
+        self.compare::<_CMP_NEQ_UQ>(o)
+    }
+    #[inline(always)]
+    fn select(self, if_true: Self, if_false: Self) -> Self {
+        // SAFETY: module invariant.
+        Self(unsafe { _mm256_blendv_ps(if_false.0, if_true.0, self.0) })
+    }
+    #[inline(always)]
+    fn to_bitmask(self) -> u32 {
+        // SAFETY: module invariant.
+        unsafe { _mm256_movemask_ps(self.0) as u32 }
+    }
+    #[inline(always)]
+    fn any(self) -> bool {
+        self.to_bitmask() != 0
+    }
+    #[inline(always)]
+    fn all(self) -> bool {
+        self.to_bitmask() == 0xff
+    }
+    #[inline(always)]
+    fn max(self, o: Self) -> Self {
+        o.is_nan().select(self, self.fast_max(o))
+    }
+    #[inline(always)]
+    fn min(self, o: Self) -> Self {
+        o.is_nan().select(self, self.fast_min(o))
+    }
+    #[inline(always)]
+    fn fast_max(self, o: Self) -> Self {
+        // SAFETY: module invariant.
+        Self(unsafe { _mm256_max_ps(self.0, o.0) })
+    }
+    #[inline(always)]
+    fn fast_min(self, o: Self) -> Self {
+        // SAFETY: module invariant.
+        Self(unsafe { _mm256_min_ps(self.0, o.0) })
+    }
+    #[inline(always)]
+    fn abs(self) -> Self {
+        self & bits(f32::from_bits(i32::MAX as u32))
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        // SAFETY: module invariant.
+        Self(unsafe { _mm256_sqrt_ps(self.0) })
+    }
+    #[inline(always)]
+    fn floor(self) -> Self {
+        // SAFETY: module invariant.
+        Self(unsafe { _mm256_round_ps::<{ _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC }>(self.0) })
+    }
+    #[inline(always)]
+    fn is_finite(self) -> Self {
+        // |x| < ∞ is false for infinities and NaN alone.
+        self.abs().simd_lt(Self::INFINITY)
+    }
+    #[inline(always)]
+    fn is_sign_negative(self) -> Self {
+        // SAFETY: module invariant; an arithmetic shift copies the sign bit over the lane.
+        Self(unsafe { _mm256_castsi256_ps(_mm256_srai_epi32::<31>(_mm256_castps_si256(self.0))) })
+    }
+}
+
+impl IntLanes for Avx2Ints {
+    type Floats = Avx2;
+
+    #[inline(always)]
+    fn splat(x: i32) -> Self {
+        // SAFETY: module invariant.
+        Self(unsafe { _mm256_set1_epi32(x) })
+    }
+    #[inline(always)]
+    fn from_array(lanes: [i32; WIDTH]) -> Self {
+        // SAFETY: module invariant; the load reads the eight `i32`s of `lanes`.
+        Self(unsafe { _mm256_loadu_si256(lanes.as_ptr().cast()) })
+    }
+    #[inline(always)]
+    fn to_array(self) -> [i32; WIDTH] {
+        // SAFETY: `__m256i` is 32 bytes; any bit pattern is a valid `[i32; 8]`.
+        unsafe { std::mem::transmute::<__m256i, [i32; WIDTH]>(self.0) }
+    }
+    #[inline(always)]
+    fn select(mask: Avx2, if_true: Self, if_false: Self) -> Self {
+        // SAFETY: module invariant.
+        Self(unsafe {
+            _mm256_castps_si256(_mm256_blendv_ps(
+                _mm256_castsi256_ps(if_false.0),
+                _mm256_castsi256_ps(if_true.0),
+                mask.0,
+            ))
+        })
+    }
+    #[inline(always)]
+    fn simd_gt(self, o: Self) -> Avx2 {
+        // SAFETY: module invariant.
+        Avx2(unsafe { _mm256_castsi256_ps(_mm256_cmpgt_epi32(self.0, o.0)) })
+    }
+}

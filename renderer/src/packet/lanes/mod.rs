@@ -1,0 +1,185 @@
+//! The eight-lane number types the packet code is written over, and the
+//! choice among them at run time.
+//!
+//! [`FloatLanes`] is what the packet code needs of eight `f32`s: arithmetic,
+//! comparisons giving masks (all bits set in a lane where they hold) and
+//! selection by mask. Two types implement it: [`Portable`], `wide`'s
+//! `f32x8`, which compiles for whatever the build targets (two SSE halves
+//! on baseline x86-64), and, on x86-64, [`avx2::Avx2`], one AVX register,
+//! usable only on a CPU that has AVX2. [`dispatch`] runs a computation with
+//! the widest one this CPU has.
+//!
+//! Both implement every operation as the same IEEE operation lane by lane
+//! (no fused multiply–add), so the two give the same bits, and a test holds
+//! them to it.
+
+#[cfg(target_arch = "x86_64")]
+pub mod avx2;
+mod portable;
+
+pub use portable::Portable;
+
+use std::fmt::Debug;
+use std::ops::{Add, BitAnd, BitOr, BitXor, Div, Mul, Neg, Not, Sub};
+
+/// Lanes in a packet.
+pub const WIDTH: usize = 8;
+
+/// Eight `f32`s, one per lane; as a mask, all bits set where a condition
+/// holds and zero where it does not.
+pub trait FloatLanes:
+    Copy
+    + Debug
+    + PartialEq
+    + Send
+    + Sync
+    + 'static
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+    + BitAnd<Output = Self>
+    + BitOr<Output = Self>
+    + BitXor<Output = Self>
+    + Not<Output = Self>
+{
+    /// Eight `i32`s of the same instruction set.
+    type Ints: IntLanes<Floats = Self>;
+
+    /// Zero in every lane.
+    const ZERO: Self;
+    /// One in every lane.
+    const ONE: Self;
+    /// +∞ in every lane.
+    const INFINITY: Self;
+    /// −∞ in every lane.
+    const NEG_INFINITY: Self;
+
+    /// `x` in every lane.
+    fn splat(x: f32) -> Self;
+    /// The lanes from an array, lane k from element k.
+    fn from_array(lanes: [f32; WIDTH]) -> Self;
+    /// The lanes as an array.
+    fn to_array(self) -> [f32; WIDTH];
+    /// The lanes as an array, borrowed.
+    fn as_array(&self) -> &[f32; WIDTH];
+    /// The lanes as an array, to change in place.
+    fn as_mut_array(&mut self) -> &mut [f32; WIDTH];
+
+    /// Mask of `self < o`.
+    fn simd_lt(self, o: Self) -> Self;
+    /// Mask of `self <= o`.
+    fn simd_le(self, o: Self) -> Self;
+    /// Mask of `self > o`.
+    fn simd_gt(self, o: Self) -> Self;
+    /// Mask of `self >= o`.
+    fn simd_ge(self, o: Self) -> Self;
+    /// Mask of `self == o`.
+    fn simd_eq(self, o: Self) -> Self;
+    /// Mask of `self != o` (true where either is NaN).
+    fn simd_ne(self, o: Self) -> Self;
+
+    /// With `self` a mask: `if_true` where it is set, `if_false` elsewhere.
+    fn select(self, if_true: Self, if_false: Self) -> Self;
+    /// With `self` a mask: bit k set where lane k is.
+    fn to_bitmask(self) -> u32;
+    /// With `self` a mask: whether any lane is set.
+    fn any(self) -> bool;
+    /// With `self` a mask: whether every lane is set.
+    fn all(self) -> bool;
+
+    /// The larger of each pair, a NaN ignored (as `f32::max`; of +0 and
+    /// −0, either may come back).
+    fn max(self, o: Self) -> Self;
+    /// The smaller of each pair, a NaN ignored (as `f32::min`; of +0 and
+    /// −0, either may come back).
+    fn min(self, o: Self) -> Self;
+    /// `o < self ? self : o` (`maxps`: `o` where either is NaN).
+    fn fast_max(self, o: Self) -> Self;
+    /// `self < o ? self : o` (`minps`: `o` where either is NaN).
+    fn fast_min(self, o: Self) -> Self;
+    /// Magnitudes.
+    fn abs(self) -> Self;
+    /// Correctly rounded square roots.
+    fn sqrt(self) -> Self;
+    /// Rounded down to integers.
+    fn floor(self) -> Self;
+    /// Mask of the finite lanes.
+    fn is_finite(self) -> Self;
+    /// Mask of the lanes whose sign bit is set (−0 included).
+    fn is_sign_negative(self) -> Self;
+}
+
+/// Eight `i32`s, one per lane (object ids and counters).
+pub trait IntLanes: Copy + Debug + PartialEq + Send + Sync + 'static + Add<Output = Self> {
+    /// The `f32` lanes of the same instruction set, whose masks select these.
+    type Floats: FloatLanes<Ints = Self>;
+
+    /// `x` in every lane.
+    fn splat(x: i32) -> Self;
+    /// The lanes from an array.
+    fn from_array(lanes: [i32; WIDTH]) -> Self;
+    /// The lanes as an array.
+    fn to_array(self) -> [i32; WIDTH];
+    /// `if_true` where `mask` is set, `if_false` elsewhere.
+    fn select(mask: Self::Floats, if_true: Self, if_false: Self) -> Self;
+    /// Mask of `self > o`.
+    fn simd_gt(self, o: Self) -> Self::Floats;
+}
+
+/// A computation over lanes of any [`FloatLanes`] type, run by
+/// [`dispatch`] with the widest this CPU has.
+pub trait WithLanes {
+    /// What it returns.
+    type Output;
+    /// Runs it with lanes `F`. Written `#[inline(always)]`, with everything
+    /// it calls, so that it is compiled inside [`dispatch`]'s AVX2 function.
+    fn run<F: FloatLanes>(self) -> Self::Output;
+}
+
+/// Runs `job` with [`avx2::Avx2`] lanes when this CPU has AVX2, else
+/// with [`Portable`] ones. Both give the same results bit for bit.
+#[inline]
+pub fn dispatch<W: WithLanes>(job: W) -> W::Output {
+    #[cfg(target_arch = "x86_64")]
+    if let Some(token) = avx2::Avx2Token::detect() {
+        return token.run(job);
+    }
+    job.run::<Portable>()
+}
+
+/// Runs `job` with [`Portable`] lanes whatever the CPU (for tests and
+/// measurements of the fallback).
+pub fn run_portable<W: WithLanes>(job: W) -> W::Output {
+    job.run::<Portable>()
+}
+
+/// `job` run with every lane type this CPU has: the portable one, then
+/// the widest (the same one again on a CPU without AVX2).
+#[cfg(test)]
+pub(crate) fn on_every_lane_type<W: WithLanes + Clone>(job: W) -> Vec<W::Output> {
+    vec![run_portable(job.clone()), dispatch(job)]
+}
+
+/// The mask set in the lanes `k` where `f(k)` holds.
+#[inline(always)]
+pub fn mask_from<F: FloatLanes>(f: impl Fn(usize) -> bool) -> F {
+    let lanes: [f32; WIDTH] = std::array::from_fn(|k| if f(k) { 1.0 } else { 0.0 });
+    F::from_array(lanes).simd_gt(F::ZERO)
+}
+
+/// True in the lanes `0..n`: the live lanes of a packet holding `n` items.
+#[inline(always)]
+pub fn first_lanes<F: FloatLanes>(n: usize) -> F {
+    mask_from(|k| k < n)
+}
+
+/// Whether lane `k` of `mask` is set.
+#[inline(always)]
+pub fn lane_set<F: FloatLanes>(mask: F, k: usize) -> bool {
+    mask.to_bitmask() & (1 << k) != 0
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,139 @@
+//! [`FloatLanes`] by `wide`: whatever instructions the build targets.
+
+use super::{FloatLanes, IntLanes, WIDTH};
+use wide::{f32x8, i32x8};
+
+/// Eight `f32`s as `wide::f32x8`: two SSE registers on baseline x86-64,
+/// one AVX register where the build enables AVX, portable elsewhere.
+pub type Portable = f32x8;
+
+impl FloatLanes for f32x8 {
+    type Ints = i32x8;
+    const ZERO: Self = f32x8::ZERO;
+    const ONE: Self = f32x8::ONE;
+    const INFINITY: Self = f32x8::INFINITY;
+    const NEG_INFINITY: Self = f32x8::NEG_INFINITY;
+
+    #[inline(always)]
+    fn splat(x: f32) -> Self {
+        f32x8::splat(x)
+    }
+    #[inline(always)]
+    fn from_array(lanes: [f32; WIDTH]) -> Self {
+        f32x8::from(lanes)
+    }
+    #[inline(always)]
+    fn to_array(self) -> [f32; WIDTH] {
+        f32x8::to_array(self)
+    }
+    #[inline(always)]
+    fn as_array(&self) -> &[f32; WIDTH] {
+        f32x8::as_array(self)
+    }
+    #[inline(always)]
+    fn as_mut_array(&mut self) -> &mut [f32; WIDTH] {
+        f32x8::as_mut_array(self)
+    }
+    #[inline(always)]
+    fn simd_lt(self, o: Self) -> Self {
+        f32x8::simd_lt(self, o)
+    }
+    #[inline(always)]
+    fn simd_le(self, o: Self) -> Self {
+        f32x8::simd_le(self, o)
+    }
+    #[inline(always)]
+    fn simd_gt(self, o: Self) -> Self {
+        f32x8::simd_gt(self, o)
+    }
+    #[inline(always)]
+    fn simd_ge(self, o: Self) -> Self {
+        f32x8::simd_ge(self, o)
+    }
+    #[inline(always)]
+    fn simd_eq(self, o: Self) -> Self {
+        f32x8::simd_eq(self, o)
+    }
+    #[inline(always)]
+    fn simd_ne(self, o: Self) -> Self {
+        f32x8::simd_ne(self, o)
+    }
+    #[inline(always)]
+    fn select(self, if_true: Self, if_false: Self) -> Self {
+        f32x8::select(self, if_true, if_false)
+    }
+    #[inline(always)]
+    fn to_bitmask(self) -> u32 {
+        f32x8::to_bitmask(self)
+    }
+    #[inline(always)]
+    fn any(self) -> bool {
+        f32x8::any(self)
+    }
+    #[inline(always)]
+    fn all(self) -> bool {
+        f32x8::all(self)
+    }
+    #[inline(always)]
+    fn max(self, o: Self) -> Self {
+        f32x8::max(self, o)
+    }
+    #[inline(always)]
+    fn min(self, o: Self) -> Self {
+        f32x8::min(self, o)
+    }
+    #[inline(always)]
+    fn fast_max(self, o: Self) -> Self {
+        f32x8::fast_max(self, o)
+    }
+    #[inline(always)]
+    fn fast_min(self, o: Self) -> Self {
+        f32x8::fast_min(self, o)
+    }
+    #[inline(always)]
+    fn abs(self) -> Self {
+        f32x8::abs(self)
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        f32x8::sqrt(self)
+    }
+    #[inline(always)]
+    fn floor(self) -> Self {
+        f32x8::floor(self)
+    }
+    #[inline(always)]
+    fn is_finite(self) -> Self {
+        f32x8::is_finite(self)
+    }
+    #[inline(always)]
+    fn is_sign_negative(self) -> Self {
+        f32x8::is_sign_negative(self)
+    }
+}
+
+impl IntLanes for i32x8 {
+    type Floats = f32x8;
+
+    #[inline(always)]
+    fn splat(x: i32) -> Self {
+        i32x8::splat(x)
+    }
+    #[inline(always)]
+    fn from_array(lanes: [i32; WIDTH]) -> Self {
+        i32x8::from(lanes)
+    }
+    #[inline(always)]
+    fn to_array(self) -> [i32; WIDTH] {
+        i32x8::to_array(self)
+    }
+    #[inline(always)]
+    fn select(mask: f32x8, if_true: Self, if_false: Self) -> Self {
+        let m: i32x8 = wide::bytemuck::cast(mask);
+        m.select(if_true, if_false)
+    }
+    #[inline(always)]
+    fn simd_gt(self, o: Self) -> f32x8 {
+        wide::bytemuck::cast(i32x8::simd_gt(self, o))
+    }
+}

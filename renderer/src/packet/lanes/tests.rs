@@ -1,0 +1,147 @@
+//! Every lane type gives the same bits for every operation, and the same as
+//! scalar `f32` arithmetic lane by lane.
+
+use super::*;
+
+/// Awkward values: zeros of both signs, subnormals, infinities, NaN,
+/// extremes and ordinary numbers.
+const VALUES: [f32; 16] = [
+    0.0,
+    -0.0,
+    1.0e-40,
+    -1.0e-40,
+    f32::INFINITY,
+    f32::NEG_INFINITY,
+    f32::NAN,
+    f32::MAX,
+    f32::MIN_POSITIVE,
+    1.0,
+    -1.5,
+    0.3,
+    7.25,
+    -1.0e30,
+    2.5e-20,
+    -0.1,
+];
+
+/// NaN lanes compare equal to NaN lanes (payloads may differ), all others by bits.
+fn same(a: [f32; WIDTH], b: [f32; WIDTH]) -> bool {
+    a.iter()
+        .zip(&b)
+        .all(|(x, y)| (x.is_nan() && y.is_nan()) || x.to_bits() == y.to_bits())
+}
+
+/// Every operation of `F` on every pair of chunks of [`VALUES`], as arrays.
+struct Results;
+
+impl WithLanes for Results {
+    type Output = Vec<[f32; WIDTH]>;
+
+    fn run<F: FloatLanes>(self) -> Vec<[f32; WIDTH]> {
+        let mut out = Vec::new();
+        for shift in 0..VALUES.len() {
+            let a: [f32; WIDTH] = std::array::from_fn(|k| VALUES[k]);
+            let b: [f32; WIDTH] = std::array::from_fn(|k| VALUES[(k + shift) % VALUES.len()]);
+            let c: [f32; WIDTH] = std::array::from_fn(|k| VALUES[WIDTH + k]);
+            for (a, b) in [(a, b), (c, b), (b, c)] {
+                let (x, y) = (F::from_array(a), F::from_array(b));
+                let mask = x.simd_lt(y);
+                let bitmask = f32::from_bits(
+                    mask.to_bitmask() | u32::from(mask.any()) << 8 | u32::from(mask.all()) << 9,
+                );
+                let ints = <F::Ints as IntLanes>::from_array(std::array::from_fn(|k| k as i32 - 3));
+                let int_select = <F::Ints as IntLanes>::select(
+                    mask,
+                    ints,
+                    ints + <F::Ints as IntLanes>::splat(10),
+                );
+                let int_gt = ints.simd_gt(<F::Ints as IntLanes>::splat(0));
+                out.extend([
+                    (x + y).to_array(),
+                    (x - y).to_array(),
+                    (x * y).to_array(),
+                    (x / y).to_array(),
+                    (-x).to_array(),
+                    mask.to_array(),
+                    x.simd_le(y).to_array(),
+                    x.simd_gt(y).to_array(),
+                    x.simd_ge(y).to_array(),
+                    x.simd_eq(y).to_array(),
+                    x.simd_ne(y).to_array(),
+                    (mask & x.simd_eq(y) | !x.simd_ge(y) ^ mask).to_array(),
+                    mask.select(x, y).to_array(),
+                    [bitmask; WIDTH],
+                    x.max(y).to_array(),
+                    x.min(y).to_array(),
+                    x.fast_max(y).to_array(),
+                    x.fast_min(y).to_array(),
+                    x.abs().to_array(),
+                    x.sqrt().to_array(),
+                    x.floor().to_array(),
+                    x.is_finite().to_array(),
+                    x.is_sign_negative().to_array(),
+                    F::splat(a[3]).to_array(),
+                    F::ZERO.to_array(),
+                    F::ONE.to_array(),
+                    F::INFINITY.to_array(),
+                    F::NEG_INFINITY.to_array(),
+                    int_select.to_array().map(|i| i as f32),
+                    int_gt.to_array(),
+                ]);
+            }
+        }
+        out
+    }
+}
+
+#[test]
+fn the_lane_types_give_the_same_bits_for_every_operation() {
+    let portable = run_portable(Results);
+    let widest = dispatch(Results);
+    assert_eq!(portable.len(), widest.len());
+    for (k, (p, w)) in portable.iter().zip(&widest).enumerate() {
+        assert!(same(*p, *w), "result {k}: portable {p:?} vs widest {w:?}");
+    }
+}
+
+#[test]
+fn arithmetic_is_scalar_f32_lane_by_lane() {
+    let lanes = run_portable(Results);
+    for shift in 0..VALUES.len() {
+        let a: [f32; WIDTH] = std::array::from_fn(|k| VALUES[k]);
+        let b: [f32; WIDTH] = std::array::from_fn(|k| VALUES[(k + shift) % VALUES.len()]);
+        let first = &lanes[shift * 90..];
+        let scalar: [[f32; WIDTH]; 4] = [
+            std::array::from_fn(|k| a[k] + b[k]),
+            std::array::from_fn(|k| a[k] - b[k]),
+            std::array::from_fn(|k| a[k] * b[k]),
+            std::array::from_fn(|k| a[k] / b[k]),
+        ];
+        for (op, want) in scalar.iter().enumerate() {
+            assert!(same(first[op], *want), "op {op}, shift {shift}");
+        }
+        let max: [f32; WIDTH] = std::array::from_fn(|k| a[k].max(b[k]));
+        let min: [f32; WIDTH] = std::array::from_fn(|k| a[k].min(b[k]));
+        let sqrt: [f32; WIDTH] = std::array::from_fn(|k| a[k].sqrt());
+        // f32::max and f32::min may return either zero of ±0: compare those by value.
+        let by_value = |x: [f32; WIDTH], y: [f32; WIDTH]| {
+            x.iter()
+                .zip(&y)
+                .all(|(x, y)| (x.is_nan() && y.is_nan()) || x == y)
+        };
+        assert!(by_value(first[14], max), "max, shift {shift}");
+        assert!(by_value(first[15], min), "min, shift {shift}");
+        assert!(same(first[19], sqrt), "sqrt, shift {shift}");
+    }
+}
+
+#[test]
+fn this_machine_runs_the_widest_lanes_it_has() {
+    #[cfg(target_arch = "x86_64")]
+    if is_x86_feature_detected!("avx2") {
+        assert!(avx2::Avx2Token::detect().is_some());
+    }
+    let mask: Portable = first_lanes(3);
+    assert_eq!(mask.to_bitmask(), 0b111);
+    assert!(lane_set(mask, 2) && !lane_set(mask, 3));
+}

@@ -1,0 +1,704 @@
+//! Packet intersection for small worlds: eight rays (one per lane) tested
+//! against every primitive of a world made only of lone triangles, boxes and
+//! spheres, with exactly the [`Method::Robust`] formulas of the scalar code
+//! (`shapes/triangle.rs`, `shapes/cuboid.rs`, `shapes/sphere.rs`): the same
+//! operations in the same order in every lane, no fused multiply–add, so
+//! each lane's α, hit point and normal are bit for bit what
+//! [`World::intersect`] and [`World::surface`] give for its ray.
+//!
+//! There is no BVH: each primitive's constants are splatted against the
+//! eight rays in turn, which beats a tree for a few dozen primitives
+//! ([`PacketShapes::MAX_PRIMITIVES`]). What depends on the rays only (the watertight
+//! test's axis permutation and shear, the spheres' v · v) is computed once
+//! per packet.
+//!
+//! [`Method::Robust`]: crate::shapes::Method::Robust
+
+mod boxes;
+mod spheres;
+mod triangles;
+
+use super::{FloatLanes, IntLanes, Rays, Vec3s, WIDTH, mask_from};
+use crate::shapes::Shape;
+use crate::world::{Object, World};
+use boxes::Boxes;
+use spheres::{SphereRays, Spheres};
+use triangles::{ShearedRays, Triangles};
+
+/// The closest hits of a packet: α per lane (+∞ where nothing was hit) and the object id hit (-1 where none).
+#[derive(Clone, Copy, Debug)]
+pub struct PacketHits<F: FloatLanes> {
+    /// α of each lane's nearest hit, +∞ where its ray hit nothing.
+    pub alpha: F,
+    /// The object id ([`World::objects`] index) hit in each lane, −1 where nothing was.
+    pub object: F::Ints,
+}
+
+/// Which primitive an object is: its kind ([`TRIANGLE`], [`BOX`],
+/// [`SPHERE`]; [`NO_KIND`] for no primitive) and its index among that kind's.
+#[derive(Clone, Copy, Debug)]
+struct Slot {
+    /// The kind.
+    kind: usize,
+    /// The index in the kind's list.
+    index: u32,
+}
+
+/// [`Slot::kind`] of a triangle.
+const TRIANGLE: usize = 0;
+/// [`Slot::kind`] of a box.
+const BOX: usize = 1;
+/// [`Slot::kind`] of a sphere.
+const SPHERE: usize = 2;
+/// [`Slot::kind`] of a lane that hit nothing.
+const NO_KIND: usize = 3;
+
+/// Every primitive of a world whose top level is only lone triangles, boxes and spheres (no models, no planes, no other shapes), laid out for packet tests.
+#[derive(Clone, Debug)]
+pub struct PacketShapes {
+    /// The `<triangle>` objects.
+    triangles: Triangles,
+    /// The `<box>` objects.
+    boxes: Boxes,
+    /// The `<sphere>` objects.
+    spheres: Spheres,
+    /// Per object id, which primitive it is.
+    slots: Vec<Slot>,
+}
+
+/// The running nearest hit of a packet while its primitives are tested.
+pub(super) struct Nearest<F: FloatLanes> {
+    /// Per lane, hits must lie below this: t_max, then the nearest α so far.
+    pub(super) limit: F,
+    /// Per lane, the object of the nearest hit so far (−1: none yet).
+    pub(super) object: F::Ints,
+}
+
+impl<F: FloatLanes> Nearest<F> {
+    /// No hit yet, in the rays' intervals.
+    #[inline(always)]
+    fn new(rays: &Rays<F>) -> Self {
+        Self {
+            limit: rays.t_max,
+            object: F::Ints::splat(-1),
+        }
+    }
+
+    /// Takes `alpha` with `object` in the lanes of `hit` (each of them
+    /// nearer than `limit`). Callers take every primitive's lanes, without
+    /// first asking whether any lane hit: in incoherent packets that branch
+    /// goes either way and mispredicting it cost more than two blends.
+    #[inline(always)]
+    pub(super) fn take(&mut self, hit: F, alpha: F, object: i32) {
+        self.limit = hit.select(alpha, self.limit);
+        self.object = F::Ints::select(hit, F::Ints::splat(object), self.object);
+    }
+
+    /// The hits found: α where an object was hit, +∞ elsewhere.
+    #[inline(always)]
+    fn hits(self) -> PacketHits<F> {
+        let found = self.object.simd_gt(F::Ints::splat(-1));
+        PacketHits {
+            alpha: found.select(self.limit, F::INFINITY),
+            object: self.object,
+        }
+    }
+}
+
+/// The live lanes of a packet: those with t_max > 0 (dead ones hold 0).
+#[inline(always)]
+fn live_lanes<F: FloatLanes>(rays: &Rays<F>) -> F {
+    rays.t_max.simd_gt(F::ZERO)
+}
+
+/// The mask of the lanes whose bit is set in `bits`.
+#[inline(always)]
+fn mask_of_bits<F: FloatLanes>(bits: u32) -> F {
+    mask_from(|k| bits & (1 << k) != 0)
+}
+
+impl PacketShapes {
+    /// The most primitives [`PacketShapes::new`] accepts: beyond that,
+    /// testing every primitive costs more than a BVH's traversal.
+    pub const MAX_PRIMITIVES: usize = 64;
+
+    /// `None` when `world` holds anything else (a model/mesh, an unbounded plane, a cylinder, cone, torus, ...) or more than `MAX_PRIMITIVES` (pick ~64: beyond that a BVH is better) primitives.
+    pub fn new(world: &World) -> Option<Self> {
+        if world.objects.len() > Self::MAX_PRIMITIVES {
+            return None;
+        }
+        let mut shapes = PacketShapes {
+            triangles: Triangles::default(),
+            boxes: Boxes::default(),
+            spheres: Spheres::default(),
+            slots: Vec::with_capacity(world.objects.len()),
+        };
+        for (id, object) in world.objects.iter().enumerate() {
+            let id = id as i32;
+            let (kind, index) = match object {
+                Object::Shape(Shape::Triangle(t)) => (TRIANGLE, shapes.triangles.push(id, t)),
+                Object::Shape(Shape::Box(b)) => (BOX, shapes.boxes.push(id, b)),
+                Object::Shape(Shape::Sphere(s)) => (SPHERE, shapes.spheres.push(id, s)),
+                Object::Shape(_) | Object::Model { .. } => return None,
+            };
+            shapes.slots.push(Slot { kind, index });
+        }
+        Some(shapes)
+    }
+
+    /// How many primitives there are (what each ray of [`PacketShapes::closest`] is tested against).
+    pub fn len(&self) -> usize {
+        self.slots.len()
+    }
+
+    /// True when the world has no primitive.
+    pub fn is_empty(&self) -> bool {
+        self.slots.is_empty()
+    }
+
+    /// The nearest hit of each lane's ray in (0, t_max).
+    #[inline(always)]
+    pub fn closest<F: FloatLanes>(&self, rays: &Rays<F>) -> PacketHits<F> {
+        let mut nearest = Nearest::new(rays);
+        let live = live_lanes(rays);
+        if !live.any() {
+            return nearest.hits();
+        }
+        if !self.triangles.is_empty() {
+            let sheared = ShearedRays::new(rays, live);
+            self.triangles.closest(&sheared, &mut nearest);
+        }
+        self.boxes.closest(rays, &mut nearest);
+        if !self.spheres.is_empty() {
+            let prepared = SphereRays::new(rays);
+            self.spheres.closest(&prepared, &mut nearest);
+        }
+        nearest.hits()
+    }
+
+    /// Per lane: true when anything lies on its ray in (0, t_max) (stop testing once every lane is blocked).
+    #[inline(always)]
+    pub fn occluded<F: FloatLanes>(&self, rays: &Rays<F>) -> F {
+        let live = live_lanes(rays);
+        // Lanes settled: blocked ones, and the dead ones from the start.
+        let mut settled = !live;
+        if settled.all() {
+            return F::ZERO;
+        }
+        if !self.triangles.is_empty() {
+            let sheared = ShearedRays::new(rays, live);
+            if self.triangles.occluded(&sheared, rays.t_max, &mut settled) {
+                return live;
+            }
+        }
+        if self.boxes.occluded(rays, &mut settled) {
+            return live;
+        }
+        if !self.spheres.is_empty() {
+            let prepared = SphereRays::new(rays);
+            if self.spheres.occluded(&prepared, rays.t_max, &mut settled) {
+                return live;
+            }
+        }
+        settled & live
+    }
+
+    /// The hit point and unit outward geometric normal at each lane's hit, equal bit for bit to `world.surface(&ray, hit)` (i.e. `Shape::surface`) for lanes that hit; anything for the others.
+    #[inline(always)]
+    pub fn surface<F: FloatLanes>(
+        &self,
+        rays: &Rays<F>,
+        hits: &PacketHits<F>,
+    ) -> (Vec3s<F>, Vec3s<F>) {
+        // Each lane's primitive, by kind: its index there and the lane's
+        // bit (without branches: kinds vary from lane to lane).
+        let mut index = [[0u32; WIDTH]; NO_KIND + 1];
+        let mut bits = [0u32; NO_KIND + 1];
+        let none = Slot {
+            kind: NO_KIND,
+            index: 0,
+        };
+        for (lane, object) in hits.object.to_array().into_iter().enumerate() {
+            // −1 (no hit) becomes usize::MAX, beyond every object.
+            let slot = self.slots.get(object as usize).copied().unwrap_or(none);
+            index[slot.kind][lane] = slot.index;
+            bits[slot.kind] |= 1 << lane;
+        }
+        let hit_bits = bits[TRIANGLE] | bits[BOX] | bits[SPHERE];
+        let (mut point, mut normal) = (Vec3s::ZERO, Vec3s::ZERO);
+        for kind in [TRIANGLE, BOX, SPHERE] {
+            if bits[kind] == 0 {
+                continue;
+            }
+            let (p, n) = match kind {
+                TRIANGLE => self.triangles.surface(rays, hits.alpha, &index[kind]),
+                BOX => self.boxes.surface(rays, hits.alpha, &index[kind]),
+                _ => self.spheres.surface(rays, hits.alpha, &index[kind]),
+            };
+            if bits[kind] == hit_bits {
+                // Every lane that hit, hit this kind.
+                return (p, n);
+            }
+            let mask = mask_of_bits(bits[kind]);
+            point = Vec3s::select(mask, p, point);
+            normal = Vec3s::select(mask, n, normal);
+        }
+        (point, normal)
+    }
+}
+
+/// Eight lanes' values of a primitive kind's data, each lane's from the
+/// primitive `index[lane]`.
+#[inline(always)]
+fn gather<F: FloatLanes>(index: &[u32; WIDTH], value: impl Fn(usize) -> f32) -> F {
+    F::from_array(std::array::from_fn::<f32, WIDTH, _>(|lane| {
+        value(index[lane] as usize)
+    }))
+}
+
+/// Eight lanes' vectors of a primitive kind's data, each lane's from the
+/// primitive `index[lane]`.
+#[inline(always)]
+fn gather3<F: FloatLanes>(index: &[u32; WIDTH], value: impl Fn(usize) -> glam::Vec3) -> Vec3s<F> {
+    Vec3s::from_lanes(&std::array::from_fn(|lane| value(index[lane] as usize)))
+}
+
+/// Coordinate `axis` (0, 1, 2: x, y, z) of eight vectors.
+#[inline(always)]
+fn coordinate<F: FloatLanes>(v: &Vec3s<F>, axis: usize) -> F {
+    match axis {
+        0 => v.x,
+        1 => v.y,
+        _ => v.z,
+    }
+}
+
+/// Shared by the kinds' tests: worlds from scene text and rays aimed at
+/// what is hard to get right (edges, vertices, silhouettes, short intervals).
+#[cfg(test)]
+pub(super) mod testing {
+    use super::*;
+    use crate::geometry::ray::Ray;
+    use crate::integrator::sampler::Sampler;
+    use crate::packet::lane_set;
+    use crate::packet::lanes::{WithLanes, on_every_lane_type};
+    use crate::shapes::Method;
+    use crate::world::Hit;
+    use glam::Vec3;
+
+    /// The world of a scene given as XML.
+    pub fn world_of(xml: &str) -> World {
+        World::from_scene(&scene::read_str(xml, "test.xml").expect("parses")).expect("valid")
+    }
+
+    /// The world of `assets/reference/<name>`.
+    pub fn reference_world(name: &str) -> World {
+        let path = format!("{}/../assets/reference/{name}", env!("CARGO_MANIFEST_DIR"));
+        let text = std::fs::read_to_string(&path).expect("reference scene");
+        World::from_scene(&scene::read_str(&text, &path).expect("parses")).expect("valid")
+    }
+
+    /// A dead lane: any ray over the empty interval.
+    pub fn dead(k: usize) -> Ray {
+        Ray::new(Vec3::splat(k as f32 - 3.0), Vec3::X).with_t_max(0.0)
+    }
+
+    /// Packs `rays` (at most [`WIDTH`]) in the lanes listed by `lanes`
+    /// (distinct), the other lanes dead.
+    pub fn packet(rays: &[Ray], lanes: &[usize]) -> [Ray; WIDTH] {
+        let mut packed: [Ray; WIDTH] = std::array::from_fn(dead);
+        for (ray, &lane) in rays.iter().zip(lanes) {
+            packed[lane] = *ray;
+        }
+        packed
+    }
+
+    /// `count` rays around and through `world`'s primitives, seeded: from
+    /// random points and from points on surfaces (α ≈ 0 self-hits), aimed
+    /// at random points, at vertices, along edges, at silhouettes, with
+    /// axis-parallel directions (zero and −0 components), some with t_max
+    /// cut before or just at the target.
+    pub fn rays_for(world: &World, seed: u64, count: usize) -> Vec<Ray> {
+        let mut rng = Sampler::for_sample(seed, 0, 0, 0);
+        let targets = targets_of(world);
+        let mut rays = Vec::with_capacity(count);
+        let scale = targets
+            .iter()
+            .fold(1.0f32, |s, t| s.max(t.abs().max_element()));
+        while rays.len() < count {
+            let k = rays.len();
+            let pick = |rng: &mut Sampler, n: usize| {
+                ((rng.next_f32() * n as f32) as usize).min(n.saturating_sub(1))
+            };
+            let target = if targets.is_empty() {
+                Vec3::ZERO
+            } else {
+                let a = targets[pick(&mut rng, targets.len())];
+                let b = targets[pick(&mut rng, targets.len())];
+                match k % 4 {
+                    // A vertex, corner or centre exactly.
+                    0 => a,
+                    // A point on the segment between two (an edge, often).
+                    1 => {
+                        let s = rng.next_f32();
+                        a + s * (b - a)
+                    }
+                    // Near one.
+                    2 => a + 0.05 * scale * rng.next_direction(),
+                    _ => {
+                        scale * Vec3::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 2.0
+                            - scale
+                    }
+                }
+            };
+            let origin = match k % 5 {
+                0 | 1 => 1.5 * scale * rng.next_direction() * rng.next_f32().sqrt(),
+                2 => 4.0 * scale * rng.next_direction(),
+                3 => {
+                    // On a surface: where an earlier ray hit.
+                    let from = rays
+                        .get(k / 2)
+                        .copied()
+                        .unwrap_or(Ray::new(Vec3::ZERO, Vec3::Z));
+                    match world.intersect(&from, Method::Robust) {
+                        Some(hit) => world.surface(&from, hit).point,
+                        None => Vec3::ZERO,
+                    }
+                }
+                _ => {
+                    // A lattice point (exact edge-function zeros).
+                    let mut c = || (rng.next_f32() * 5.0).floor() - 2.0;
+                    Vec3::new(c(), c(), c()) * 0.5
+                }
+            };
+            let mut dir = match k % 7 {
+                // Axis-parallel, with signed zeros.
+                0 => {
+                    let axis = pick(&mut rng, 3);
+                    let sign = if rng.next_f32() < 0.5 { -1.0 } else { 1.0 };
+                    let zero = if rng.next_f32() < 0.5 { -0.0 } else { 0.0 };
+                    let mut d = Vec3::splat(zero);
+                    d[axis] = sign;
+                    d
+                }
+                1 => rng.next_direction(),
+                _ => (target - origin).normalize_or(Vec3::Y),
+            };
+            if k % 11 == 0 {
+                // Not unit length: α scales with 1/‖v‖.
+                dir *= 0.5 + 2.0 * rng.next_f32();
+            }
+            let mut ray = Ray::new(origin, dir);
+            match k % 6 {
+                0 => ray.t_max = (target - origin).length() * (0.25 + rng.next_f32()),
+                1 => ray.t_max = (target - origin).length(),
+                _ => {}
+            }
+            rays.push(ray);
+        }
+        rays
+    }
+
+    /// Points worth aiming at: triangles' corners, boxes' corners and
+    /// centres, spheres' centres and silhouette points.
+    fn targets_of(world: &World) -> Vec<Vec3> {
+        let mut targets = Vec::new();
+        for object in &world.objects {
+            match object {
+                Object::Shape(Shape::Triangle(t)) => targets.extend([t.t0, t.t1, t.t2]),
+                Object::Shape(Shape::Box(b)) => {
+                    let (placement, half) = (b.placement(), b.half());
+                    targets.push(placement.origin);
+                    for corner in 0..8 {
+                        let sign = |bit: usize| if corner & (1 << bit) != 0 { 1.0 } else { -1.0 };
+                        let local = Vec3::new(sign(0), sign(1), sign(2)) * half;
+                        targets.push(placement.point_to_world(local));
+                    }
+                }
+                Object::Shape(Shape::Sphere(s)) => {
+                    targets.push(s.center);
+                    for axis in [Vec3::X, Vec3::Y, Vec3::Z] {
+                        targets.push(s.center + s.radius * axis);
+                        targets.push(s.center - s.radius * axis);
+                    }
+                }
+                _ => {}
+            }
+        }
+        targets
+    }
+
+    /// Checks every live lane of `lanes` (with `packet`'s answers, in lanes
+    /// `F`) against the scalar world: the same α bits and object (on an
+    /// exact tie, an object the scalar test also hits at that α), the same
+    /// occlusion, the same surface bits. Dead lanes hit nothing and are not
+    /// occluded. Returns how many lanes hit.
+    pub fn check_packet_with<F: FloatLanes>(
+        world: &World,
+        shapes: &PacketShapes,
+        lanes: &[Ray; WIDTH],
+    ) -> usize {
+        let rays = Rays::<F>::from_lanes(lanes);
+        let hits = shapes.closest(&rays);
+        let blocked = shapes.occluded(&rays);
+        let (point, normal) = shapes.surface(&rays, &hits);
+        let objects = hits.object.to_array();
+        let mut found = 0;
+        for (k, ray) in lanes.iter().enumerate() {
+            let (alpha, object) = (hits.alpha.as_array()[k], objects[k]);
+            if ray.t_max == 0.0 {
+                assert_eq!((alpha, object), (f32::INFINITY, -1), "dead lane {k}");
+                assert!(!lane_set(blocked, k), "dead lane {k}");
+                continue;
+            }
+            let want = world.intersect(ray, Method::Robust);
+            assert_eq!(
+                alpha.to_bits(),
+                want.map_or(f32::INFINITY, |h| h.alpha).to_bits(),
+                "lane {k}: {ray:?} want {want:?}, got α {alpha} object {object}"
+            );
+            assert_eq!(
+                lane_set(blocked, k),
+                world.occluded(ray, Method::Robust),
+                "occluded, lane {k}: {ray:?}"
+            );
+            let Some(want) = want else {
+                assert_eq!(object, -1, "lane {k}: {ray:?}");
+                continue;
+            };
+            found += 1;
+            let object = u32::try_from(object).expect("a hit has an object");
+            if object != want.object {
+                let shape = world.shape(object).expect("an analytic shape");
+                let at = shape.intersect(ray, Method::Robust);
+                assert_eq!(
+                    at.map(f32::to_bits),
+                    Some(alpha.to_bits()),
+                    "lane {k}: object {object} instead of {} without a tie: {ray:?}",
+                    want.object
+                );
+            }
+            let hit = Hit {
+                object,
+                alpha,
+                triangle: None,
+            };
+            let surface = world.surface(ray, hit);
+            let (p, n) = (point.lane(k), normal.lane(k));
+            assert_eq!(
+                (
+                    p.to_array().map(f32::to_bits),
+                    n.to_array().map(f32::to_bits)
+                ),
+                (
+                    surface.point.to_array().map(f32::to_bits),
+                    surface.normal.to_array().map(f32::to_bits)
+                ),
+                "surface, lane {k}: {ray:?}: {p} {n} against {surface:?}"
+            );
+        }
+        found
+    }
+
+    /// [`check_packet_with`] for every lane type.
+    #[derive(Clone)]
+    struct CheckPacket<'a> {
+        world: &'a World,
+        shapes: &'a PacketShapes,
+        lanes: &'a [Ray; WIDTH],
+    }
+
+    impl WithLanes for CheckPacket<'_> {
+        type Output = usize;
+        fn run<F: FloatLanes>(self) -> usize {
+            check_packet_with::<F>(self.world, self.shapes, self.lanes)
+        }
+    }
+
+    /// [`check_packet_with`] with every lane type (each must pass, and find
+    /// as many hits). Returns how many lanes hit.
+    pub fn check_packet(world: &World, shapes: &PacketShapes, lanes: &[Ray; WIDTH]) -> usize {
+        same_everywhere(on_every_lane_type(CheckPacket {
+            world,
+            shapes,
+            lanes,
+        }))
+    }
+
+    /// The one value every lane type gave.
+    pub fn same_everywhere<T: PartialEq + std::fmt::Debug>(results: Vec<T>) -> T {
+        let mut results = results.into_iter();
+        let first = results.next().expect("at least one lane type");
+        for other in results {
+            assert_eq!(other, first, "lane types disagree");
+        }
+        first
+    }
+
+    /// Checks `rays` in packets of eight (in lanes `F`), then each of them
+    /// again in lane `k % 8` among dead lanes and among other rays in
+    /// other orders (a lane's answer must not depend on its neighbours).
+    /// Returns how many lanes hit in the first pass.
+    fn check_rays_with<F: FloatLanes>(world: &World, rays: &[Ray]) -> usize {
+        let shapes = PacketShapes::new(world).expect("a packet world");
+        let mut found = 0;
+        for chunk in rays.chunks(WIDTH) {
+            let lanes: Vec<usize> = (0..chunk.len()).collect();
+            found += check_packet_with::<F>(world, &shapes, &packet(chunk, &lanes));
+        }
+        for (k, ray) in rays.iter().enumerate() {
+            // Alone among dead lanes.
+            check_packet_with::<F>(world, &shapes, &packet(&[*ray], &[k % WIDTH]));
+            // Among neighbours from elsewhere in the list, with two lanes dead.
+            if k % 3 == 0 {
+                let others: Vec<Ray> = (1..6)
+                    .map(|j| rays[(k * 7 + j * 13) % rays.len()])
+                    .collect();
+                let mut group = vec![*ray];
+                group.extend(others);
+                let lanes: Vec<usize> = (0..group.len()).map(|j| (k + 3 * j) % WIDTH).collect();
+                check_packet_with::<F>(world, &shapes, &packet(&group, &lanes));
+            }
+        }
+        found
+    }
+
+    /// [`check_rays_with`] for every lane type.
+    #[derive(Clone)]
+    struct CheckRays<'a> {
+        world: &'a World,
+        rays: &'a [Ray],
+    }
+
+    impl WithLanes for CheckRays<'_> {
+        type Output = usize;
+        fn run<F: FloatLanes>(self) -> usize {
+            check_rays_with::<F>(self.world, self.rays)
+        }
+    }
+
+    /// [`check_rays_with`] with every lane type (each must pass, and find
+    /// as many hits). Returns how many lanes hit in the first pass.
+    pub fn check_rays(world: &World, rays: &[Ray]) -> usize {
+        same_everywhere(on_every_lane_type(CheckRays { world, rays }))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::testing::*;
+    use super::*;
+    use crate::geometry::ray::Ray;
+    use crate::packet::lanes::{WithLanes, on_every_lane_type};
+    use glam::Vec3;
+
+    #[test]
+    fn the_reference_cornell_box_gives_the_scalar_worlds_hits_bit_for_bit() {
+        let world = reference_world("cornell.xml");
+        let rays = rays_for(&world, 1, 4000);
+        let found = check_rays(&world, &rays);
+        assert!(found > 2000, "too few hits to mean anything: {found}");
+    }
+
+    #[test]
+    fn the_reference_rough_scene_gives_the_scalar_worlds_hits_bit_for_bit() {
+        let world = reference_world("rough.xml");
+        let rays = rays_for(&world, 2, 4000);
+        let found = check_rays(&world, &rays);
+        assert!(found > 2000, "too few hits to mean anything: {found}");
+    }
+
+    #[test]
+    fn a_mixed_scene_of_every_kind_gives_the_scalar_worlds_hits_bit_for_bit() {
+        // Ten spheres (the scalar world groups them in its own BVH), boxes
+        // rotated or not, one flat, triangles sharing edges and a box's face.
+        let world = world_of(
+            r#"<scene>
+              <triangle t0="-2 -1 -2" t1="2 -1 -2" t2="2 -1 2"/>
+              <triangle t0="-2 -1 -2" t1="2 -1 2" t2="-2 -1 2"/>
+              <triangle t0="0 0 0" t1="1 0 0" t2="0 1 0"/>
+              <triangle t0="1 1 0" t1="0 1 0" t2="1 0 0"/>
+              <triangle t0="-1 -1 -1" t1="-1 1 -1" t2="-1 -1 1"/>
+              <box center="0.5 -0.5 0.5" size="1 1 1"/>
+              <box center="-0.8 0.3 0.2" size="0.5 1.5 0.4" rotate="10 -35 70"/>
+              <box center="1.2 0.4 -0.6" size="0.8 0.0001 0.8"/>
+              <sphere center="0 0.5 -1" radius="0.5"/>
+              <sphere center="1.5 1.5 1.5" radius="0.25"/>
+              <sphere center="-1.5 1.2 0.4" radius="0.3"/>
+              <sphere center="0.3 -0.7 1.4" radius="0.2"/>
+              <sphere center="-0.4 1.6 -1.3" radius="0.35"/>
+              <sphere center="1.7 -0.5 -1.5" radius="0.4"/>
+              <sphere center="-1.6 -0.6 -1.4" radius="0.3"/>
+              <sphere center="0.9 1.1 0.9" radius="0.15"/>
+              <sphere center="0.5 -0.5 0.5" radius="0.3"/>
+              <sphere center="-0.2 0.2 1.8" radius="0.45"/>
+            </scene>"#,
+        );
+        let rays = rays_for(&world, 3, 6000);
+        let found = check_rays(&world, &rays);
+        assert!(found > 3000, "too few hits to mean anything: {found}");
+    }
+
+    #[test]
+    fn worlds_with_anything_else_or_too_many_primitives_are_refused() {
+        for other in [
+            r#"<plane point="0 -1 0" normal="0 1 0"/>"#,
+            r#"<cylinder base="0 0 0" radius="1" height="1"/>"#,
+            r#"<cone base="0 0 0" radius="1" height="1"/>"#,
+            r#"<torus center="0 0 0" major="1" minor="0.2"/>"#,
+        ] {
+            let world = world_of(&format!(
+                r#"<scene><sphere center="0 0 0" radius="1"/>{other}</scene>"#
+            ));
+            assert!(PacketShapes::new(&world).is_none(), "{other}");
+        }
+        let spheres = |n: usize| {
+            let list: String = (0..n)
+                .map(|k| format!(r#"<sphere center="{k} 0 0" radius="0.3"/>"#))
+                .collect();
+            world_of(&format!("<scene>{list}</scene>"))
+        };
+        assert!(PacketShapes::new(&spheres(PacketShapes::MAX_PRIMITIVES)).is_some());
+        assert!(PacketShapes::new(&spheres(PacketShapes::MAX_PRIMITIVES + 1)).is_none());
+        assert!(PacketShapes::new(&reference_world("spheres.xml")).is_none());
+    }
+
+    /// An empty world's answers to eight rays, in lanes `F`.
+    #[derive(Clone)]
+    struct EmptyWorld<'a>(&'a PacketShapes);
+
+    impl WithLanes for EmptyWorld<'_> {
+        type Output = ();
+        fn run<F: FloatLanes>(self) {
+            let shapes = self.0;
+            let rays = Rays::<F>::from_lanes(&std::array::from_fn(|k| {
+                Ray::new(Vec3::ZERO, Vec3::X * (k as f32 + 1.0))
+            }));
+            let hits = shapes.closest(&rays);
+            assert_eq!(hits.alpha.to_array(), [f32::INFINITY; WIDTH]);
+            assert_eq!(hits.object.to_array(), [-1; WIDTH]);
+            assert_eq!(shapes.occluded(&rays).to_bitmask(), 0);
+        }
+    }
+
+    #[test]
+    fn an_empty_world_hits_nothing() {
+        let world = world_of("<scene></scene>");
+        let shapes = PacketShapes::new(&world).expect("nothing is small");
+        on_every_lane_type(EmptyWorld(&shapes));
+    }
+
+    #[test]
+    fn a_packet_of_dead_lanes_hits_nothing() {
+        let world = reference_world("cornell.xml");
+        let shapes = PacketShapes::new(&world).expect("a packet world");
+        let dead: [Ray; WIDTH] = std::array::from_fn(|k| {
+            Ray::new(
+                Vec3::new(0.0, 0.0, 0.1 * k as f32),
+                Vec3::new(0.0, -1.0, 0.0),
+            )
+            .with_t_max(0.0)
+        });
+        check_packet(&world, &shapes, &dead);
+    }
+}

@@ -1,0 +1,653 @@
+//! Lone triangles against eight rays: the watertight test of Woop, Benthin
+//! and Wald (2013) exactly as [`WatertightRay`] computes it, each lane with
+//! its own axis permutation and shear, both set up once per packet
+//! ([`ShearedRays`]).
+//!
+//! [`WatertightRay`]: crate::shapes::WatertightRay
+
+use super::{FloatLanes, Nearest, Rays, Vec3s, WIDTH, gather3};
+use crate::shapes::Triangle;
+use glam::Vec3;
+use wide::f64x4;
+
+/// How many f64 constants of a triangle its surface's 2×2 solve uses.
+const SOLVE: usize = 13;
+
+/// One triangle's constants.
+#[derive(Clone, Copy, Debug)]
+struct PackedTriangle {
+    /// The corners t0, t1, t2, coordinate by coordinate.
+    corners: [[f32; 3]; 3],
+    /// The object id.
+    object: i32,
+    /// [`Triangle::normal`].
+    normal: Vec3,
+    /// What [`Triangle::barycentrics`] computes from the corners alone, in
+    /// f64: t0, v1 = t1 − t0 and v2 = t2 − t0 (coordinates 0..3, 3..6,
+    /// 6..9), v1 · v1, v1 · v2, v2 · v2 and det = v11 v22 − v12² (9..13).
+    solve: [f64; SOLVE],
+}
+
+/// The lone triangles of a world.
+#[derive(Clone, Debug, Default)]
+pub(super) struct Triangles {
+    /// In the order they were pushed.
+    items: Vec<PackedTriangle>,
+}
+
+/// Which world axis feeds each axis of the sheared frame, for the eight
+/// lanes together.
+#[derive(Clone, Copy, Debug)]
+enum Frame<F> {
+    /// Every live lane has the permutation (kx, ky, kz).
+    Same([usize; 3]),
+    /// Lanes differ: per sheared axis (x', y', z'), the lanes where world x
+    /// feeds it, and those where world y does (world z elsewhere).
+    Mixed {
+        /// Lanes whose x', y', z' is world x.
+        from_x: [F; 3],
+        /// Lanes whose x', y', z' is world y.
+        from_y: [F; 3],
+    },
+}
+
+/// Per lane, `x` where `from_x` is set, else `y` where `from_y` is, else
+/// `z`: the coordinate a permuted axis takes from world x, y, z.
+#[inline(always)]
+fn pick<F: FloatLanes>(from_x: F, from_y: F, x: F, y: F, z: F) -> F {
+    from_x.select(x, from_y.select(y, z))
+}
+
+/// How a [`Frame`] puts a point that is the same in every lane (a corner)
+/// into each lane's permuted frame. (A trait with `#[inline(always)]`
+/// methods rather than a closure: a closure LLVM declines to inline is
+/// compiled without the AVX2 of [`crate::packet::dispatch`], and then every
+/// lane operation in it becomes a call.)
+trait Permutation<F>: Copy {
+    /// The point `p` in each lane's permuted frame.
+    fn permute(self, p: &[f32; 3]) -> [F; 3];
+}
+
+/// [`Frame::Same`]'s permutation (kx, ky, kz), shared by every lane.
+#[derive(Clone, Copy, Debug)]
+struct SameAxes([usize; 3]);
+
+impl<F: FloatLanes> Permutation<F> for SameAxes {
+    #[inline(always)]
+    fn permute(self, p: &[f32; 3]) -> [F; 3] {
+        let [kx, ky, kz] = self.0;
+        [F::splat(p[kx]), F::splat(p[ky]), F::splat(p[kz])]
+    }
+}
+
+/// [`Frame::Mixed`]'s permutations: coordinate k is world x in
+/// `from_x[k]`'s lanes, world y in `from_y[k]`'s, world z elsewhere.
+#[derive(Clone, Copy, Debug)]
+struct MixedAxes<F> {
+    /// Lanes whose x', y', z' is world x.
+    from_x: [F; 3],
+    /// Lanes whose x', y', z' is world y.
+    from_y: [F; 3],
+}
+
+impl<F: FloatLanes> Permutation<F> for MixedAxes<F> {
+    #[inline(always)]
+    fn permute(self, p: &[f32; 3]) -> [F; 3] {
+        let (x, y, z) = (F::splat(p[0]), F::splat(p[1]), F::splat(p[2]));
+        let (from_x, from_y) = (self.from_x, self.from_y);
+        [
+            pick(from_x[0], from_y[0], x, y, z),
+            pick(from_x[1], from_y[1], x, y, z),
+            pick(from_x[2], from_y[2], x, y, z),
+        ]
+    }
+}
+
+/// Corner `p` (already in the lane's permuted frame) relative to P0 and
+/// sheared: (x, y) and the unsheared z.
+#[inline(always)]
+fn shear<F: FloatLanes>(r: &ShearedRays<F>, [px, py, pz]: [F; 3]) -> (F, F, F) {
+    let z = pz - r.origin[2];
+    (
+        (px - r.origin[0]) - r.sx * z,
+        (py - r.origin[1]) - r.sy * z,
+        z,
+    )
+}
+
+/// The per-ray half of the watertight test for eight rays: what
+/// [`WatertightRay::new`](crate::shapes::WatertightRay::new) computes, lane by lane.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct ShearedRays<F> {
+    /// The permutation (kx, ky, kz) of every lane.
+    frame: Frame<F>,
+    /// The origins P0 in the permuted frame: (P0[kx], P0[ky], P0[kz]).
+    origin: [F; 3],
+    /// v[kx] / v[kz].
+    sx: F,
+    /// v[ky] / v[kz].
+    sy: F,
+    /// 1 / v[kz].
+    sz: F,
+    /// The live lanes (the rare exact-zero fallback runs only for them).
+    live: F,
+}
+
+impl<F: FloatLanes> ShearedRays<F> {
+    /// The permutation and shear of each lane's ray: kz the axis of the
+    /// direction's largest magnitude (glam's `max_position`: the first on a
+    /// tie), kx and ky the next two, swapped when v[kz] < 0.
+    #[inline(always)]
+    pub(super) fn new(rays: &Rays<F>, live: F) -> Self {
+        let d = rays.dir;
+        let (ax, ay, az) = (d.x.abs(), d.y.abs(), d.z.abs());
+        let y_beats_x = ay.simd_gt(ax);
+        let kz_z = az.simd_gt(y_beats_x.select(ay, ax));
+        let kz_y = y_beats_x & !kz_z;
+        let kz_x = !(y_beats_x | kz_z);
+        // kx = kz + 1 and ky = kz + 2 (mod 3) ...
+        let (kx_x, kx_y) = (kz_z, kz_x);
+        let (ky_x, ky_y) = (kz_y, kz_z);
+        let dz = pick(kz_x, kz_y, d.x, d.y, d.z);
+        // ... swapped when v[kz] < 0, to keep the winding.
+        let swap = dz.simd_lt(F::ZERO);
+        let (kx_x, kx_y, ky_x, ky_y) = (
+            swap.select(ky_x, kx_x),
+            swap.select(ky_y, kx_y),
+            swap.select(kx_x, ky_x),
+            swap.select(kx_y, ky_y),
+        );
+        let (from_x, from_y) = ([kx_x, ky_x, kz_x], [kx_y, ky_y, kz_y]);
+        let o = rays.origin;
+        Self {
+            frame: Self::frame(from_x, from_y, live),
+            origin: [
+                pick(from_x[0], from_y[0], o.x, o.y, o.z),
+                pick(from_x[1], from_y[1], o.x, o.y, o.z),
+                pick(from_x[2], from_y[2], o.x, o.y, o.z),
+            ],
+            sx: pick(kx_x, kx_y, d.x, d.y, d.z) / dz,
+            sy: pick(ky_x, ky_y, d.x, d.y, d.z) / dz,
+            sz: F::ONE / dz,
+            live,
+        }
+    }
+
+    /// [`Frame::Same`] when every live lane has the same permutation.
+    #[inline(always)]
+    fn frame(from_x: [F; 3], from_y: [F; 3], live: F) -> Frame<F> {
+        // The masks as bits first: what follows is scalar code (closures
+        // and iterators over lane values might not be inlined).
+        let live_bits = live.to_bitmask();
+        let x_bits = [
+            from_x[0].to_bitmask(),
+            from_x[1].to_bitmask(),
+            from_x[2].to_bitmask(),
+        ];
+        let y_bits = [
+            from_y[0].to_bitmask(),
+            from_y[1].to_bitmask(),
+            from_y[2].to_bitmask(),
+        ];
+        let uniform = |bits: u32| {
+            let bits = bits & live_bits;
+            bits == 0 || bits == live_bits
+        };
+        if live_bits != 0 && x_bits.iter().chain(&y_bits).all(|&m| uniform(m)) {
+            let first = 1 << live_bits.trailing_zeros();
+            let axis = |k: usize| {
+                if x_bits[k] & first != 0 {
+                    0
+                } else if y_bits[k] & first != 0 {
+                    1
+                } else {
+                    2
+                }
+            };
+            Frame::Same([axis(0), axis(1), axis(2)])
+        } else {
+            Frame::Mixed { from_x, from_y }
+        }
+    }
+}
+
+impl Triangles {
+    /// Adds object `object`, the triangle `t`; returns its index here.
+    pub(super) fn push(&mut self, object: i32, t: &Triangle) -> u32 {
+        // Exactly `Triangle::barycentrics`' corner-only terms.
+        let t0 = t.t0.as_dvec3();
+        let v1 = t.t1.as_dvec3() - t0;
+        let v2 = t.t2.as_dvec3() - t0;
+        let (v11, v12, v22) = (v1.dot(v1), v1.dot(v2), v2.dot(v2));
+        self.items.push(PackedTriangle {
+            corners: [t.t0, t.t1, t.t2].map(|c| c.to_array()),
+            object,
+            normal: t.normal(),
+            solve: [
+                t0.x,
+                t0.y,
+                t0.z,
+                v1.x,
+                v1.y,
+                v1.z,
+                v2.x,
+                v2.y,
+                v2.z,
+                v11,
+                v12,
+                v22,
+                v11 * v22 - v12 * v12,
+            ],
+        });
+        self.items.len() as u32 - 1
+    }
+
+    /// True when there are none.
+    #[inline(always)]
+    pub(super) fn is_empty(&self) -> bool {
+        self.items.is_empty()
+    }
+
+    /// The lanes whose ray hits `triangle` in (0, limit), and α there
+    /// (anything elsewhere): `WatertightRay::hit`'s operations lane by lane,
+    /// `permute` giving a corner in each lane's frame ([`SameAxes`] or
+    /// [`MixedAxes`], as `r.frame` says).
+    #[inline(always)]
+    fn hit<F: FloatLanes>(
+        triangle: &PackedTriangle,
+        r: &ShearedRays<F>,
+        permute: impl Permutation<F>,
+        limit: F,
+    ) -> (F, F) {
+        let corners = &triangle.corners;
+        let (ax, ay, az) = shear(r, permute.permute(&corners[0]));
+        let (bx, by, bz) = shear(r, permute.permute(&corners[1]));
+        let (cx, cy, cz) = shear(r, permute.permute(&corners[2]));
+        let mut eu = cx * by - cy * bx;
+        let mut ev = ax * cy - ay * cx;
+        let mut ew = bx * ay - by * ax;
+        let zero = F::ZERO;
+        let exact_zero = (eu.simd_eq(zero) | ev.simd_eq(zero) | ew.simd_eq(zero)) & r.live;
+        if exact_zero.any() {
+            // Rare (the ray through an edge or vertex): recomputed in f64.
+            let f =
+                |p: f32, q: f32, r: f32, s: f32| (p as f64 * q as f64 - r as f64 * s as f64) as f32;
+            let (ax, ay, bx, by) = (ax.to_array(), ay.to_array(), bx.to_array(), by.to_array());
+            let (cx, cy) = (cx.to_array(), cy.to_array());
+            let (mut u, mut v, mut w) = (eu.to_array(), ev.to_array(), ew.to_array());
+            let lanes = exact_zero.to_bitmask();
+            for i in (0..WIDTH).filter(|i| lanes & (1 << i) != 0) {
+                u[i] = f(cx[i], by[i], cy[i], bx[i]);
+                v[i] = f(ax[i], cy[i], ay[i], cx[i]);
+                w[i] = f(bx[i], ay[i], by[i], ax[i]);
+            }
+            (eu, ev, ew) = (F::from_array(u), F::from_array(v), F::from_array(w));
+        }
+        let negative = eu.simd_lt(zero) | ev.simd_lt(zero) | ew.simd_lt(zero);
+        let positive = eu.simd_gt(zero) | ev.simd_gt(zero) | ew.simd_gt(zero);
+        let det = eu + ev + ew;
+        let t_scaled = eu * (r.sz * az) + ev * (r.sz * bz) + ew * (r.sz * cz);
+        let alpha = t_scaled / det;
+        // A zero det gives α = ±∞ or NaN, and a non-finite α is never in
+        // (0, limit): the scalar code's `det == 0` and `is_finite` tests.
+        let hit = !(negative & positive) & alpha.simd_gt(zero) & alpha.simd_lt(limit);
+        (hit, alpha)
+    }
+
+    /// Takes each triangle's hits that are nearer than `nearest`'s.
+    #[inline(always)]
+    pub(super) fn closest<F: FloatLanes>(&self, r: &ShearedRays<F>, nearest: &mut Nearest<F>) {
+        match r.frame {
+            Frame::Same(k) => self.closest_in(r, SameAxes(k), nearest),
+            Frame::Mixed { from_x, from_y } => {
+                self.closest_in(r, MixedAxes { from_x, from_y }, nearest)
+            }
+        }
+    }
+
+    /// [`Triangles::closest`] with the frame's permutation.
+    #[inline(always)]
+    fn closest_in<F: FloatLanes>(
+        &self,
+        r: &ShearedRays<F>,
+        permute: impl Permutation<F>,
+        nearest: &mut Nearest<F>,
+    ) {
+        for triangle in &self.items {
+            let (hit, alpha) = Self::hit(triangle, r, permute, nearest.limit);
+            nearest.take(hit, alpha, triangle.object);
+        }
+    }
+
+    /// Adds the lanes some triangle blocks within `t_max` to `settled`;
+    /// true as soon as every lane is settled.
+    #[inline(always)]
+    pub(super) fn occluded<F: FloatLanes>(
+        &self,
+        r: &ShearedRays<F>,
+        t_max: F,
+        settled: &mut F,
+    ) -> bool {
+        match r.frame {
+            Frame::Same(k) => self.occluded_in(r, SameAxes(k), t_max, settled),
+            Frame::Mixed { from_x, from_y } => {
+                self.occluded_in(r, MixedAxes { from_x, from_y }, t_max, settled)
+            }
+        }
+    }
+
+    /// [`Triangles::occluded`] with the frame's permutation.
+    #[inline(always)]
+    fn occluded_in<F: FloatLanes>(
+        &self,
+        r: &ShearedRays<F>,
+        permute: impl Permutation<F>,
+        t_max: F,
+        settled: &mut F,
+    ) -> bool {
+        for triangle in &self.items {
+            let (hit, _) = Self::hit(triangle, r, permute, t_max);
+            *settled = *settled | hit;
+            if settled.all() {
+                return true;
+            }
+        }
+        false
+    }
+
+    /// Hit point and normal at α of the triangles `index` (per lane), as
+    /// [`Triangle::surface`] computes them: β, γ of the point P0 + α v by
+    /// the f64 2×2 solve, the point rebuilt as t0 + β v1 + γ v2 in f64.
+    #[inline(always)]
+    pub(super) fn surface<F: FloatLanes>(
+        &self,
+        rays: &Rays<F>,
+        alpha: F,
+        index: &[u32; WIDTH],
+    ) -> (Vec3s<F>, Vec3s<F>) {
+        let p = rays.at(alpha);
+        let p = [p.x.to_array(), p.y.to_array(), p.z.to_array()];
+        let mut point = [[0.0f32; WIDTH]; 3];
+        for half in 0..2 {
+            let first = 4 * half;
+            let solve: [&[f64; SOLVE]; 4] =
+                std::array::from_fn(|i| &self.items[index[first + i] as usize].solve);
+            let constant = |j: usize| f64x4::from(solve.map(|c| c[j]));
+            let (t0, v1, v2) = (
+                [0, 1, 2].map(constant),
+                [3, 4, 5].map(constant),
+                [6, 7, 8].map(constant),
+            );
+            let (v11, v12, v22, det) = (constant(9), constant(10), constant(11), constant(12));
+            let s: [f64x4; 3] = std::array::from_fn(|k| {
+                f64x4::from(std::array::from_fn::<f64, 4, _>(|i| p[k][first + i] as f64)) - t0[k]
+            });
+            // DVec3::dot's order.
+            let dot = |a: &[f64x4; 3], b: &[f64x4; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+            let (sv1, sv2) = (dot(&s, &v1), dot(&s, &v2));
+            // β and γ rounded to f32, as `barycentrics` returns them.
+            let round = |x: f64x4| f64x4::from(x.to_array().map(|x| x as f32 as f64));
+            let beta = round((sv1 * v22 - sv2 * v12) / det);
+            let gamma = round((v11 * sv2 - v12 * sv1) / det);
+            for k in 0..3 {
+                let rebuilt = ((t0[k] + beta * v1[k]) + gamma * v2[k]).to_array();
+                for i in 0..4 {
+                    point[k][first + i] = rebuilt[i] as f32;
+                }
+            }
+        }
+        let point = Vec3s::new(
+            F::from_array(point[0]),
+            F::from_array(point[1]),
+            F::from_array(point[2]),
+        );
+        let normal = gather3(index, |k| self.items[k].normal);
+        (point, normal)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::testing::{check_rays, rays_for, same_everywhere, world_of};
+    use super::super::{PacketShapes, Rays, WIDTH};
+    use super::*;
+    use crate::geometry::ray::Ray;
+    use crate::integrator::sampler::Sampler;
+    use crate::packet::lane_set;
+    use crate::packet::lanes::{WithLanes, on_every_lane_type};
+    use crate::shapes::Method;
+
+    /// Each lane's α and hit against one triangle equal `Triangle::hit`'s
+    /// with [`Method::Robust`], and its surface `Triangle::surface`'s, in
+    /// lanes `F`.
+    fn check_against_one_with<F: FloatLanes>(t: &Triangle, lanes: &[Ray; WIDTH]) -> usize {
+        let mut triangles = Triangles::default();
+        triangles.push(7, t);
+        let rays = Rays::<F>::from_lanes(lanes);
+        let live = rays.t_max.simd_gt(F::ZERO);
+        let sheared = ShearedRays::new(&rays, live);
+        let (hit, alpha) = match sheared.frame {
+            Frame::Same(k) => {
+                Triangles::hit(&triangles.items[0], &sheared, SameAxes(k), rays.t_max)
+            }
+            Frame::Mixed { from_x, from_y } => Triangles::hit(
+                &triangles.items[0],
+                &sheared,
+                MixedAxes { from_x, from_y },
+                rays.t_max,
+            ),
+        };
+        let (point, normal) = triangles.surface(&rays, alpha, &[0; WIDTH]);
+        let mut hits = 0;
+        for (k, ray) in lanes.iter().enumerate() {
+            let want = t.intersect(ray, Method::Robust);
+            let got = lane_set(hit, k).then(|| alpha.as_array()[k]);
+            assert_eq!(
+                got.map(f32::to_bits),
+                want.map(f32::to_bits),
+                "lane {k}: {ray:?} {t:?}"
+            );
+            if let Some(alpha) = want {
+                hits += 1;
+                let s = t.surface(ray, alpha);
+                assert_eq!(
+                    point.lane(k).to_array().map(f32::to_bits),
+                    s.point.to_array().map(f32::to_bits),
+                    "lane {k}"
+                );
+                assert_eq!(
+                    normal.lane(k).to_array().map(f32::to_bits),
+                    s.normal.to_array().map(f32::to_bits),
+                    "lane {k}"
+                );
+            }
+        }
+        hits
+    }
+
+    /// [`check_against_one_with`] for every lane type.
+    #[derive(Clone)]
+    struct AgainstOne<'a>(&'a Triangle, &'a [Ray; WIDTH]);
+
+    impl WithLanes for AgainstOne<'_> {
+        type Output = usize;
+        fn run<F: FloatLanes>(self) -> usize {
+            check_against_one_with::<F>(self.0, self.1)
+        }
+    }
+
+    /// [`check_against_one_with`] with every lane type; how many lanes hit.
+    fn check_against_one(t: &Triangle, lanes: &[Ray; WIDTH]) -> usize {
+        same_everywhere(on_every_lane_type(AgainstOne(t, lanes)))
+    }
+
+    /// A small integer lattice point (rays through corners and along edges
+    /// make the edge functions exactly zero).
+    fn lattice(rng: &mut Sampler, r: f32) -> Vec3 {
+        let mut c = || (rng.next_f32() * (2.0 * r + 1.0)).floor() - r;
+        Vec3::new(c(), c(), c())
+    }
+
+    #[test]
+    fn every_lane_equals_the_scalar_watertight_test_on_lattice_triangles() {
+        let mut rng = Sampler::for_sample(11, 0, 0, 0);
+        let mut hits = 0;
+        for case in 0..4000 {
+            let t = Triangle::new(
+                lattice(&mut rng, 2.0),
+                lattice(&mut rng, 2.0),
+                lattice(&mut rng, 2.0),
+            );
+            let lanes: [Ray; WIDTH] = std::array::from_fn(|k| {
+                let origin = lattice(&mut rng, 3.0);
+                let mut dir = lattice(&mut rng, 2.0) * Vec3::new(1.0, 1.0, 0.5);
+                if dir == Vec3::ZERO {
+                    dir = Vec3::new(-0.0, 0.0, -1.0);
+                }
+                if (case + k) % 3 == 0 {
+                    // Aimed at a corner or an edge's midpoint exactly.
+                    let c = [t.t0, t.t1, t.t2];
+                    dir = 0.5 * (c[k % 3] + c[(k + case) % 3]) - origin;
+                    if dir == Vec3::ZERO {
+                        dir = Vec3::X;
+                    }
+                }
+                let ray = Ray::new(origin, dir);
+                match (case + k) % 5 {
+                    0 => ray.with_t_max(0.5 + 2.0 * rng.next_f32()),
+                    1 if k == 7 => ray.with_t_max(0.0),
+                    _ => ray,
+                }
+            });
+            hits += check_against_one(&t, &lanes);
+        }
+        assert!(hits > 3000, "too few hits to mean anything: {hits}");
+    }
+
+    #[test]
+    fn every_lane_equals_the_scalar_watertight_test_on_random_triangles() {
+        let mut rng = Sampler::for_sample(12, 0, 0, 0);
+        let mut hits = 0;
+        for case in 0..3000 {
+            let scale = [1.0, 1e-3, 1e3][case % 3];
+            let mut corner = || scale * 2.0 * rng.next_direction() * rng.next_f32();
+            let t = Triangle::new(corner(), corner(), corner());
+            let lanes: [Ray; WIDTH] = std::array::from_fn(|_| {
+                let origin = scale * 5.0 * rng.next_direction();
+                let (b, g) = (rng.next_f32(), rng.next_f32());
+                let target = t.t0 + b * (t.t1 - t.t0) + g * (t.t2 - t.t0);
+                Ray::new(origin, (target - origin).normalize_or(Vec3::Z))
+            });
+            hits += check_against_one(&t, &lanes);
+        }
+        assert!(hits > 5000, "too few hits to mean anything: {hits}");
+    }
+
+    #[test]
+    fn rays_along_shared_edges_and_through_shared_vertices_give_the_scalar_worlds_hits() {
+        // A fan of triangles around the origin sharing edges, a quad split
+        // on its diagonal, and a triangle standing on that diagonal.
+        let world = world_of(
+            r#"<scene>
+              <triangle t0="0 0 0" t1="1 0 0" t2="1 1 0"/>
+              <triangle t0="0 0 0" t1="1 1 0" t2="0 1 0"/>
+              <triangle t0="0 0 0" t1="0 1 0" t2="-1 0 0"/>
+              <triangle t0="0 0 0" t1="-1 0 0" t2="0 -1 0"/>
+              <triangle t0="0 0 0" t1="0 -1 0" t2="1 0 0"/>
+              <triangle t0="0 0 0" t1="1 1 0" t2="0.5 0.5 1"/>
+            </scene>"#,
+        );
+        let mut rays = Vec::new();
+        let origins = [
+            Vec3::new(0.3123, -0.77, 3.1),
+            Vec3::new(-2.0, 0.5, 0.0),
+            Vec3::new(0.0, 0.0, 2.0),
+            Vec3::new(2.0, 2.0, 0.0),
+            Vec3::new(-1.0, -1.0, 0.0),
+        ];
+        for origin in origins {
+            for k in 0..=64 {
+                let s = k as f32 / 64.0;
+                for target in [
+                    Vec3::new(s, s, 0.0),
+                    Vec3::new(s, 0.0, 0.0),
+                    Vec3::new(0.0, s, 0.0),
+                    Vec3::new(-s, 0.0, 0.0),
+                    Vec3::new(0.5 * s, 0.5 * s, s),
+                ] {
+                    rays.push(Ray::new(origin, (target - origin).normalize_or(Vec3::X)));
+                    // The same line, unnormalised and cut at the target.
+                    rays.push(Ray::new(origin, target - origin).with_t_max(1.0));
+                }
+            }
+        }
+        // Rays in the plane z = 0 (parallel to most triangles), along edges.
+        for (o, d) in [
+            (Vec3::new(-3.0, -3.0, 0.0), Vec3::new(1.0, 1.0, 0.0)),
+            (Vec3::new(-3.0, 0.0, 0.0), Vec3::X),
+            (Vec3::new(0.0, -3.0, 0.0), Vec3::Y),
+            (Vec3::new(0.5, 0.5, 0.0), -Vec3::Z),
+            (Vec3::ZERO, Vec3::Z),
+        ] {
+            rays.push(Ray::new(o, d));
+        }
+        rays.extend(rays_for(&world, 13, 2000));
+        let found = check_rays(&world, &rays);
+        assert!(found > 1000, "too few hits to mean anything: {found}");
+    }
+
+    /// The permutation every live lane of `lanes` shares, in lanes `F`
+    /// (`None`: a mixed frame).
+    #[derive(Clone)]
+    struct SharedFrame<'a>(&'a [Ray; WIDTH]);
+
+    impl WithLanes for SharedFrame<'_> {
+        type Output = Option<[usize; 3]>;
+        fn run<F: FloatLanes>(self) -> Option<[usize; 3]> {
+            let rays = Rays::<F>::from_lanes(self.0);
+            match ShearedRays::new(&rays, rays.t_max.simd_gt(F::ZERO)).frame {
+                Frame::Same(k) => Some(k),
+                Frame::Mixed { .. } => None,
+            }
+        }
+    }
+
+    /// [`SharedFrame`] with every lane type (they must agree).
+    fn shared_frame(lanes: &[Ray; WIDTH]) -> Option<[usize; 3]> {
+        same_everywhere(on_every_lane_type(SharedFrame(lanes)))
+    }
+
+    #[test]
+    fn coherent_and_incoherent_packets_take_both_frames_and_agree() {
+        let world = world_of(
+            r#"<scene>
+              <triangle t0="-1 -1 -1" t1="1 -1 -1" t2="1 1 -1"/>
+              <triangle t0="-1 -1 -1" t1="1 1 -1" t2="-1 1 -1"/>
+            </scene>"#,
+        );
+        let shapes = PacketShapes::new(&world).expect("a packet world");
+        let coherent: [Ray; WIDTH] = std::array::from_fn(|k| {
+            let x = k as f32 / 4.0 - 1.0;
+            Ray::new(
+                Vec3::new(0.0, 0.0, 3.0),
+                Vec3::new(x, 0.5 * x, -3.0).normalize(),
+            )
+        });
+        let frame = shared_frame(&coherent);
+        assert!(
+            matches!(frame, Some([0, 1, 2]) | Some([1, 0, 2])),
+            "{frame:?}"
+        );
+        super::super::testing::check_packet(&world, &shapes, &coherent);
+        // One lane turned sideways makes the packet mixed; the others' answers stay.
+        let mut mixed = coherent;
+        mixed[3] = Ray::new(Vec3::ZERO, Vec3::new(1.0, 0.1, 0.2));
+        assert_eq!(shared_frame(&mixed), None);
+        super::super::testing::check_packet(&world, &shapes, &mixed);
+        // A dead lane pointing elsewhere does not spoil the shared frame.
+        let mut dead = coherent;
+        dead[5] = Ray::new(Vec3::ZERO, Vec3::X).with_t_max(0.0);
+        assert!(shared_frame(&dead).is_some());
+        super::super::testing::check_packet(&world, &shapes, &dead);
+    }
+}
