@@ -50,6 +50,57 @@ struct PendingVertex {
     next: Option<(BsdfSample, Vec3)>,
 }
 
+/// A path between bounces, as the wavefront keeps a lane it hands to the
+/// scalar code (a material it has no lanes for): everything `PathLane`
+/// carries from one bounce to the next.
+pub(crate) struct PathState {
+    /// Radiance gathered so far.
+    pub(crate) radiance: Vec3,
+    /// Path throughput.
+    pub(crate) throughput: Vec3,
+    /// The ray whose closest hit the path waits for.
+    pub(crate) ray: Ray,
+    /// Where the ray started and its BSDF density (`None`: camera ray or delta lobe).
+    pub(crate) previous: Option<(Vec3, f32)>,
+    /// Product of refraction's radiance scaling.
+    pub(crate) eta_scale: f32,
+    /// Scattering events so far.
+    pub(crate) depth: u32,
+    /// The path's random stream.
+    pub(crate) sampler: Sampler,
+}
+
+impl PathLane<()> {
+    /// The path in `state`, waiting for the closest hit of its ray.
+    pub(crate) fn resume(state: PathState) -> Self {
+        Self {
+            radiance: state.radiance,
+            throughput: state.throughput,
+            ray: state.ray,
+            previous: state.previous,
+            eta_scale: state.eta_scale,
+            depth: state.depth,
+            sampler: state.sampler,
+            node: (),
+            vertex: None,
+        }
+    }
+
+    /// The path's state after [`Lane::finish`].
+    pub(crate) fn into_state(self) -> PathState {
+        debug_assert!(self.vertex.is_none(), "shadow rays still out");
+        PathState {
+            radiance: self.radiance,
+            throughput: self.throughput,
+            ray: self.ray,
+            previous: self.previous,
+            eta_scale: self.eta_scale,
+            depth: self.depth,
+            sampler: self.sampler,
+        }
+    }
+}
+
 impl<N: Copy> Lane<N> for PathLane<N> {
     /// A path starting with the camera ray `ray`, drawing from `sampler`.
     fn start<R: Recorder<Node = N>>(

@@ -1,6 +1,7 @@
 //! Eight paths in flight, one per lane, and one bounce of all of them.
 
 use super::draws::{dead_ray, emitter_draws, roulette_draws, scatter_draws};
+use super::handover::Handover;
 use super::lane_math::{Frame, offset_origins, power_heuristics};
 use super::scene::{ObjectTable, WavefrontScene};
 use crate::geometry::counters::{count_ray, count_shape_tests};
@@ -20,22 +21,24 @@ pub(super) struct PathGroup<F: FloatLanes> {
     /// dead lane.
     sample: [Option<usize>; WIDTH],
     /// Per lane, its random stream.
-    samplers: [Sampler; WIDTH],
+    pub(super) samplers: [Sampler; WIDTH],
     /// The rays whose closest hits the lanes wait for.
-    rays: Rays<F>,
+    pub(super) rays: Rays<F>,
     /// Radiance gathered so far.
-    radiance: Vec3s<F>,
+    pub(super) radiance: Vec3s<F>,
     /// Path throughput.
-    throughput: Vec3s<F>,
+    pub(super) throughput: Vec3s<F>,
     /// Where each lane's ray started and the BSDF density it was drawn with
     /// (valid where `has_previous`: not for camera rays).
-    previous_point: Vec3s<F>,
+    pub(super) previous_point: Vec3s<F>,
     /// The density of the previous BSDF sample.
-    previous_pdf: F,
+    pub(super) previous_pdf: F,
     /// Lanes whose ray was drawn from a BSDF (MIS applies to what it hits).
-    has_previous: F,
+    pub(super) has_previous: F,
+    /// Product of refraction's radiance scaling, divided out for roulette.
+    pub(super) eta_scale: F,
     /// Scattering events so far.
-    depth: [u32; WIDTH],
+    pub(super) depth: [u32; WIDTH],
     /// Shape tests each lane's rays cost so far.
     shape_tests: [u64; WIDTH],
 }
@@ -54,6 +57,7 @@ impl<F: FloatLanes> PathGroup<F> {
             previous_point: Vec3s::ZERO,
             previous_pdf: F::ZERO,
             has_previous: F::ZERO,
+            eta_scale: F::ONE,
             depth: [0; WIDTH],
             shape_tests: [0; WIDTH],
         }
@@ -85,6 +89,7 @@ impl<F: FloatLanes> PathGroup<F> {
         self.radiance.set_lane(lane, Vec3::ZERO);
         self.throughput.set_lane(lane, Vec3::ONE);
         self.has_previous.as_mut_array()[lane] = 0.0;
+        self.eta_scale.as_mut_array()[lane] = 1.0;
         self.depth[lane] = 0;
         self.shape_tests[lane] = 0;
     }
@@ -150,6 +155,11 @@ impl<F: FloatLanes> PathGroup<F> {
 
         let (point, normal) = scene.shapes.surface(&self.rays, &hits);
         let at = Surfaces::gather(&scene.objects, hit, hits.object);
+        // Hits on materials the lanes do not shade go to the scalar code.
+        let mut handed_over = Handover::new();
+        let scalar = hit & !at.lambertian;
+        let hit = hit & at.lambertian;
+        handed_over.shade(self, world, options, scalar, &hits);
         let dir = self.rays.dir;
         let front = dir.dot(normal).simd_lt(F::ZERO);
         // The geometric normal turned toward the ray; on these shapes it
@@ -182,9 +192,6 @@ impl<F: FloatLanes> PathGroup<F> {
         let last = hit & mask_from(|k| depth[k] + 1 >= options.max_depth);
         finished |= last.to_bitmask();
         let go = hit & !last;
-        if !go.any() {
-            return finished;
-        }
 
         let frame = Frame::new(n);
         // wo = frame.to_local(−v), of which a Lambertian lobe needs only z.
@@ -230,7 +237,7 @@ impl<F: FloatLanes> PathGroup<F> {
         // Russian roulette from the RR_DEPTH-th scattering event on.
         let roulette = moving & mask_from(|k| depth[k] + 1 >= RR_DEPTH);
         let u_roulette = roulette_draws(roulette, &mut self.samplers);
-        let keep = throughput.max_element().min(F::splat(0.95));
+        let keep = (throughput.max_element() / self.eta_scale).min(F::splat(0.95));
         let killed = roulette & !u_roulette.simd_lt(keep);
         let throughput = Vec3s::select(roulette & !killed, throughput.div_lanes(keep), throughput);
         let dark = moving & !killed & !throughput.max_element().simd_gt(F::ZERO);
@@ -255,20 +262,23 @@ impl<F: FloatLanes> PathGroup<F> {
             dir: light.to_light,
             t_max: shadowed.select(light.distance * F::splat(1.0 - SHADOW_SHORTENING), F::ZERO),
         };
-        let blocked = if shadowed.any() {
-            self.count(shadowed, primitives);
+        let shadows = handed_over.add_shadow_rays(shadows);
+        let traced = shadowed | handed_over.shadowed;
+        let blocked = if traced.any() {
+            self.count(traced, primitives);
             scene.shapes.occluded(&shadows)
         } else {
             F::ZERO
         };
         let sum = Vec3s::select(shadowed & !blocked, lit, Vec3s::ZERO);
         self.radiance = Vec3s::select(go, self.radiance + lit_by.mul_lanes(sum), self.radiance);
-        finished
+        finished | handed_over.finish(self, blocked)
     }
 }
 
 /// What the objects hit are made of, gathered lane by lane.
 struct Surfaces<F: FloatLanes> {
+    lambertian: F,
     albedo: Vec3s<F>,
     diffuse: F,
     emission: Vec3s<F>,
@@ -299,6 +309,7 @@ impl<F: FloatLanes> Surfaces<F> {
             }))
         };
         Self {
+            lambertian: mask_from(|k| table.lambertian.get(id(k)).copied().unwrap_or(false)),
             albedo: vec3s(&table.albedo),
             diffuse: floats(&table.diffuse),
             emission: vec3s(&table.emission),

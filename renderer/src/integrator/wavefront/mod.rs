@@ -20,6 +20,7 @@
 
 mod draws;
 mod group;
+mod handover;
 mod lane_math;
 mod scene;
 

@@ -10,6 +10,9 @@ use scene::BaseMaterial;
 /// object id hit).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct ObjectTable {
+    /// Whether the object's material is plainly Lambertian, which the lanes
+    /// shade; a hit on any other is shaded by the scalar path tracer's code.
+    pub(crate) lambertian: Vec<bool>,
     /// The Lambertian albedo (the material's colour).
     pub(crate) albedo: Vec<Vec3>,
     /// The weight of the Lambertian lobe.
@@ -34,10 +37,10 @@ pub(crate) struct WavefrontScene {
 impl WavefrontScene {
     /// The wavefront view of `world`, or `None` when it holds something the
     /// wavefront has no lanes for yet: a shape other than a lone triangle,
-    /// box or sphere, a model, too many primitives to test all at once, a
-    /// material other than a plain Lambertian one (a highlight, a mirror
-    /// lobe, marble's texture, a conductor, glass), or a point or
-    /// directional light.
+    /// box or sphere, a model, too many primitives to test all at once, or a
+    /// point or directional light. Every material is covered: plain
+    /// Lambertian ones on lanes, the others (a highlight, a mirror lobe,
+    /// marble's texture, conductors, glass) by the scalar code, lane by lane.
     pub(crate) fn new(world: &World) -> Option<Self> {
         if !world.lights.is_empty() {
             return None;
@@ -53,17 +56,17 @@ impl WavefrontScene {
                 } => glossy == 0.0 && mirror == 0.0 && diffuse > 0.0,
                 _ => false,
             };
-            if !lambertian || material.base == BaseMaterial::Marble {
-                return None;
-            }
-            let PreparedBsdf::Layered { diffuse, .. } = *world.prepared_bsdf(id as u32) else {
-                unreachable!("checked above");
+            let lambertian = lambertian && material.base != BaseMaterial::Marble;
+            let diffuse = match *world.prepared_bsdf(id as u32) {
+                PreparedBsdf::Layered { diffuse, .. } if lambertian => diffuse,
+                _ => 0.0,
             };
             let hit = Hit {
                 object: id as u32,
                 alpha: 0.0,
                 triangle: None,
             };
+            objects.lambertian.push(lambertian);
             objects.albedo.push(material.color);
             objects.diffuse.push(diffuse);
             objects.emission.push(material.emission);
