@@ -294,3 +294,60 @@ fn a_batch_of_rays_finds_the_same_hits_as_ray_by_ray() {
         assert_eq!(*hit, world.intersect(ray, Method::Robust), "{ray:?}");
     }
 }
+
+#[test]
+fn path_traced_meshes_in_the_films_passes_are_the_samples_traced_alone() {
+    use renderer::RenderOptions;
+    use renderer::integrator::sampler::Sampling;
+    use renderer::integrator::{Integrator, SampleRef, SampleResult, sample_pixel, trace_samples};
+    // The film's batches against each sample traced alone, on meshes with
+    // interpolated normals: two instances, a lone sphere, a light, the sky.
+    let moved = Mat4::from_translation(Vec3::new(-0.6, -0.4, -1.0)) * Mat4::from_rotation_y(0.5);
+    let mut scene = scene_with(
+        Arc::new(model(quad(), &[Mat4::IDENTITY, moved])),
+        Vec3::ZERO,
+    );
+    let extra = scene::read_str(
+        r#"<scene><sky color="0.3 0.4 0.5"/><light position="1 2 3" intensity="6"/>
+           <sphere center="1.2 0.2 -0.5" radius="0.3" material="matte" color="0.8 0.3 0.3"/></scene>"#,
+        "extra.xml",
+    )
+    .expect("parses");
+    scene.objects.extend(extra.objects);
+    scene.lights.extend(extra.lights);
+    scene.sky = extra.sky;
+    let (width, height) = (16, 16);
+    scene.camera.width = width;
+    scene.camera.height = height;
+    let world = World::from_scene(&scene).expect("valid");
+    for sampling in [Sampling::Independent, Sampling::Sobol] {
+        let options = RenderOptions {
+            integrator: Integrator::Path,
+            sampling,
+            seed: 3,
+            ..RenderOptions::default()
+        };
+        let samples: Vec<SampleRef> = (0..2)
+            .flat_map(|sample| {
+                (0..height).flat_map(move |j| (0..width).map(move |i| SampleRef { i, j, sample }))
+            })
+            .collect();
+        let mut results = vec![SampleResult::default(); samples.len()];
+        trace_samples(&world, &options, &samples, &mut results);
+        let mut lit = 0;
+        for (s, result) in samples.iter().zip(&results) {
+            let alone = sample_pixel(&world, &options, s.i, s.j, s.sample);
+            assert_eq!(
+                result.radiance.to_array().map(f32::to_bits),
+                alone.to_array().map(f32::to_bits),
+                "sample {s:?}"
+            );
+            lit += usize::from(alone != Vec3::ZERO);
+        }
+        assert!(
+            lit > samples.len() / 2,
+            "{lit} of {} samples lit",
+            samples.len()
+        );
+    }
+}

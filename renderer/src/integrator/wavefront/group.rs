@@ -1,16 +1,18 @@
 //! Eight paths in flight, one per lane, and one bounce of all of them.
 
 use super::draws::{dead_ray, emitter_draws, roulette_draws, scatter_draws};
-use super::handover::Handover;
+use super::handover::{Handover, Target};
 use super::lane_math::{Frame, offset_origins, power_heuristics};
+use super::paths::Paths;
 use super::scene::{ObjectTable, WavefrontScene};
-use crate::geometry::counters::{count_ray, count_shape_tests};
+use super::tracing;
 use crate::integrator::lanes::{SampleRef, SampleResult, camera_sample};
 use crate::integrator::path::{RR_DEPTH, SHADOW_SHORTENING};
 use crate::integrator::sampler::Sampler;
 use crate::integrator::{RenderOptions, path::power_heuristic};
 use crate::packet::{FloatLanes, IntLanes, Rays, Vec3s, WIDTH, lane_set, mask_from};
 use crate::world::World;
+use crate::world::light::Light;
 use glam::Vec3;
 use std::f32::consts::FRAC_1_PI;
 
@@ -20,25 +22,8 @@ pub(super) struct PathGroup<F: FloatLanes> {
     /// Per lane, the index of its sample in the caller's list; `None` for a
     /// dead lane.
     sample: [Option<usize>; WIDTH],
-    /// Per lane, its random stream.
-    pub(super) samplers: [Sampler; WIDTH],
-    /// The rays whose closest hits the lanes wait for.
-    pub(super) rays: Rays<F>,
-    /// Radiance gathered so far.
-    pub(super) radiance: Vec3s<F>,
-    /// Path throughput.
-    pub(super) throughput: Vec3s<F>,
-    /// Where each lane's ray started and the BSDF density it was drawn with
-    /// (valid where `has_previous`: not for camera rays).
-    pub(super) previous_point: Vec3s<F>,
-    /// The density of the previous BSDF sample.
-    pub(super) previous_pdf: F,
-    /// Lanes whose ray was drawn from a BSDF (MIS applies to what it hits).
-    pub(super) has_previous: F,
-    /// Product of refraction's radiance scaling, divided out for roulette.
-    pub(super) eta_scale: F,
-    /// Scattering events so far.
-    pub(super) depth: [u32; WIDTH],
+    /// The paths' state, lane by lane.
+    pub(super) paths: Paths<F>,
     /// Shape tests each lane's rays cost so far.
     shape_tests: [u64; WIDTH],
 }
@@ -50,15 +35,17 @@ impl<F: FloatLanes> PathGroup<F> {
         let dead = dead_ray();
         Self {
             sample: [None; WIDTH],
-            samplers: std::array::from_fn(|_| Sampler::for_sample(0, 0, 0, 0)),
-            rays: Rays::from_lanes(&[dead; WIDTH]),
-            radiance: Vec3s::ZERO,
-            throughput: Vec3s::ZERO,
-            previous_point: Vec3s::ZERO,
-            previous_pdf: F::ZERO,
-            has_previous: F::ZERO,
-            eta_scale: F::ONE,
-            depth: [0; WIDTH],
+            paths: Paths {
+                samplers: std::array::from_fn(|_| Sampler::for_sample(0, 0, 0, 0)),
+                rays: Rays::from_lanes(&[dead; WIDTH]),
+                radiance: Vec3s::ZERO,
+                throughput: Vec3s::ZERO,
+                previous_point: Vec3s::ZERO,
+                previous_pdf: F::ZERO,
+                has_previous: F::ZERO,
+                eta_scale: F::ONE,
+                depth: [0; WIDTH],
+            },
             shape_tests: [0; WIDTH],
         }
     }
@@ -82,15 +69,15 @@ impl<F: FloatLanes> PathGroup<F> {
     ) {
         let (sampler, _, ray) = camera_sample(world, options, s.i, s.j, Some(s.sample));
         self.sample[lane] = Some(index);
-        self.samplers[lane] = sampler;
-        self.rays.origin.set_lane(lane, ray.origin);
-        self.rays.dir.set_lane(lane, ray.dir);
-        self.rays.t_max.as_mut_array()[lane] = ray.t_max;
-        self.radiance.set_lane(lane, Vec3::ZERO);
-        self.throughput.set_lane(lane, Vec3::ONE);
-        self.has_previous.as_mut_array()[lane] = 0.0;
-        self.eta_scale.as_mut_array()[lane] = 1.0;
-        self.depth[lane] = 0;
+        self.paths.samplers[lane] = sampler;
+        self.paths.rays.origin.set_lane(lane, ray.origin);
+        self.paths.rays.dir.set_lane(lane, ray.dir);
+        self.paths.rays.t_max.as_mut_array()[lane] = ray.t_max;
+        self.paths.radiance.set_lane(lane, Vec3::ZERO);
+        self.paths.throughput.set_lane(lane, Vec3::ONE);
+        self.paths.has_previous.as_mut_array()[lane] = 0.0;
+        self.paths.eta_scale.as_mut_array()[lane] = 1.0;
+        self.paths.depth[lane] = 0;
         self.shape_tests[lane] = 0;
     }
 
@@ -101,9 +88,9 @@ impl<F: FloatLanes> PathGroup<F> {
         let index = self.sample[lane]
             .take()
             .expect("only a finished lane is taken");
-        self.rays.t_max.as_mut_array()[lane] = 0.0;
+        self.paths.rays.t_max.as_mut_array()[lane] = 0.0;
         let result = SampleResult {
-            radiance: self.radiance.lane(lane),
+            radiance: self.paths.radiance.lane(lane),
             shape_tests: self.shape_tests[lane],
         };
         (index, result)
@@ -113,18 +100,6 @@ impl<F: FloatLanes> PathGroup<F> {
     #[inline(always)]
     fn live(&self) -> F {
         mask_from(|k| self.sample[k].is_some())
-    }
-
-    /// Counts one ray and `tests` shape tests for every lane of `lanes`.
-    #[inline(always)]
-    fn count(&mut self, lanes: F, tests: usize) {
-        for k in 0..WIDTH {
-            if lane_set(lanes, k) {
-                count_ray();
-                count_shape_tests(tests);
-                self.shape_tests[k] += tests as u64;
-            }
-        }
     }
 
     /// One bounce of every live lane: the closest hits of their rays,
@@ -140,27 +115,36 @@ impl<F: FloatLanes> PathGroup<F> {
         options: &RenderOptions,
     ) -> u32 {
         let live = self.live();
-        let primitives = scene.shapes.len();
-        let hits = scene.shapes.closest(&self.rays);
-        self.count(live, primitives);
+        let method = options.method;
+        let closest = tracing::closest(
+            world,
+            scene,
+            method,
+            &self.paths.rays,
+            live,
+            &mut self.shape_tests,
+        );
+        let hits = &closest.packet;
         let hit = live & hits.alpha.simd_lt(F::INFINITY);
         // A ray that escapes sees the sky.
         let miss = live & !hit;
-        let sky = self.radiance + self.throughput.mul_lanes(Vec3s::splat(world.sky));
-        self.radiance = Vec3s::select(miss, sky, self.radiance);
+        let sky = self.paths.radiance + self.paths.throughput.mul_lanes(Vec3s::splat(world.sky));
+        self.paths.radiance = Vec3s::select(miss, sky, self.paths.radiance);
         let mut finished = miss.to_bitmask();
         if !hit.any() {
             return finished;
         }
 
-        let (point, normal) = scene.shapes.surface(&self.rays, &hits);
         let at = Surfaces::gather(&scene.objects, hit, hits.object);
-        // Hits on materials the lanes do not shade go to the scalar code.
+        // Hits on materials the lanes do not shade, and on mesh triangles
+        // (interpolated normals, textures), go to the scalar code.
         let mut handed_over = Handover::new();
-        let scalar = hit & !at.lambertian;
-        let hit = hit & at.lambertian;
-        handed_over.shade(self, world, options, scalar, &hits);
-        let dir = self.rays.dir;
+        let on_lanes = at.lambertian & !closest.mesh;
+        let scalar = hit & !on_lanes;
+        let hit = hit & on_lanes;
+        handed_over.shade(&mut self.paths, world, options, scalar, &closest);
+        let (point, normal) = tracing::surfaces(world, scene, &self.paths.rays, &closest, hit);
+        let dir = self.paths.rays.dir;
         let front = dir.dot(normal).simd_lt(F::ZERO);
         // The geometric normal turned toward the ray; on these shapes it
         // is also the shading normal.
@@ -170,11 +154,11 @@ impl<F: FloatLanes> PathGroup<F> {
         let emitting = hit & front & at.emission.nonzero();
         for k in (0..WIDTH).filter(|&k| lane_set(emitting, k)) {
             let emitter = at.emitter[k];
-            let weight = if lane_set(self.has_previous, k) && emitter >= 0 {
+            let weight = if lane_set(self.paths.has_previous, k) && emitter >= 0 {
                 power_heuristic(
-                    self.previous_pdf.as_array()[k],
+                    self.paths.previous_pdf.as_array()[k],
                     world.emitters.pdf(
-                        self.previous_point.lane(k),
+                        self.paths.previous_point.lane(k),
                         emitter as usize,
                         point.lane(k),
                         normal.lane(k),
@@ -183,12 +167,14 @@ impl<F: FloatLanes> PathGroup<F> {
             } else {
                 1.0
             };
-            let gained = self.throughput.lane(k) * weight * at.emission.lane(k);
-            self.radiance.set_lane(k, self.radiance.lane(k) + gained);
+            let gained = self.paths.throughput.lane(k) * weight * at.emission.lane(k);
+            self.paths
+                .radiance
+                .set_lane(k, self.paths.radiance.lane(k) + gained);
         }
 
         // The depth limit ends a path at its hit.
-        let depth = self.depth;
+        let depth = self.paths.depth;
         let last = hit & mask_from(|k| depth[k] + 1 >= options.max_depth);
         finished |= last.to_bitmask();
         let go = hit & !last;
@@ -201,7 +187,13 @@ impl<F: FloatLanes> PathGroup<F> {
 
         // The light sample: a point drawn on the emitters, its BSDF value
         // and MIS weight, and the shadow ray toward it.
-        let light = emitter_draws(world, go, &mut self.samplers, &self.depth, point);
+        let light = emitter_draws(
+            world,
+            go,
+            &mut self.paths.samplers,
+            &self.paths.depth,
+            point,
+        );
         let toward = light.to_light.dot(n).simd_gt(F::ZERO);
         let wi_z = light.to_light.dot(frame.n);
         let dark_side = wi_z.simd_le(F::ZERO) | wo_z.simd_le(F::ZERO);
@@ -213,11 +205,11 @@ impl<F: FloatLanes> PathGroup<F> {
         let mis = power_heuristics(light.pdf, bsdf_pdf);
         let lit = f.mul_lanes(light.radiance) * (mis / light.pdf);
         let shadowed = go & light.found & toward & f.nonzero();
-        let lit_by = self.throughput;
+        let lit_by = self.paths.throughput;
 
         // The BSDF sample: a cosine-weighted direction, the throughput's
         // weight f·cos/pdf, the next ray off the side it leaves by.
-        let wi = scatter_draws(go, &mut self.samplers, &self.depth);
+        let wi = scatter_draws(go, &mut self.paths.samplers, &self.paths.depth);
         let dark_side = wi.z.simd_le(F::ZERO) | wo_z.simd_le(F::ZERO);
         let f_cos = Vec3s::select(dark_side, Vec3s::ZERO, at.albedo * (lambert * wi.z));
         let pdf = dark_side.select(
@@ -228,51 +220,131 @@ impl<F: FloatLanes> PathGroup<F> {
         let wi_world = frame.to_world(wi);
         let throughput = Vec3s::select(
             moving,
-            self.throughput.mul_lanes(f_cos.div_lanes(pdf)),
-            self.throughput,
+            self.paths.throughput.mul_lanes(f_cos.div_lanes(pdf)),
+            self.paths.throughput,
         );
         let side = Vec3s::select(wi_world.dot(n).simd_ge(F::ZERO), n, -n);
         let origin = offset_origins(point, side, at.magnitude);
 
         // Russian roulette from the RR_DEPTH-th scattering event on.
         let roulette = moving & mask_from(|k| depth[k] + 1 >= RR_DEPTH);
-        let u_roulette = roulette_draws(roulette, &mut self.samplers);
-        let keep = (throughput.max_element() / self.eta_scale).min(F::splat(0.95));
+        let u_roulette = roulette_draws(roulette, &mut self.paths.samplers);
+        let keep = (throughput.max_element() / self.paths.eta_scale).min(F::splat(0.95));
         let killed = roulette & !u_roulette.simd_lt(keep);
         let throughput = Vec3s::select(roulette & !killed, throughput.div_lanes(keep), throughput);
         let dark = moving & !killed & !throughput.max_element().simd_gt(F::ZERO);
         let going_on = moving & !killed & !dark;
-        self.throughput = throughput;
-        self.rays.origin = Vec3s::select(going_on, origin, self.rays.origin);
-        self.rays.dir = Vec3s::select(going_on, wi_world, self.rays.dir);
-        self.rays.t_max = going_on.select(F::splat(f32::INFINITY), F::ZERO);
-        self.previous_point = Vec3s::select(going_on, point, self.previous_point);
-        self.previous_pdf = going_on.select(pdf, self.previous_pdf);
-        self.has_previous = going_on;
-        for (k, depth) in self.depth.iter_mut().enumerate() {
+        self.paths.throughput = throughput;
+        self.paths.rays.origin = Vec3s::select(going_on, origin, self.paths.rays.origin);
+        self.paths.rays.dir = Vec3s::select(going_on, wi_world, self.paths.rays.dir);
+        self.paths.rays.t_max = going_on.select(F::splat(f32::INFINITY), F::ZERO);
+        self.paths.previous_point = Vec3s::select(going_on, point, self.paths.previous_point);
+        self.paths.previous_pdf = going_on.select(pdf, self.paths.previous_pdf);
+        self.paths.has_previous = going_on;
+        for (k, depth) in self.paths.depth.iter_mut().enumerate() {
             if lane_set(going_on, k) {
                 *depth += 1;
             }
         }
         finished |= (go & !going_on).to_bitmask();
 
-        // The shadow rays, then the light they let through.
+        // The shadow rays, toward each point or directional light in turn,
+        // then toward the emitters' point; the light they let through is
+        // summed in that order, as `PathLane::finish` sums it.
+        let mut sum = Vec3s::ZERO;
+        let mut blocked_toward_lights = Vec::with_capacity(world.lights.len());
+        for (index, light) in world.lights.iter().enumerate() {
+            let s = light_samples(light, point);
+            let toward = s.to_light.dot(n).simd_gt(F::ZERO);
+            let wi_z = s.to_light.dot(frame.n);
+            let dark_side = wi_z.simd_le(F::ZERO) | wo_z.simd_le(F::ZERO);
+            let f = Vec3s::select(dark_side, Vec3s::ZERO, at.albedo * (lambert * wi_z));
+            let shadowed = go & s.found & toward & f.nonzero();
+            let rays = Rays {
+                origin: above,
+                dir: s.to_light,
+                t_max: shadowed.select(s.distance, F::ZERO),
+            };
+            let target = Target::Light(index);
+            let rays = handed_over.add_shadow_rays(target, rays);
+            let traced = shadowed | handed_over.shadowed(target);
+            let blocked =
+                tracing::occluded(world, scene, method, &rays, traced, &mut self.shape_tests);
+            sum = sum + Vec3s::select(shadowed & !blocked, f.mul_lanes(s.irradiance), Vec3s::ZERO);
+            blocked_toward_lights.push(blocked);
+        }
         let shadows = Rays {
             origin: above,
             dir: light.to_light,
             t_max: shadowed.select(light.distance * F::splat(1.0 - SHADOW_SHORTENING), F::ZERO),
         };
-        let shadows = handed_over.add_shadow_rays(shadows);
-        let traced = shadowed | handed_over.shadowed;
-        let blocked = if traced.any() {
-            self.count(traced, primitives);
-            scene.shapes.occluded(&shadows)
-        } else {
-            F::ZERO
-        };
-        let sum = Vec3s::select(shadowed & !blocked, lit, Vec3s::ZERO);
-        self.radiance = Vec3s::select(go, self.radiance + lit_by.mul_lanes(sum), self.radiance);
-        finished | handed_over.finish(self, blocked)
+        let shadows = handed_over.add_shadow_rays(Target::Emitter, shadows);
+        let traced = shadowed | handed_over.shadowed(Target::Emitter);
+        let blocked = tracing::occluded(
+            world,
+            scene,
+            method,
+            &shadows,
+            traced,
+            &mut self.shape_tests,
+        );
+        let sum = sum + Vec3s::select(shadowed & !blocked, lit, Vec3s::ZERO);
+        self.paths.radiance = Vec3s::select(
+            go,
+            self.paths.radiance + lit_by.mul_lanes(sum),
+            self.paths.radiance,
+        );
+        finished | handed_over.finish(&mut self.paths, &blocked_toward_lights, blocked)
+    }
+}
+
+/// Each lane's sample of one point or directional light (`Light::sample`
+/// lane by lane).
+struct LightSamples<F> {
+    /// Lanes with a sample (a point light not at the point itself).
+    found: F,
+    /// Unit directions toward the light.
+    to_light: Vec3s<F>,
+    /// Distances to it (+∞ for a directional light).
+    distance: F,
+    /// Irradiance arriving from it.
+    irradiance: Vec3s<F>,
+}
+
+/// `light.sample(point)` lane by lane, bit for bit.
+#[inline(always)]
+fn light_samples<F: FloatLanes>(light: &Light, point: Vec3s<F>) -> LightSamples<F> {
+    match *light {
+        Light::Point {
+            position,
+            intensity,
+        } => {
+            let to = Vec3s::splat(position) - point;
+            let distance_sq = to.length_squared();
+            let distance = distance_sq.sqrt();
+            LightSamples {
+                found: distance_sq.simd_gt(F::ZERO),
+                to_light: to.div_lanes(distance),
+                distance,
+                irradiance: Vec3s::splat(intensity).div_lanes(distance_sq),
+            }
+        }
+        Light::Directional {
+            to_light,
+            irradiance,
+        } => LightSamples {
+            found: F::splat(f32::from_bits(u32::MAX)),
+            to_light: Vec3s::splat(to_light),
+            distance: F::INFINITY,
+            irradiance: Vec3s::splat(irradiance),
+        },
+        // Ambient light is folded into `World::ambient`, never listed.
+        Light::Ambient { .. } => LightSamples {
+            found: F::ZERO,
+            to_light: Vec3s::splat(glam::Vec3::Y),
+            distance: F::ZERO,
+            irradiance: Vec3s::ZERO,
+        },
     }
 }
 

@@ -5,58 +5,75 @@
 //! others'. The lane's arithmetic is then the scalar path tracer's by
 //! construction.
 
-use super::group::PathGroup;
+use super::paths::Paths;
+use super::tracing::Closest;
 use crate::integrator::RenderOptions;
-use crate::integrator::lanes::{Lane, Next, ShadowRay};
+use crate::integrator::lanes::{Lane, Next, ShadowRay, ShadowTarget};
 use crate::integrator::path::{PathLane, PathState};
 use crate::integrator::recorder::NoRecorder;
 use crate::integrator::sampler::Sampler;
-use crate::packet::{FloatLanes, IntLanes, PacketHits, Rays, WIDTH, lane_set, mask_from};
-use crate::world::{Hit, World};
+use crate::packet::{FloatLanes, Rays, WIDTH, lane_set, mask_from};
+use crate::world::World;
 
-/// A handed-over lane between its shading and its shadow ray's answer.
+/// A handed-over lane between its shading and its shadow rays' answers.
 struct Pending {
-    /// The path, shaded, its shadow ray out.
+    /// The path, shaded, its shadow rays out.
     lane: PathLane<()>,
-    /// Whether it goes on after the shadow ray.
+    /// Whether it goes on after the shadow rays.
     next: Next,
-    /// Its shadow ray (a world without point lights gives at most one).
-    shadow: Option<ShadowRay>,
+    /// Its shadow rays: at most one toward each light, then one toward the
+    /// emitters, in that order.
+    shadows: Vec<ShadowRay>,
+}
+
+/// Which packet of shadow rays a shadow ray goes in: one per light, then
+/// one toward the emitters.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Target {
+    /// Toward the point or directional light of this index.
+    Light(usize),
+    /// Toward a point drawn on the emitters.
+    Emitter,
+}
+
+impl Target {
+    /// The packet `shadow` goes in.
+    fn of(shadow: &ShadowRay) -> Self {
+        match shadow.target {
+            ShadowTarget::Light(index) => Target::Light(index),
+            ShadowTarget::Emitter(_) => Target::Emitter,
+        }
+    }
 }
 
 /// The lanes of one bounce that the scalar code shades.
-pub(super) struct Handover<F> {
+pub(super) struct Handover {
     pending: [Option<Pending>; WIDTH],
-    /// The lanes with a shadow ray out.
-    pub(super) shadowed: F,
 }
 
-impl<F: FloatLanes> Handover<F> {
+impl Handover {
     /// No lane handed over.
     #[inline(always)]
     pub(super) fn new() -> Self {
         Self {
             pending: std::array::from_fn(|_| None),
-            shadowed: F::ZERO,
         }
     }
 
     /// Shades the hits of the lanes `lanes` with `PathLane::shade`, taking
     /// their state out of `group`.
     #[inline(always)]
-    pub(super) fn shade(
+    pub(super) fn shade<F: FloatLanes>(
         &mut self,
-        group: &mut PathGroup<F>,
+        group: &mut Paths<F>,
         world: &World,
         options: &RenderOptions,
         lanes: F,
-        hits: &PacketHits<F>,
+        closest: &Closest<F>,
     ) {
         if !lanes.any() {
             return;
         }
-        let (alpha, object) = (hits.alpha.to_array(), hits.object.to_array());
-        let mut shadows = Vec::with_capacity(1);
         for k in (0..WIDTH).filter(|&k| lane_set(lanes, k)) {
             let state = PathState {
                 radiance: group.radiance.lane(k),
@@ -73,32 +90,45 @@ impl<F: FloatLanes> Handover<F> {
                 sampler: std::mem::replace(&mut group.samplers[k], Sampler::for_sample(0, 0, 0, 0)),
             };
             let mut lane = PathLane::resume(state);
-            let hit = Hit {
-                object: object[k] as u32,
-                alpha: alpha[k],
-                triangle: None,
-            };
-            shadows.clear();
-            let next = lane.shade(world, options, Some(hit), &mut shadows, &mut NoRecorder);
-            assert!(
-                shadows.len() <= 1,
-                "a world without point lights gives a vertex one shadow ray at most"
+            let mut shadows = Vec::new();
+            let next = lane.shade(
+                world,
+                options,
+                Some(closest.hit(k)),
+                &mut shadows,
+                &mut NoRecorder,
             );
             self.pending[k] = Some(Pending {
                 lane,
                 next,
-                shadow: shadows.first().copied(),
+                shadows,
             });
         }
-        let pending = &self.pending;
-        self.shadowed = mask_from(|k| pending[k].as_ref().is_some_and(|p| p.shadow.is_some()));
     }
 
-    /// `shadows` with the handed-over lanes' shadow rays in their lanes.
+    /// The handed-over lanes with a shadow ray for packet `target`.
     #[inline(always)]
-    pub(super) fn add_shadow_rays(&self, mut shadows: Rays<F>) -> Rays<F> {
-        for (k, pending) in self.pending.iter().enumerate() {
-            if let Some(shadow) = pending.as_ref().and_then(|p| p.shadow) {
+    pub(super) fn shadowed<F: FloatLanes>(&self, target: Target) -> F {
+        mask_from(|k| self.shadow(k, target).is_some())
+    }
+
+    /// Lane `k`'s shadow ray for packet `target`, if it has one.
+    #[inline(always)]
+    fn shadow(&self, k: usize, target: Target) -> Option<&ShadowRay> {
+        let pending = self.pending[k].as_ref()?;
+        pending.shadows.iter().find(|s| Target::of(s) == target)
+    }
+
+    /// `shadows`, the packet `target`, with the handed-over lanes' shadow
+    /// rays for it in their lanes.
+    #[inline(always)]
+    pub(super) fn add_shadow_rays<F: FloatLanes>(
+        &self,
+        target: Target,
+        mut shadows: Rays<F>,
+    ) -> Rays<F> {
+        for k in 0..WIDTH {
+            if let Some(shadow) = self.shadow(k, target) {
                 shadows.origin.set_lane(k, shadow.ray.origin);
                 shadows.dir.set_lane(k, shadow.ray.dir);
                 shadows.t_max.as_mut_array()[k] = shadow.ray.t_max;
@@ -107,25 +137,38 @@ impl<F: FloatLanes> Handover<F> {
         shadows
     }
 
-    /// Gives each handed-over lane its shadow ray's answer (`blocked`),
-    /// puts its state back into `group` and returns the lanes that finished
-    /// (bit k for lane k).
+    /// Gives each handed-over lane its shadow rays' answers (`toward_lights`
+    /// per light, `toward_emitter`: the lanes blocked in each packet), puts
+    /// its state back into `group` and returns the lanes that finished (bit
+    /// k for lane k).
     #[inline(always)]
-    pub(super) fn finish(self, group: &mut PathGroup<F>, blocked: F) -> u32 {
+    pub(super) fn finish<F: FloatLanes>(
+        self,
+        group: &mut Paths<F>,
+        toward_lights: &[F],
+        toward_emitter: F,
+    ) -> u32 {
         let mut finished = 0;
         for (k, pending) in self.pending.into_iter().enumerate() {
             let Some(Pending {
                 mut lane,
                 next,
-                shadow,
+                shadows,
             }) = pending
             else {
                 continue;
             };
-            match shadow {
-                Some(shadow) => lane.finish(&[shadow], &[lane_set(blocked, k)], &mut NoRecorder),
-                None => lane.finish(&[], &[], &mut NoRecorder),
-            }
+            let blocked: Vec<bool> = shadows
+                .iter()
+                .map(|s| {
+                    let packet = match Target::of(s) {
+                        Target::Light(index) => toward_lights[index],
+                        Target::Emitter => toward_emitter,
+                    };
+                    lane_set(packet, k)
+                })
+                .collect();
+            lane.finish(&shadows, &blocked, &mut NoRecorder);
             let state = lane.into_state();
             group.radiance.set_lane(k, state.radiance);
             group.throughput.set_lane(k, state.throughput);

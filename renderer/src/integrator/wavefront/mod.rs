@@ -12,17 +12,22 @@
 //! lane, sees exactly the film's sample — and a test holds it to that over
 //! every pixel of the scenes it covers.
 //!
-//! It covers the worlds whose every part it has lanes for
-//! ([`WavefrontScene::new`]): lone triangles, boxes and spheres tested all
-//! at once by every ray ([`PacketShapes`]), Lambertian materials, area
-//! emitters and a constant sky. Every other world is traced by the scalar
-//! lanes, unchanged.
+//! Rays are tested in packets against every primitive of small worlds of
+//! lone triangles, boxes and spheres ([`crate::packet::PacketShapes`]),
+//! else traced lane by lane through the world's BVH (`tracing.rs`).
+//! Lambertian hits on analytic shapes are shaded on lanes, point and
+//! directional lights included; any other hit is shaded by the scalar
+//! `PathLane` itself (`handover.rs`). The film uses the wavefront where its
+//! rays go in packets (`trace_samples.rs` says why: lane by lane through a
+//! BVH it measured slower than the scalar lanes).
 
 mod draws;
 mod group;
 mod handover;
 mod lane_math;
+mod paths;
 mod scene;
+mod tracing;
 
 pub(crate) use scene::WavefrontScene;
 

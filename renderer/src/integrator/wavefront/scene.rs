@@ -2,6 +2,7 @@
 
 use crate::packet::PacketShapes;
 use crate::shading::bsdf::PreparedBsdf;
+use crate::shapes::Method;
 use crate::world::{Hit, World};
 use glam::Vec3;
 use scene::BaseMaterial;
@@ -28,23 +29,56 @@ pub(crate) struct ObjectTable {
 
 /// A world as the wavefront path tracer sees it.
 pub(crate) struct WavefrontScene {
-    /// Every primitive, for packet tests.
-    pub(crate) shapes: PacketShapes,
+    /// Every primitive, for packet tests, when the world is a few lone
+    /// triangles, boxes and spheres (robust formulas); `None`: each lane's
+    /// rays go through the world's BVH.
+    pub(crate) shapes: Option<PacketShapes>,
     /// Shading data by object id.
     pub(crate) objects: ObjectTable,
 }
 
 impl WavefrontScene {
-    /// The wavefront view of `world`, or `None` when it holds something the
-    /// wavefront has no lanes for yet: a shape other than a lone triangle,
-    /// box or sphere, a model, too many primitives to test all at once, or a
-    /// point or directional light. Every material is covered: plain
-    /// Lambertian ones on lanes, the others (a highlight, a mirror lobe,
-    /// marble's texture, conductors, glass) by the scalar code, lane by lane.
-    pub(crate) fn new(world: &World) -> Option<Self> {
-        if !world.lights.is_empty() {
-            return None;
+    /// The wavefront view of `world` traced with the formulas of `method`.
+    /// Every world is covered: plain Lambertian hits on analytic shapes are
+    /// shaded on lanes, the others (a highlight, a mirror lobe, marble's
+    /// texture, conductors, glass, mesh triangles) by the scalar code, lane
+    /// by lane; rays are tested in packets when the world allows it
+    /// ([`WavefrontScene::with_packets`]), else lane by lane through its BVH.
+    /// Only the tests trace worlds without packets with it, for now: the
+    /// film keeps the scalar lanes there (`trace_samples.rs` says why).
+    #[cfg(test)]
+    pub(crate) fn new(world: &World, method: Method) -> Self {
+        Self {
+            shapes: packet_shapes(world, method),
+            objects: ObjectTable::new(world),
         }
+    }
+
+    /// The wavefront view of `world` when its rays can be tested in
+    /// packets: a few lone triangles, boxes and spheres and the robust
+    /// formulas. Asks that first, so a big world costs next to nothing.
+    pub(crate) fn with_packets(world: &World, method: Method) -> Option<Self> {
+        let shapes = packet_shapes(world, method)?;
+        Some(Self {
+            shapes: Some(shapes),
+            objects: ObjectTable::new(world),
+        })
+    }
+}
+
+/// `world`'s primitives for packet tests, when it has few enough lone
+/// triangles, boxes and spheres and nothing else, and `method` is the
+/// robust one (the packet tests are its formulas).
+fn packet_shapes(world: &World, method: Method) -> Option<PacketShapes> {
+    match method {
+        Method::Robust => PacketShapes::new(world),
+        Method::Lecture => None,
+    }
+}
+
+impl ObjectTable {
+    /// The table of every object of `world`.
+    fn new(world: &World) -> Self {
         let mut objects = ObjectTable::default();
         for (id, material) in world.materials.iter().enumerate() {
             let lambertian = match *world.prepared_bsdf(id as u32) {
@@ -78,7 +112,6 @@ impl WavefrontScene {
             );
             objects.magnitude.push(world.magnitude(id as u32));
         }
-        let shapes = PacketShapes::new(world)?;
-        Some(Self { shapes, objects })
+        objects
     }
 }

@@ -1,0 +1,28 @@
+//! The state of eight paths between bounces, lane by lane: what `PathLane`
+//! carries from one bounce to the next, as structures of arrays.
+
+use crate::integrator::sampler::Sampler;
+use crate::packet::{Rays, Vec3s, WIDTH};
+
+/// Eight paths' state, one per lane.
+pub(super) struct Paths<F> {
+    /// Per lane, its random stream.
+    pub(super) samplers: [Sampler; WIDTH],
+    /// The rays whose closest hits the lanes wait for.
+    pub(super) rays: Rays<F>,
+    /// Radiance gathered so far.
+    pub(super) radiance: Vec3s<F>,
+    /// Path throughput.
+    pub(super) throughput: Vec3s<F>,
+    /// Where each lane's ray started and the BSDF density it was drawn with
+    /// (valid where `has_previous`: not for camera rays).
+    pub(super) previous_point: Vec3s<F>,
+    /// The density of the previous BSDF sample.
+    pub(super) previous_pdf: F,
+    /// Lanes whose ray was drawn from a BSDF (MIS applies to what it hits).
+    pub(super) has_previous: F,
+    /// Product of refraction's radiance scaling, divided out for roulette.
+    pub(super) eta_scale: F,
+    /// Scattering events so far.
+    pub(super) depth: [u32; WIDTH],
+}

@@ -1,0 +1,140 @@
+//! A group's ray queries: packets tested against every primitive when the
+//! world is small and made of lone triangles, boxes and spheres
+//! ([`PacketShapes`]), else each lane's ray traced through the world's BVH
+//! (`World::intersect` and `World::occluded`, the scalar path tracer's own
+//! queries). Either way a lane's hit is the scalar one bit for bit.
+
+use super::scene::WavefrontScene;
+use crate::geometry::counters::{count_ray, count_shape_tests, shape_tests_on_this_thread};
+use crate::packet::{FloatLanes, IntLanes, PacketHits, Rays, Vec3s, WIDTH, lane_set, mask_from};
+use crate::shapes::Method;
+use crate::world::{Hit, World};
+use glam::Vec3;
+
+/// The closest hits of a group's rays.
+pub(super) struct Closest<F: FloatLanes> {
+    /// Each lane's α (+∞ on a miss) and object id (−1).
+    pub(super) packet: PacketHits<F>,
+    /// Each lane's hit in full, when traced through the world (a mesh
+    /// triangle's barycentrics included); `None` for packet tests, whose
+    /// hits are analytic shapes (`PacketHits` says all).
+    pub(super) hits: Option<[Option<Hit>; WIDTH]>,
+    /// Lanes that hit a mesh triangle.
+    pub(super) mesh: F,
+}
+
+impl<F: FloatLanes> Closest<F> {
+    /// Lane `k`'s hit (it hit something).
+    #[inline(always)]
+    pub(super) fn hit(&self, k: usize) -> Hit {
+        match &self.hits {
+            Some(hits) => hits[k].expect("lane k hit something"),
+            None => Hit {
+                object: self.packet.object.to_array()[k] as u32,
+                alpha: self.packet.alpha.as_array()[k],
+                triangle: None,
+            },
+        }
+    }
+}
+
+/// The closest hits of the lanes `live` of `rays`, counting rays and shape
+/// tests (per lane into `tests`) as the scalar queries do.
+#[inline(always)]
+pub(super) fn closest<F: FloatLanes>(
+    world: &World,
+    scene: &WavefrontScene,
+    method: Method,
+    rays: &Rays<F>,
+    live: F,
+    tests: &mut [u64; WIDTH],
+) -> Closest<F> {
+    if let Some(shapes) = &scene.shapes {
+        count(live, shapes.len(), tests);
+        return Closest {
+            packet: shapes.closest(rays),
+            hits: None,
+            mesh: F::ZERO,
+        };
+    }
+    let mut hits = [None; WIDTH];
+    for (k, hit) in hits.iter_mut().enumerate() {
+        if lane_set(live, k) {
+            let before = shape_tests_on_this_thread();
+            *hit = world.intersect(&rays.lane(k), method);
+            tests[k] += shape_tests_on_this_thread() - before;
+        }
+    }
+    Closest {
+        packet: PacketHits {
+            alpha: F::from_array(hits.map(|h| h.map_or(f32::INFINITY, |h| h.alpha))),
+            object: F::Ints::from_array(hits.map(|h| h.map_or(-1, |h| h.object as i32))),
+        },
+        mesh: mask_from(|k| hits[k].is_some_and(|h| h.triangle.is_some())),
+        hits: Some(hits),
+    }
+}
+
+/// The hit points and outward geometric normals of the lanes `lanes` of
+/// `closest` (analytic shapes only; anything in the other lanes).
+#[inline(always)]
+pub(super) fn surfaces<F: FloatLanes>(
+    world: &World,
+    scene: &WavefrontScene,
+    rays: &Rays<F>,
+    closest: &Closest<F>,
+    lanes: F,
+) -> (Vec3s<F>, Vec3s<F>) {
+    if let Some(shapes) = &scene.shapes {
+        return shapes.surface(rays, &closest.packet);
+    }
+    let mut points = [Vec3::ZERO; WIDTH];
+    let mut normals = [Vec3::Z; WIDTH];
+    for k in (0..WIDTH).filter(|&k| lane_set(lanes, k)) {
+        let surface = world.surface(&rays.lane(k), closest.hit(k));
+        points[k] = surface.point;
+        normals[k] = surface.normal;
+    }
+    (Vec3s::from_lanes(&points), Vec3s::from_lanes(&normals))
+}
+
+/// Per lane of `lanes`: whether anything blocks its ray of `rays`.
+#[inline(always)]
+pub(super) fn occluded<F: FloatLanes>(
+    world: &World,
+    scene: &WavefrontScene,
+    method: Method,
+    rays: &Rays<F>,
+    lanes: F,
+    tests: &mut [u64; WIDTH],
+) -> F {
+    if !lanes.any() {
+        return F::ZERO;
+    }
+    if let Some(shapes) = &scene.shapes {
+        count(lanes, shapes.len(), tests);
+        return shapes.occluded(rays) & lanes;
+    }
+    let mut blocked = [false; WIDTH];
+    for (k, blocked) in blocked.iter_mut().enumerate() {
+        if lane_set(lanes, k) {
+            let before = shape_tests_on_this_thread();
+            *blocked = world.occluded(&rays.lane(k), method);
+            tests[k] += shape_tests_on_this_thread() - before;
+        }
+    }
+    mask_from(|k| blocked[k])
+}
+
+/// Counts one ray and `primitives` shape tests for every lane of `lanes`
+/// (a packet tests each ray against every primitive).
+#[inline(always)]
+fn count<F: FloatLanes>(lanes: F, primitives: usize, tests: &mut [u64; WIDTH]) {
+    for (k, tests) in tests.iter_mut().enumerate() {
+        if lane_set(lanes, k) {
+            count_ray();
+            count_shape_tests(primitives);
+            *tests += primitives as u64;
+        }
+    }
+}
