@@ -287,16 +287,19 @@ fn mesh_hits_handed_to_the_scalar_code_match_too() {
         material: ::scene::materials::builtin(::scene::BaseMaterial::Matte),
         base_color_texture: None,
     }];
-    model.instances = [Mat4::IDENTITY, Mat4::from_translation(Vec3::new(-1.3, -0.2, -0.5))]
-        .iter()
-        .enumerate()
-        .map(|(k, &t)| MeshInstance {
-            mesh: 0,
-            material: 0,
-            model_from_mesh: t,
-            name: format!("instance {k}"),
-        })
-        .collect();
+    model.instances = [
+        Mat4::IDENTITY,
+        Mat4::from_translation(Vec3::new(-1.3, -0.2, -0.5)),
+    ]
+    .iter()
+    .enumerate()
+    .map(|(k, &t)| MeshInstance {
+        mesh: 0,
+        material: 0,
+        model_from_mesh: t,
+        name: format!("instance {k}"),
+    })
+    .collect();
     let mut scene = ::scene::read_str(
         r#"<scene><camera eye="0 0.5 5" toward="0 0 -1" theta="20" width="14" height="14"/>
            <sky color="0.4 0.4 0.5"/><light position="1 2 3" intensity="6"/>
