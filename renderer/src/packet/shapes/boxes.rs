@@ -209,12 +209,12 @@ impl Boxes {
 
 #[cfg(test)]
 mod tests {
-    use super::super::testing::same_everywhere;
-    use super::super::testing::{check_rays, rays_for, world_of};
+    use super::super::testing::{
+        assert_lanes_equal_scalar, check_rays, rays_for, same_everywhere, world_of,
+    };
     use super::*;
     use crate::geometry::ray::Ray;
     use crate::integrator::sampler::Sampler;
-    use crate::packet::lane_set;
     use crate::packet::lanes::{WithLanes, on_every_lane_type};
 
     /// Each lane's α against one box equals `Cuboid::intersect`'s, and its
@@ -225,32 +225,14 @@ mod tests {
         let rays = Rays::<F>::from_lanes(lanes);
         let (hit, alpha) = Boxes::hit(&boxes.items[0], &rays, rays.t_max);
         let (point, normal) = boxes.surface(&rays, alpha, &[0; WIDTH]);
-        let mut hits = 0;
-        for (k, ray) in lanes.iter().enumerate() {
-            let want = b.intersect(ray);
-            let got = lane_set(hit, k).then(|| alpha.as_array()[k]);
-            assert_eq!(
-                got.map(f32::to_bits),
-                want.map(f32::to_bits),
-                "lane {k}: {ray:?} {b:?}"
-            );
-            if let Some(alpha) = want {
-                hits += 1;
-                let s = b.surface(ray, alpha);
-                let bits = |v: Vec3| v.to_array().map(f32::to_bits);
-                assert_eq!(
-                    bits(point.lane(k)),
-                    bits(s.point),
-                    "lane {k}: {ray:?} {b:?}"
-                );
-                assert_eq!(
-                    bits(normal.lane(k)),
-                    bits(s.normal),
-                    "lane {k}: {ray:?} {b:?}"
-                );
-            }
-        }
-        hits
+        assert_lanes_equal_scalar(
+            lanes,
+            (hit, alpha),
+            (point, normal),
+            |ray| b.intersect(ray),
+            |ray, alpha| b.surface(ray, alpha),
+            b,
+        )
     }
 
     /// [`check_against_one_with`] for every lane type.

@@ -298,6 +298,45 @@ pub(super) mod testing {
         World::from_scene(&scene::read_str(&text, &path).expect("parses")).expect("valid")
     }
 
+    /// Asserts that every lane of a packet test of one primitive agrees bit
+    /// for bit with the scalar primitive on that lane's ray: α where `hit`
+    /// is set against `intersect`, and the hit's `point` and `normal`
+    /// against `surface`. Returns how many lanes hit.
+    pub fn assert_lanes_equal_scalar<F: FloatLanes>(
+        lanes: &[Ray; WIDTH],
+        (hit, alpha): (F, F),
+        (point, normal): (Vec3s<F>, Vec3s<F>),
+        intersect: impl Fn(&Ray) -> Option<f32>,
+        surface: impl Fn(&Ray, f32) -> crate::shapes::Surface,
+        shape: &dyn std::fmt::Debug,
+    ) -> usize {
+        let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+        let mut hits = 0;
+        for (k, ray) in lanes.iter().enumerate() {
+            let want = intersect(ray);
+            let got = lane_set(hit, k).then(|| alpha.as_array()[k]);
+            let context = || format!("lane {k}: {ray:?} {shape:?}");
+            assert_eq!(
+                got.map(f32::to_bits),
+                want.map(f32::to_bits),
+                "α, {}",
+                context()
+            );
+            if let Some(alpha) = want {
+                hits += 1;
+                let s = surface(ray, alpha);
+                assert_eq!(bits(point.lane(k)), bits(s.point), "point, {}", context());
+                assert_eq!(
+                    bits(normal.lane(k)),
+                    bits(s.normal),
+                    "normal, {}",
+                    context()
+                );
+            }
+        }
+        hits
+    }
+
     /// A dead lane: any ray over the empty interval.
     pub fn dead(k: usize) -> Ray {
         Ray::new(Vec3::splat(k as f32 - 3.0), Vec3::X).with_t_max(0.0)

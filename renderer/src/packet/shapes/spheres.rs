@@ -153,12 +153,12 @@ impl Spheres {
 
 #[cfg(test)]
 mod tests {
-    use super::super::testing::same_everywhere;
-    use super::super::testing::{check_rays, rays_for, world_of};
+    use super::super::testing::{
+        assert_lanes_equal_scalar, check_rays, rays_for, same_everywhere, world_of,
+    };
     use super::*;
     use crate::geometry::ray::Ray;
     use crate::integrator::sampler::Sampler;
-    use crate::packet::lane_set;
     use crate::packet::lanes::{WithLanes, on_every_lane_type};
     use crate::shapes::Method;
 
@@ -171,32 +171,14 @@ mod tests {
         let rays = Rays::<F>::from_lanes(lanes);
         let (hit, alpha) = Spheres::hit(&spheres.items[0], &SphereRays::new(&rays), rays.t_max);
         let (point, normal) = spheres.surface(&rays, alpha, &[0; WIDTH]);
-        let mut hits = 0;
-        for (k, ray) in lanes.iter().enumerate() {
-            let want = s.intersect(ray, Method::Robust);
-            let got = lane_set(hit, k).then(|| alpha.as_array()[k]);
-            assert_eq!(
-                got.map(f32::to_bits),
-                want.map(f32::to_bits),
-                "lane {k}: {ray:?} {s:?}"
-            );
-            if let Some(alpha) = want {
-                hits += 1;
-                let surface = s.surface(ray, alpha);
-                let bits = |v: Vec3| v.to_array().map(f32::to_bits);
-                assert_eq!(
-                    bits(point.lane(k)),
-                    bits(surface.point),
-                    "lane {k}: {ray:?} {s:?}"
-                );
-                assert_eq!(
-                    bits(normal.lane(k)),
-                    bits(surface.normal),
-                    "lane {k}: {ray:?} {s:?}"
-                );
-            }
-        }
-        hits
+        assert_lanes_equal_scalar(
+            lanes,
+            (hit, alpha),
+            (point, normal),
+            |ray| s.intersect(ray, Method::Robust),
+            |ray, alpha| s.surface(ray, alpha),
+            s,
+        )
     }
 
     /// [`check_against_one_with`] for every lane type.

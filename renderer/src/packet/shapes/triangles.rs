@@ -408,12 +408,13 @@ impl Triangles {
 
 #[cfg(test)]
 mod tests {
-    use super::super::testing::{check_rays, rays_for, same_everywhere, world_of};
+    use super::super::testing::{
+        assert_lanes_equal_scalar, check_rays, rays_for, same_everywhere, world_of,
+    };
     use super::super::{PacketShapes, Rays, WIDTH};
     use super::*;
     use crate::geometry::ray::Ray;
     use crate::integrator::sampler::Sampler;
-    use crate::packet::lane_set;
     use crate::packet::lanes::{WithLanes, on_every_lane_type};
     use crate::shapes::Method;
 
@@ -438,31 +439,14 @@ mod tests {
             ),
         };
         let (point, normal) = triangles.surface(&rays, alpha, &[0; WIDTH]);
-        let mut hits = 0;
-        for (k, ray) in lanes.iter().enumerate() {
-            let want = t.intersect(ray, Method::Robust);
-            let got = lane_set(hit, k).then(|| alpha.as_array()[k]);
-            assert_eq!(
-                got.map(f32::to_bits),
-                want.map(f32::to_bits),
-                "lane {k}: {ray:?} {t:?}"
-            );
-            if let Some(alpha) = want {
-                hits += 1;
-                let s = t.surface(ray, alpha);
-                assert_eq!(
-                    point.lane(k).to_array().map(f32::to_bits),
-                    s.point.to_array().map(f32::to_bits),
-                    "lane {k}"
-                );
-                assert_eq!(
-                    normal.lane(k).to_array().map(f32::to_bits),
-                    s.normal.to_array().map(f32::to_bits),
-                    "lane {k}"
-                );
-            }
-        }
-        hits
+        assert_lanes_equal_scalar(
+            lanes,
+            (hit, alpha),
+            (point, normal),
+            |ray| t.intersect(ray, Method::Robust),
+            |ray, alpha| t.surface(ray, alpha),
+            t,
+        )
     }
 
     /// [`check_against_one_with`] for every lane type.
