@@ -24,6 +24,10 @@ pub(super) struct PathGroup<F: FloatLanes> {
     sample: [Option<usize>; WIDTH],
     /// The paths' state, lane by lane.
     pub(super) paths: Paths<F>,
+    /// The lanes a bounce hands to the scalar code (kept for its buffers).
+    handover: Handover,
+    /// Per light, the lanes whose shadow ray toward it is blocked (scratch).
+    blocked_toward_lights: Vec<F>,
     /// Shape tests each lane's rays cost so far.
     shape_tests: [u64; WIDTH],
 }
@@ -47,6 +51,8 @@ impl<F: FloatLanes> PathGroup<F> {
                 depth: [0; WIDTH],
             },
             shape_tests: [0; WIDTH],
+            handover: Handover::new(),
+            blocked_toward_lights: Vec::new(),
         }
     }
 
@@ -138,11 +144,11 @@ impl<F: FloatLanes> PathGroup<F> {
         let at = Surfaces::gather(&scene.objects, hit, hits.object);
         // Hits on materials the lanes do not shade, and on mesh triangles
         // (interpolated normals, textures), go to the scalar code.
-        let mut handed_over = Handover::new();
         let on_lanes = at.lambertian & !closest.mesh;
         let scalar = hit & !on_lanes;
         let hit = hit & on_lanes;
-        handed_over.shade(&mut self.paths, world, options, scalar, &closest);
+        self.handover
+            .shade(&mut self.paths, world, options, scalar, &closest);
         let (point, normal) = tracing::surfaces(world, scene, &self.paths.rays, &closest, hit);
         let dir = self.paths.rays.dir;
         let front = dir.dot(normal).simd_lt(F::ZERO);
@@ -252,7 +258,7 @@ impl<F: FloatLanes> PathGroup<F> {
         // then toward the emitters' point; the light they let through is
         // summed in that order, as `PathLane::finish` sums it.
         let mut sum = Vec3s::ZERO;
-        let mut blocked_toward_lights = Vec::with_capacity(world.lights.len());
+        self.blocked_toward_lights.clear();
         for (index, light) in world.lights.iter().enumerate() {
             let s = light_samples(light, point);
             let toward = s.to_light.dot(n).simd_gt(F::ZERO);
@@ -266,20 +272,20 @@ impl<F: FloatLanes> PathGroup<F> {
                 t_max: shadowed.select(s.distance, F::ZERO),
             };
             let target = Target::Light(index);
-            let rays = handed_over.add_shadow_rays(target, rays);
-            let traced = shadowed | handed_over.shadowed(target);
+            let rays = self.handover.add_shadow_rays(target, rays);
+            let traced = shadowed | self.handover.shadowed(target);
             let blocked =
                 tracing::occluded(world, scene, method, &rays, traced, &mut self.shape_tests);
             sum = sum + Vec3s::select(shadowed & !blocked, f.mul_lanes(s.irradiance), Vec3s::ZERO);
-            blocked_toward_lights.push(blocked);
+            self.blocked_toward_lights.push(blocked);
         }
         let shadows = Rays {
             origin: above,
             dir: light.to_light,
             t_max: shadowed.select(light.distance * F::splat(1.0 - SHADOW_SHORTENING), F::ZERO),
         };
-        let shadows = handed_over.add_shadow_rays(Target::Emitter, shadows);
-        let traced = shadowed | handed_over.shadowed(Target::Emitter);
+        let shadows = self.handover.add_shadow_rays(Target::Emitter, shadows);
+        let traced = shadowed | self.handover.shadowed(Target::Emitter);
         let blocked = tracing::occluded(
             world,
             scene,
@@ -294,7 +300,10 @@ impl<F: FloatLanes> PathGroup<F> {
             self.paths.radiance + lit_by.mul_lanes(sum),
             self.paths.radiance,
         );
-        finished | handed_over.finish(&mut self.paths, &blocked_toward_lights, blocked)
+        finished
+            | self
+                .handover
+                .finish(&mut self.paths, &self.blocked_toward_lights, blocked)
     }
 }
 

@@ -21,9 +21,6 @@ struct Pending {
     lane: PathLane<()>,
     /// Whether it goes on after the shadow rays.
     next: Next,
-    /// Its shadow rays: at most one toward each light, then one toward the
-    /// emitters, in that order.
-    shadows: Vec<ShadowRay>,
 }
 
 /// Which packet of shadow rays a shadow ray goes in: one per light, then
@@ -46,9 +43,15 @@ impl Target {
     }
 }
 
-/// The lanes of one bounce that the scalar code shades.
+/// The lanes of one bounce that the scalar code shades. A group keeps one
+/// for all its bounces, so that the shadow-ray lists are allocated once.
 pub(super) struct Handover {
     pending: [Option<Pending>; WIDTH],
+    /// Per lane, its shadow rays: at most one toward each light, then one
+    /// toward the emitters, in that order (empty for a lane not handed over).
+    shadows: [Vec<ShadowRay>; WIDTH],
+    /// Per shadow ray of a lane, whether it is blocked (scratch).
+    blocked: Vec<bool>,
 }
 
 impl Handover {
@@ -57,6 +60,8 @@ impl Handover {
     pub(super) fn new() -> Self {
         Self {
             pending: std::array::from_fn(|_| None),
+            shadows: std::array::from_fn(|_| Vec::new()),
+            blocked: Vec::new(),
         }
     }
 
@@ -90,19 +95,19 @@ impl Handover {
                 sampler: std::mem::replace(&mut group.samplers[k], Sampler::for_sample(0, 0, 0, 0)),
             };
             let mut lane = PathLane::resume(state);
-            let mut shadows = Vec::new();
+            let shadows = &mut self.shadows[k];
+            debug_assert!(
+                shadows.is_empty(),
+                "the last bounce's shadow rays are answered"
+            );
             let next = lane.shade(
                 world,
                 options,
                 Some(closest.hit(k)),
-                &mut shadows,
+                shadows,
                 &mut NoRecorder,
             );
-            self.pending[k] = Some(Pending {
-                lane,
-                next,
-                shadows,
-            });
+            self.pending[k] = Some(Pending { lane, next });
         }
     }
 
@@ -115,8 +120,7 @@ impl Handover {
     /// Lane `k`'s shadow ray for packet `target`, if it has one.
     #[inline(always)]
     fn shadow(&self, k: usize, target: Target) -> Option<&ShadowRay> {
-        let pending = self.pending[k].as_ref()?;
-        pending.shadows.iter().find(|s| Target::of(s) == target)
+        self.shadows[k].iter().find(|s| Target::of(s) == target)
     }
 
     /// `shadows`, the packet `target`, with the handed-over lanes' shadow
@@ -143,32 +147,27 @@ impl Handover {
     /// k for lane k).
     #[inline(always)]
     pub(super) fn finish<F: FloatLanes>(
-        self,
+        &mut self,
         group: &mut Paths<F>,
         toward_lights: &[F],
         toward_emitter: F,
     ) -> u32 {
         let mut finished = 0;
-        for (k, pending) in self.pending.into_iter().enumerate() {
-            let Some(Pending {
-                mut lane,
-                next,
-                shadows,
-            }) = pending
-            else {
+        for k in 0..WIDTH {
+            let Some(Pending { mut lane, next }) = self.pending[k].take() else {
                 continue;
             };
-            let blocked: Vec<bool> = shadows
-                .iter()
-                .map(|s| {
-                    let packet = match Target::of(s) {
-                        Target::Light(index) => toward_lights[index],
-                        Target::Emitter => toward_emitter,
-                    };
-                    lane_set(packet, k)
-                })
-                .collect();
-            lane.finish(&shadows, &blocked, &mut NoRecorder);
+            let shadows = &mut self.shadows[k];
+            self.blocked.clear();
+            self.blocked.extend(shadows.iter().map(|s| {
+                let packet = match Target::of(s) {
+                    Target::Light(index) => toward_lights[index],
+                    Target::Emitter => toward_emitter,
+                };
+                lane_set(packet, k)
+            }));
+            lane.finish(shadows, &self.blocked, &mut NoRecorder);
+            shadows.clear();
             let state = lane.into_state();
             group.radiance.set_lane(k, state.radiance);
             group.throughput.set_lane(k, state.throughput);

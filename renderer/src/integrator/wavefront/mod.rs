@@ -81,25 +81,20 @@ impl WithLanes for Trace<'_> {
             samples,
             results,
         } = self;
-        let mut next = 0;
+        let mut queue = samples.iter().copied().enumerate();
         let mut group = PathGroup::<F>::new();
         for lane in 0..WIDTH {
-            if next < samples.len() {
-                group.start(world, options, lane, next, samples[next]);
-                next += 1;
+            if let Some((index, s)) = queue.next() {
+                group.start(world, options, lane, index, s);
             }
         }
         while group.any_live() {
             let finished = group.step(world, scene, options);
-            for lane in 0..WIDTH {
-                if finished & (1 << lane) == 0 {
-                    continue;
-                }
+            for lane in (0..WIDTH).filter(|lane| finished & (1 << lane) != 0) {
                 let (index, result) = group.take(lane);
                 results[index] = result;
-                if next < samples.len() {
-                    group.start(world, options, lane, next, samples[next]);
-                    next += 1;
+                if let Some((index, s)) = queue.next() {
+                    group.start(world, options, lane, index, s);
                 }
             }
         }

@@ -81,28 +81,24 @@ impl ObjectTable {
     fn new(world: &World) -> Self {
         let mut objects = ObjectTable::default();
         for (id, material) in world.materials.iter().enumerate() {
-            let lambertian = match *world.prepared_bsdf(id as u32) {
+            // A plain Lambertian lobe: no highlight, no mirror, no texture.
+            let diffuse = match *world.prepared_bsdf(id as u32) {
                 PreparedBsdf::Layered {
                     diffuse,
-                    glossy,
-                    mirror,
+                    glossy: 0.0,
+                    mirror: 0.0,
                     ..
-                } => glossy == 0.0 && mirror == 0.0 && diffuse > 0.0,
-                _ => false,
-            };
-            let lambertian = lambertian && material.base != BaseMaterial::Marble;
-            let diffuse = match *world.prepared_bsdf(id as u32) {
-                PreparedBsdf::Layered { diffuse, .. } if lambertian => diffuse,
-                _ => 0.0,
+                } if diffuse > 0.0 && material.base != BaseMaterial::Marble => Some(diffuse),
+                _ => None,
             };
             let hit = Hit {
                 object: id as u32,
                 alpha: 0.0,
                 triangle: None,
             };
-            objects.lambertian.push(lambertian);
+            objects.lambertian.push(diffuse.is_some());
             objects.albedo.push(material.color);
-            objects.diffuse.push(diffuse);
+            objects.diffuse.push(diffuse.unwrap_or(0.0));
             objects.emission.push(material.emission);
             objects.emitter.push(
                 world

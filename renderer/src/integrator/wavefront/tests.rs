@@ -105,15 +105,22 @@ fn assert_wavefront_equals_scalar(world: &World, options: &RenderOptions, sample
     );
 }
 
+/// [`assert_wavefront_equals_scalar`] over every pixel of `world`'s image,
+/// `spp` samples each, with both samplers and each (max depth, seed).
+fn assert_every_pixel_matches(world: &World, depths_and_seeds: &[(u32, u64)], spp: u32) {
+    let samples = all_samples(world.camera.w, world.camera.h, spp);
+    for sampling in [Sampling::Independent, Sampling::Sobol] {
+        for &(max_depth, seed) in depths_and_seeds {
+            let options = path_options(sampling, max_depth, seed);
+            assert_wavefront_equals_scalar(world, &options, &samples);
+        }
+    }
+}
+
 #[test]
 fn every_cornell_sample_is_the_scalar_path_tracers_bit_for_bit() {
     let world = cornell(24, 24);
-    for sampling in [Sampling::Independent, Sampling::Sobol] {
-        for (max_depth, seed) in [(8, 0), (2, 5), (1, 1), (30, 9)] {
-            let options = path_options(sampling, max_depth, seed);
-            assert_wavefront_equals_scalar(&world, &options, &all_samples(24, 24, 2));
-        }
-    }
+    assert_every_pixel_matches(&world, &[(8, 0), (2, 5), (1, 1), (30, 9)], 2);
 }
 
 #[test]
@@ -145,10 +152,7 @@ fn a_world_with_spheres_boxes_a_sky_and_no_emitters_matches_too() {
         16,
         12,
     );
-    for sampling in [Sampling::Independent, Sampling::Sobol] {
-        let options = path_options(sampling, 8, 11);
-        assert_wavefront_equals_scalar(&world, &options, &all_samples(16, 12, 4));
-    }
+    assert_every_pixel_matches(&world, &[(8, 11)], 4);
 }
 
 #[test]
@@ -158,10 +162,7 @@ fn rough_conductors_and_rough_glass_handed_to_the_scalar_code_match_too() {
         20,
         20,
     );
-    for sampling in [Sampling::Independent, Sampling::Sobol] {
-        let options = path_options(sampling, 8, 2);
-        assert_wavefront_equals_scalar(&world, &options, &all_samples(20, 20, 3));
-    }
+    assert_every_pixel_matches(&world, &[(8, 2)], 3);
 }
 
 #[test]
@@ -183,12 +184,7 @@ fn every_material_matches_lanes_and_handed_over_alike() {
         20,
         14,
     );
-    for sampling in [Sampling::Independent, Sampling::Sobol] {
-        for (max_depth, seed) in [(12, 4), (3, 8)] {
-            let options = path_options(sampling, max_depth, seed);
-            assert_wavefront_equals_scalar(&world, &options, &all_samples(20, 14, 3));
-        }
-    }
+    assert_every_pixel_matches(&world, &[(12, 4), (3, 8)], 3);
 }
 
 #[test]
@@ -253,10 +249,7 @@ fn point_and_directional_lights_match_too() {
     );
     let seed = world_from(include_str!("../../../../assets/scenes/seed.xml"), 16, 12);
     for world in [&lit, &seed] {
-        for sampling in [Sampling::Independent, Sampling::Sobol] {
-            let options = path_options(sampling, 8, 13);
-            assert_wavefront_equals_scalar(world, &options, &all_samples(16, 12, 2));
-        }
+        assert_every_pixel_matches(world, &[(8, 13)], 2);
     }
 }
 
@@ -324,8 +317,5 @@ fn mesh_hits_handed_to_the_scalar_code_match_too() {
     });
     let world = World::from_scene(&scene).expect("valid");
     assert!(world.triangle_count() > 0, "the model is in the world");
-    for sampling in [Sampling::Independent, Sampling::Sobol] {
-        let options = path_options(sampling, 8, 21);
-        assert_wavefront_equals_scalar(&world, &options, &all_samples(14, 14, 2));
-    }
+    assert_every_pixel_matches(&world, &[(8, 21)], 2);
 }
