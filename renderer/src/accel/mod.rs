@@ -23,7 +23,7 @@
 //! `cargo bench -p raylab-renderer --bench bvh -- --lost`). Our node tests are in [`slab`] and [`wide`]; [`simd`] compiles
 //! them for the widest SIMD the CPU has.
 
-mod binned_sah;
+pub(crate) mod binned_sah;
 mod huge_pages;
 pub mod instance;
 pub mod mesh;

@@ -45,6 +45,7 @@ impl World {
         let mut lone = Lone::default();
         let mut next_instance = 0u32;
         let mut magnitudes = Vec::with_capacity(resolved.objects.len());
+        let mut shape_bounds = vec![None; resolved.objects.len()];
         let largest = |min: Vec3, max: Vec3| min.abs().max(max.abs()).max_element();
         for (id, object) in resolved.objects.iter().enumerate() {
             let id = id as u32;
@@ -76,11 +77,13 @@ impl World {
                     magnitudes.push(magnitude);
                     let pad =
                         BOX_PADDING * (b.max - b.min).max_element() + f32::EPSILON * magnitude;
-                    items.push(Item::Shape(id));
-                    bounds.push(Aabb {
+                    let padded = Aabb {
                         min: b.min - Vec3::splat(pad),
                         max: b.max + Vec3::splat(pad),
-                    });
+                    };
+                    items.push(Item::Shape(id));
+                    bounds.push(padded);
+                    shape_bounds[id as usize] = Some(padded);
                     match shape {
                         Shape::Triangle(t) => lone.triangles.push((id, [t.t0, t.t1, t.t2])),
                         Shape::Sphere(s) => lone.spheres.push((id, s, bounds[bounds.len() - 1])),
@@ -124,6 +127,7 @@ impl World {
             top: TopLevels::new(items, &bounds, &lone),
             unbounded,
             magnitudes,
+            shape_bounds,
         })
     }
 }

@@ -104,9 +104,19 @@ pub struct World {
     unbounded: Vec<u32>,
     /// Per object, the largest coordinate magnitude of its geometry (see [`World::magnitude`]).
     magnitudes: Vec<f32>,
+    /// Per analytic object, the box the top level holds it in (padded for
+    /// the rounding of its test); `None` for planes and models.
+    shape_bounds: Vec<Option<Aabb>>,
 }
 
 impl World {
+    /// The box around every hit point the analytic object `object`'s test
+    /// can report (its bounds padded for rounding, as the top-level BVH
+    /// holds it); `None` for an infinite plane or a model.
+    pub(crate) fn shape_bounds(&self, object: u32) -> Option<Aabb> {
+        self.shape_bounds.get(object as usize).copied().flatten()
+    }
+
     /// The largest coordinate magnitude of an object's geometry (its world
     /// bounds; for a plane, its point). Hit points on it are placed to within
     /// a few ε of this, so secondary rays leave it by an offset that scales

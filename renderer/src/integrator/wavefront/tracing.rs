@@ -50,9 +50,11 @@ pub(super) fn closest<F: FloatLanes>(
     tests: &mut [u64; WIDTH],
 ) -> Closest<F> {
     if let Some(shapes) = &scene.shapes {
-        count(live, shapes.len(), tests);
+        let mut tested = F::Ints::splat(0);
+        let packet = shapes.closest(rays, &mut tested);
+        count(live, tested, tests);
         return Closest {
-            packet: shapes.closest(rays),
+            packet,
             hits: None,
             mesh: F::ZERO,
         };
@@ -112,8 +114,10 @@ pub(super) fn occluded<F: FloatLanes>(
         return F::ZERO;
     }
     if let Some(shapes) = &scene.shapes {
-        count(lanes, shapes.len(), tests);
-        return shapes.occluded(rays) & lanes;
+        let mut tested = F::Ints::splat(0);
+        let blocked = shapes.occluded(rays, &mut tested) & lanes;
+        count(lanes, tested, tests);
+        return blocked;
     }
     let mut blocked = [false; WIDTH];
     for (k, blocked) in blocked.iter_mut().enumerate() {
@@ -126,15 +130,16 @@ pub(super) fn occluded<F: FloatLanes>(
     mask_from(|k| blocked[k])
 }
 
-/// Counts one ray and `primitives` shape tests for every lane of `lanes`
-/// (a packet tests each ray against every primitive).
+/// Counts one ray and its lane of `tested` shape tests for every lane of
+/// `lanes`.
 #[inline(always)]
-fn count<F: FloatLanes>(lanes: F, primitives: usize, tests: &mut [u64; WIDTH]) {
+fn count<F: FloatLanes>(lanes: F, tested: F::Ints, tests: &mut [u64; WIDTH]) {
+    let tested = tested.to_array();
     for (k, tests) in tests.iter_mut().enumerate() {
         if lane_set(lanes, k) {
             count_ray();
-            count_shape_tests(primitives);
-            *tests += primitives as u64;
+            count_shape_tests(tested[k] as usize);
+            *tests += tested[k] as u64;
         }
     }
 }

@@ -10,6 +10,7 @@
 use super::{FloatLanes, Nearest, Rays, Vec3s, WIDTH, coordinate, gather3};
 use crate::shapes::Cuboid;
 use glam::Vec3;
+use std::ops::Range;
 
 /// One box's constants.
 #[derive(Clone, Copy, Debug)]
@@ -100,6 +101,12 @@ impl Boxes {
         self.items.len() as u32 - 1
     }
 
+    /// How many there are.
+    #[inline(always)]
+    pub(super) fn len(&self) -> usize {
+        self.items.len()
+    }
+
     /// The lanes whose ray hits `b` in (0, limit), and α there (anything
     /// elsewhere): `Cuboid::intersect_exact`'s operations lane by lane.
     #[inline(always)]
@@ -134,20 +141,31 @@ impl Boxes {
         )
     }
 
-    /// Takes each box's hits that are nearer than `nearest`'s.
+    /// Takes the hits of the boxes `range` (indices here) that are nearer
+    /// than `nearest`'s.
     #[inline(always)]
-    pub(super) fn closest<F: FloatLanes>(&self, rays: &Rays<F>, nearest: &mut Nearest<F>) {
-        for b in &self.items {
+    pub(super) fn closest<F: FloatLanes>(
+        &self,
+        rays: &Rays<F>,
+        range: Range<usize>,
+        nearest: &mut Nearest<F>,
+    ) {
+        for b in &self.items[range] {
             let (hit, alpha) = Self::hit(b, rays, nearest.limit);
             nearest.take(hit, alpha, b.object);
         }
     }
 
-    /// Adds the lanes some box blocks within t_max to `settled`; true as
-    /// soon as every lane is settled.
+    /// Adds the lanes some box of `range` blocks within t_max to
+    /// `settled`; true as soon as every lane is settled.
     #[inline(always)]
-    pub(super) fn occluded<F: FloatLanes>(&self, rays: &Rays<F>, settled: &mut F) -> bool {
-        for b in &self.items {
+    pub(super) fn occluded<F: FloatLanes>(
+        &self,
+        rays: &Rays<F>,
+        range: Range<usize>,
+        settled: &mut F,
+    ) -> bool {
+        for b in &self.items[range] {
             let (hit, _) = Self::hit(b, rays, rays.t_max);
             *settled = *settled | hit;
             if settled.all() {

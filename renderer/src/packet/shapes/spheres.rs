@@ -4,6 +4,7 @@
 use super::{FloatLanes, Nearest, Rays, Vec3s, WIDTH, gather, gather3};
 use crate::shapes::Sphere;
 use glam::Vec3;
+use std::ops::Range;
 
 /// One sphere's constants.
 #[derive(Clone, Copy, Debug)]
@@ -60,10 +61,10 @@ impl Spheres {
         self.items.len() as u32 - 1
     }
 
-    /// True when there are none.
+    /// How many there are.
     #[inline(always)]
-    pub(super) fn is_empty(&self) -> bool {
-        self.items.is_empty()
+    pub(super) fn len(&self) -> usize {
+        self.items.len()
     }
 
     /// The lanes whose ray hits `s` in (0, limit), and α there (anything
@@ -102,25 +103,32 @@ impl Spheres {
         )
     }
 
-    /// Takes each sphere's hits that are nearer than `nearest`'s.
+    /// Takes the hits of the spheres `range` (indices here) that are
+    /// nearer than `nearest`'s.
     #[inline(always)]
-    pub(super) fn closest<F: FloatLanes>(&self, r: &SphereRays<F>, nearest: &mut Nearest<F>) {
-        for s in &self.items {
+    pub(super) fn closest<F: FloatLanes>(
+        &self,
+        r: &SphereRays<F>,
+        range: Range<usize>,
+        nearest: &mut Nearest<F>,
+    ) {
+        for s in &self.items[range] {
             let (hit, alpha) = Self::hit(s, r, nearest.limit);
             nearest.take(hit, alpha, s.object);
         }
     }
 
-    /// Adds the lanes some sphere blocks within `t_max` to `settled`; true
-    /// as soon as every lane is settled.
+    /// Adds the lanes some sphere of `range` blocks within `t_max` to
+    /// `settled`; true as soon as every lane is settled.
     #[inline(always)]
     pub(super) fn occluded<F: FloatLanes>(
         &self,
         r: &SphereRays<F>,
+        range: Range<usize>,
         t_max: F,
         settled: &mut F,
     ) -> bool {
-        for s in &self.items {
+        for s in &self.items[range] {
             let (hit, _) = Self::hit(s, r, t_max);
             *settled = *settled | hit;
             if settled.all() {

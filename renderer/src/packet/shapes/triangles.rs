@@ -8,6 +8,7 @@
 use super::{FloatLanes, Nearest, Rays, Vec3s, WIDTH, gather3};
 use crate::shapes::Triangle;
 use glam::Vec3;
+use std::ops::Range;
 use wide::f64x4;
 
 /// How many f64 constants of a triangle its surface's 2×2 solve uses.
@@ -248,6 +249,12 @@ impl Triangles {
         self.items.is_empty()
     }
 
+    /// How many there are.
+    #[inline(always)]
+    pub(super) fn len(&self) -> usize {
+        self.items.len()
+    }
+
     /// The lanes whose ray hits `triangle` in (0, limit), and α there
     /// (anything elsewhere): `WatertightRay::hit`'s operations lane by lane,
     /// `permute` giving a corner in each lane's frame ([`SameAxes`] or
@@ -294,13 +301,20 @@ impl Triangles {
         (hit, alpha)
     }
 
-    /// Takes each triangle's hits that are nearer than `nearest`'s.
+    /// Takes the hits of the triangles `range` (indices here) that are
+    /// nearer than `nearest`'s.
     #[inline(always)]
-    pub(super) fn closest<F: FloatLanes>(&self, r: &ShearedRays<F>, nearest: &mut Nearest<F>) {
+    pub(super) fn closest<F: FloatLanes>(
+        &self,
+        r: &ShearedRays<F>,
+        range: Range<usize>,
+        nearest: &mut Nearest<F>,
+    ) {
+        let items = &self.items[range];
         match r.frame {
-            Frame::Same(k) => self.closest_in(r, SameAxes(k), nearest),
+            Frame::Same(k) => Self::closest_in(items, r, SameAxes(k), nearest),
             Frame::Mixed { from_x, from_y } => {
-                self.closest_in(r, MixedAxes { from_x, from_y }, nearest)
+                Self::closest_in(items, r, MixedAxes { from_x, from_y }, nearest)
             }
         }
     }
@@ -308,30 +322,32 @@ impl Triangles {
     /// [`Triangles::closest`] with the frame's permutation.
     #[inline(always)]
     fn closest_in<F: FloatLanes>(
-        &self,
+        items: &[PackedTriangle],
         r: &ShearedRays<F>,
         permute: impl Permutation<F>,
         nearest: &mut Nearest<F>,
     ) {
-        for triangle in &self.items {
+        for triangle in items {
             let (hit, alpha) = Self::hit(triangle, r, permute, nearest.limit);
             nearest.take(hit, alpha, triangle.object);
         }
     }
 
-    /// Adds the lanes some triangle blocks within `t_max` to `settled`;
-    /// true as soon as every lane is settled.
+    /// Adds the lanes some triangle of `range` blocks within `t_max` to
+    /// `settled`; true as soon as every lane is settled.
     #[inline(always)]
     pub(super) fn occluded<F: FloatLanes>(
         &self,
         r: &ShearedRays<F>,
+        range: Range<usize>,
         t_max: F,
         settled: &mut F,
     ) -> bool {
+        let items = &self.items[range];
         match r.frame {
-            Frame::Same(k) => self.occluded_in(r, SameAxes(k), t_max, settled),
+            Frame::Same(k) => Self::occluded_in(items, r, SameAxes(k), t_max, settled),
             Frame::Mixed { from_x, from_y } => {
-                self.occluded_in(r, MixedAxes { from_x, from_y }, t_max, settled)
+                Self::occluded_in(items, r, MixedAxes { from_x, from_y }, t_max, settled)
             }
         }
     }
@@ -339,13 +355,13 @@ impl Triangles {
     /// [`Triangles::occluded`] with the frame's permutation.
     #[inline(always)]
     fn occluded_in<F: FloatLanes>(
-        &self,
+        items: &[PackedTriangle],
         r: &ShearedRays<F>,
         permute: impl Permutation<F>,
         t_max: F,
         settled: &mut F,
     ) -> bool {
-        for triangle in &self.items {
+        for triangle in items {
             let (hit, _) = Self::hit(triangle, r, permute, t_max);
             *settled = *settled | hit;
             if settled.all() {
