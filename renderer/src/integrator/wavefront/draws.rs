@@ -8,7 +8,7 @@ use crate::integrator::sampler::{BounceDraw, Sampler};
 use crate::packet::{FloatLanes, Vec3s, WIDTH, lane_set};
 use crate::shading::bsdf::lambert::sample_cosine_hemisphere;
 use crate::world::World;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// Each lane's point drawn on an emitter, as seen from its shading point.
 pub(super) struct EmitterDraws<F> {
@@ -67,24 +67,37 @@ pub(super) fn emitter_draws<F: FloatLanes>(
 }
 
 /// For each lane of `lanes`, its BSDF sample's numbers at bounce `depth`:
-/// seeks to the bounce's scattering numbers, draws the lobe's number (a
-/// Lambertian surface has one lobe, but the draw keeps the stream's
-/// layout) and the direction, warped to a cosine-weighted local direction.
+/// seeks to the bounce's scattering numbers and draws the lobe's number
+/// and the direction's two.
 #[inline(always)]
 pub(super) fn scatter_draws<F: FloatLanes>(
     lanes: F,
     samplers: &mut [Sampler; WIDTH],
     depth: &[u32; WIDTH],
-) -> Vec3s<F> {
-    let mut wi = [Vec3::Z; WIDTH];
+) -> (F, [Vec2; WIDTH]) {
+    let mut u_lobe = [0.0f32; WIDTH];
+    let mut u = [Vec2::ZERO; WIDTH];
     for k in 0..WIDTH {
         if !lane_set(lanes, k) {
             continue;
         }
         let sampler = &mut samplers[k];
         sampler.seek_bounce(depth[k], BounceDraw::Scatter);
-        let _u_lobe = sampler.next_f32();
-        wi[k] = sample_cosine_hemisphere(sampler.next_2d());
+        u_lobe[k] = sampler.next_f32();
+        u[k] = sampler.next_2d();
+    }
+    (F::from_array(u_lobe), u)
+}
+
+/// For each lane of `lanes`, its numbers `u` warped to a cosine-weighted
+/// local direction (`z` along the normal).
+#[inline(always)]
+pub(super) fn cosine_warps<F: FloatLanes>(lanes: F, u: &[Vec2; WIDTH]) -> Vec3s<F> {
+    let mut wi = [Vec3::Z; WIDTH];
+    for k in 0..WIDTH {
+        if lane_set(lanes, k) {
+            wi[k] = sample_cosine_hemisphere(u[k]);
+        }
     }
     Vec3s::from_lanes(&wi)
 }

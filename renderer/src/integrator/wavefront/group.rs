@@ -1,10 +1,11 @@
 //! Eight paths in flight, one per lane, and one bounce of all of them.
 
-use super::draws::{dead_ray, emitter_draws, roulette_draws, scatter_draws};
+use super::delta::{dielectric_samples, fresnel_schlick, mirrored};
+use super::draws::{cosine_warps, dead_ray, emitter_draws, roulette_draws, scatter_draws};
 use super::handover::{Handover, Target};
 use super::lane_math::{Frame, offset_origins, power_heuristics};
 use super::paths::Paths;
-use super::scene::{ObjectTable, WavefrontScene};
+use super::scene::{LaneBsdf, ObjectTable, WavefrontScene};
 use super::tracing;
 use crate::integrator::lanes::{SampleRef, SampleResult, camera_sample};
 use crate::integrator::path::{RR_DEPTH, SHADOW_SHORTENING};
@@ -144,7 +145,7 @@ impl<F: FloatLanes> PathGroup<F> {
         let at = Surfaces::gather(&scene.objects, hit, hits.object);
         // Hits on materials the lanes do not shade, and on mesh triangles
         // (interpolated normals, textures), go to the scalar code.
-        let on_lanes = at.lambertian & !closest.mesh;
+        let on_lanes = at.on_lanes & !closest.mesh;
         let scalar = hit & !on_lanes;
         let hit = hit & on_lanes;
         self.handover
@@ -186,49 +187,74 @@ impl<F: FloatLanes> PathGroup<F> {
         let go = hit & !last;
 
         let frame = Frame::new(n);
-        // wo = frame.to_local(−v), of which a Lambertian lobe needs only z.
-        let wo_z = (-dir).dot(frame.n);
+        let wo = frame.to_local(-dir);
         let lambert = at.diffuse * F::splat(FRAC_1_PI);
         let above = offset_origins(point, n, at.magnitude);
+        // Lights are sampled where a lobe is not a delta: the Lambertian one.
+        let lit = go & at.diffuse.simd_gt(F::ZERO);
 
         // The light sample: a point drawn on the emitters, its BSDF value
         // and MIS weight, and the shadow ray toward it.
         let light = emitter_draws(
             world,
-            go,
+            lit,
             &mut self.paths.samplers,
             &self.paths.depth,
             point,
         );
         let toward = light.to_light.dot(n).simd_gt(F::ZERO);
         let wi_z = light.to_light.dot(frame.n);
-        let dark_side = wi_z.simd_le(F::ZERO) | wo_z.simd_le(F::ZERO);
-        let f = Vec3s::select(dark_side, Vec3s::ZERO, at.albedo * (lambert * wi_z));
+        let dark_side = wi_z.simd_le(F::ZERO) | wo.z.simd_le(F::ZERO);
+        let f = Vec3s::select(dark_side, Vec3s::ZERO, at.color * (lambert * wi_z));
         let bsdf_pdf = dark_side.select(
             F::ZERO,
             at.diffuse * (wi_z.max(F::ZERO) * F::splat(FRAC_1_PI)),
         );
         let mis = power_heuristics(light.pdf, bsdf_pdf);
-        let lit = f.mul_lanes(light.radiance) * (mis / light.pdf);
-        let shadowed = go & light.found & toward & f.nonzero();
+        let light_through = f.mul_lanes(light.radiance) * (mis / light.pdf);
+        let shadowed = lit & light.found & toward & f.nonzero();
         let lit_by = self.paths.throughput;
 
-        // The BSDF sample: a cosine-weighted direction, the throughput's
-        // weight f·cos/pdf, the next ray off the side it leaves by.
-        let wi = scatter_draws(go, &mut self.paths.samplers, &self.paths.depth);
-        let dark_side = wi.z.simd_le(F::ZERO) | wo_z.simd_le(F::ZERO);
-        let f_cos = Vec3s::select(dark_side, Vec3s::ZERO, at.albedo * (lambert * wi.z));
+        // The BSDF sample. A layered lane picks its mirror lobe when the
+        // lobe's number falls below the mirror's weight, else a
+        // cosine-weighted direction with weight f·cos/pdf; a conductor
+        // reflects, glass reflects or refracts.
+        let (u_lobe, u) = scatter_draws(go, &mut self.paths.samplers, &self.paths.depth);
+        let layered_mirror = go & at.layered & u_lobe.simd_lt(at.mirror);
+        let diffuse = go & at.layered & !layered_mirror;
+        let wi = cosine_warps(diffuse, &u);
+        let dark_side = wi.z.simd_le(F::ZERO) | wo.z.simd_le(F::ZERO);
+        let f_cos = Vec3s::select(dark_side, Vec3s::ZERO, at.color * (lambert * wi.z));
         let pdf = dark_side.select(
             F::ZERO,
             at.diffuse * (wi.z.max(F::ZERO) * F::splat(FRAC_1_PI)),
         );
-        let moving = go & pdf.simd_gt(F::ZERO);
+        let conductor = go & at.conductor;
+        let glass = go & at.dielectric;
+        let delta = layered_mirror | conductor | glass;
+        let mut wi = Vec3s::select(diffuse, wi, mirrored(wo));
+        let mut weight = Vec3s::select(diffuse, f_cos.div_lanes(pdf), Vec3s::splat(Vec3::ONE));
+        let mut radiance_scale = F::ONE;
+        if conductor.any() {
+            let tinted = Vec3s::select(at.schlick, fresnel_schlick(wo.z, at.color), at.color);
+            weight = Vec3s::select(conductor, tinted, weight);
+        }
+        if glass.any() {
+            let eta = front.select(at.eta.0, at.eta.1);
+            let sample = dielectric_samples(wo, eta, at.color, u_lobe);
+            wi = Vec3s::select(glass, sample.wi, wi);
+            weight = Vec3s::select(glass, sample.weight, weight);
+            radiance_scale = glass.select(sample.radiance_scale, radiance_scale);
+        }
+        let moving = (diffuse & pdf.simd_gt(F::ZERO)) | delta;
         let wi_world = frame.to_world(wi);
         let throughput = Vec3s::select(
             moving,
-            self.paths.throughput.mul_lanes(f_cos.div_lanes(pdf)),
+            self.paths.throughput.mul_lanes(weight),
             self.paths.throughput,
         );
+        self.paths.eta_scale =
+            moving.select(self.paths.eta_scale * radiance_scale, self.paths.eta_scale);
         let side = Vec3s::select(wi_world.dot(n).simd_ge(F::ZERO), n, -n);
         let origin = offset_origins(point, side, at.magnitude);
 
@@ -246,7 +272,8 @@ impl<F: FloatLanes> PathGroup<F> {
         self.paths.rays.t_max = going_on.select(F::splat(f32::INFINITY), F::ZERO);
         self.paths.previous_point = Vec3s::select(going_on, point, self.paths.previous_point);
         self.paths.previous_pdf = going_on.select(pdf, self.paths.previous_pdf);
-        self.paths.has_previous = going_on;
+        // After a delta lobe no light sample competes with what the ray hits.
+        self.paths.has_previous = going_on & !delta;
         for (k, depth) in self.paths.depth.iter_mut().enumerate() {
             if lane_set(going_on, k) {
                 *depth += 1;
@@ -263,9 +290,9 @@ impl<F: FloatLanes> PathGroup<F> {
             let s = light_samples(light, point);
             let toward = s.to_light.dot(n).simd_gt(F::ZERO);
             let wi_z = s.to_light.dot(frame.n);
-            let dark_side = wi_z.simd_le(F::ZERO) | wo_z.simd_le(F::ZERO);
-            let f = Vec3s::select(dark_side, Vec3s::ZERO, at.albedo * (lambert * wi_z));
-            let shadowed = go & s.found & toward & f.nonzero();
+            let dark_side = wi_z.simd_le(F::ZERO) | wo.z.simd_le(F::ZERO);
+            let f = Vec3s::select(dark_side, Vec3s::ZERO, at.color * (lambert * wi_z));
+            let shadowed = lit & s.found & toward & f.nonzero();
             let rays = Rays {
                 origin: above,
                 dir: s.to_light,
@@ -294,9 +321,9 @@ impl<F: FloatLanes> PathGroup<F> {
             traced,
             &mut self.shape_tests,
         );
-        let sum = sum + Vec3s::select(shadowed & !blocked, lit, Vec3s::ZERO);
+        let sum = sum + Vec3s::select(shadowed & !blocked, light_through, Vec3s::ZERO);
         self.paths.radiance = Vec3s::select(
-            go,
+            lit,
             self.paths.radiance + lit_by.mul_lanes(sum),
             self.paths.radiance,
         );
@@ -359,9 +386,24 @@ fn light_samples<F: FloatLanes>(light: &Light, point: Vec3s<F>) -> LightSamples<
 
 /// What the objects hit are made of, gathered lane by lane.
 struct Surfaces<F: FloatLanes> {
-    lambertian: F,
-    albedo: Vec3s<F>,
+    /// Lanes whose BSDF the lanes evaluate.
+    on_lanes: F,
+    /// Lanes with a layered BSDF (Lambertian and mirror lobes).
+    layered: F,
+    /// Lanes with a smooth conductor.
+    conductor: F,
+    /// Lanes whose conductor follows Schlick's approximation (metal).
+    schlick: F,
+    /// Lanes with smooth glass.
+    dielectric: F,
+    /// The material's colour.
+    color: Vec3s<F>,
+    /// The Lambertian lobe's weight.
     diffuse: F,
+    /// The mirror lobe's weight.
+    mirror: F,
+    /// Glass's η from outside and from inside.
+    eta: (F, F),
     emission: Vec3s<F>,
     emitter: [i32; WIDTH],
     magnitude: F,
@@ -389,10 +431,22 @@ impl<F: FloatLanes> Surfaces<F> {
                 column.get(id(k)).copied().unwrap_or(0.0)
             }))
         };
+        let bsdf: [LaneBsdf; WIDTH] =
+            std::array::from_fn(|k| table.bsdf.get(id(k)).copied().unwrap_or_default());
+        let eta_front: [f32; WIDTH] =
+            std::array::from_fn(|k| table.eta.get(id(k)).map_or(1.0, |e| e.0));
+        let eta_back: [f32; WIDTH] =
+            std::array::from_fn(|k| table.eta.get(id(k)).map_or(1.0, |e| e.1));
         Self {
-            lambertian: mask_from(|k| table.lambertian.get(id(k)).copied().unwrap_or(false)),
-            albedo: vec3s(&table.albedo),
+            on_lanes: mask_from(|k| bsdf[k] != LaneBsdf::Scalar),
+            layered: mask_from(|k| bsdf[k] == LaneBsdf::Layered),
+            conductor: mask_from(|k| matches!(bsdf[k], LaneBsdf::Conductor { .. })),
+            schlick: mask_from(|k| bsdf[k] == LaneBsdf::Conductor { schlick: true }),
+            dielectric: mask_from(|k| bsdf[k] == LaneBsdf::Dielectric),
+            color: vec3s(&table.color),
             diffuse: floats(&table.diffuse),
+            mirror: floats(&table.mirror),
+            eta: (F::from_array(eta_front), F::from_array(eta_back)),
             emission: vec3s(&table.emission),
             emitter: std::array::from_fn(|k| table.emitter.get(id(k)).copied().unwrap_or(-1)),
             magnitude: floats(&table.magnitude),

@@ -30,6 +30,12 @@ impl<F: FloatLanes> Frame<F> {
         Self { s, t, n }
     }
 
+    /// World directions → local coordinates (`ShadingFrame::to_local`).
+    #[inline(always)]
+    pub(super) fn to_local(self, v: Vec3s<F>) -> Vec3s<F> {
+        Vec3s::new(v.dot(self.s), v.dot(self.t), v.dot(self.n))
+    }
+
     /// Local coordinates → world directions (`ShadingFrame::to_world`).
     #[inline(always)]
     pub(super) fn to_world(self, v: Vec3s<F>) -> Vec3s<F> {

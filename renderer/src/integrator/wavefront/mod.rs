@@ -12,15 +12,18 @@
 //! lane, sees exactly the film's sample — and a test holds it to that over
 //! every pixel of the scenes it covers.
 //!
-//! Rays are tested in packets against every primitive of small worlds of
-//! lone triangles, boxes and spheres ([`crate::packet::PacketShapes`]),
-//! else traced lane by lane through the world's BVH (`tracing.rs`).
-//! Lambertian hits on analytic shapes are shaded on lanes, point and
-//! directional lights included; any other hit is shaded by the scalar
-//! `PathLane` itself (`handover.rs`). The film uses the wavefront where its
-//! rays go in packets (`trace_samples.rs` says why: lane by lane through a
-//! BVH it measured slower than the scalar lanes).
+//! Rays are tested in packets in worlds of lone triangles, boxes and
+//! spheres ([`crate::packet::PacketShapes`]: against every primitive, or
+//! through a tree), else traced lane by lane through the world's BVH
+//! (`tracing.rs`). Hits on analytic shapes with smooth lobes are shaded on
+//! lanes: Lambertian with a mirror lobe (point and directional lights
+//! included), mirror, metal and glass (`delta.rs`); any other hit (a
+//! highlight, rough microfacets, marble, a mesh triangle) is shaded by the
+//! scalar `PathLane` itself (`handover.rs`). The film uses the wavefront
+//! where its rays go in packets (`trace_samples.rs` says why: lane by lane
+//! through a BVH it measured slower than the scalar lanes).
 
+mod delta;
 mod draws;
 mod group;
 mod handover;

@@ -7,17 +7,41 @@ use crate::world::{Hit, World};
 use glam::Vec3;
 use scene::BaseMaterial;
 
+/// Which BSDF the lanes evaluate for an object (`Bsdf` without the
+/// per-hit parts), or none.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) enum LaneBsdf {
+    /// None: a hit on it is shaded by the scalar path tracer's code.
+    #[default]
+    Scalar,
+    /// A Lambertian lobe and a mirror lobe (matte, or plastic without a
+    /// highlight; no texture).
+    Layered,
+    /// A smooth conductor (mirror, or metal with Schlick's tint toward
+    /// white at grazing angles when `schlick`).
+    Conductor {
+        /// Whether the reflectance follows Schlick's approximation.
+        schlick: bool,
+    },
+    /// Smooth glass.
+    Dielectric,
+}
+
 /// Per object, what shading a hit on it takes (gathered lane by lane by the
 /// object id hit).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct ObjectTable {
-    /// Whether the object's material is plainly Lambertian, which the lanes
-    /// shade; a hit on any other is shaded by the scalar path tracer's code.
-    pub(crate) lambertian: Vec<bool>,
-    /// The Lambertian albedo (the material's colour).
-    pub(crate) albedo: Vec<Vec3>,
-    /// The weight of the Lambertian lobe.
+    /// What the lanes evaluate.
+    pub(crate) bsdf: Vec<LaneBsdf>,
+    /// The material's colour: a layered albedo, a conductor's reflectance
+    /// f0, glass's tint.
+    pub(crate) color: Vec<Vec3>,
+    /// The weight of a layered BSDF's Lambertian lobe.
     pub(crate) diffuse: Vec<f32>,
+    /// The weight of a layered BSDF's mirror lobe.
+    pub(crate) mirror: Vec<f32>,
+    /// Glass's η met from outside (1 / ior) and from inside (ior).
+    pub(crate) eta: Vec<(f32, f32)>,
     /// The radiance the front side emits (zero for most).
     pub(crate) emission: Vec<Vec3>,
     /// The object's index among the world's emitters, −1 when it is none.
@@ -39,10 +63,10 @@ pub(crate) struct WavefrontScene {
 
 impl WavefrontScene {
     /// The wavefront view of `world` traced with the formulas of `method`.
-    /// Every world is covered: plain Lambertian hits on analytic shapes are
-    /// shaded on lanes, the others (a highlight, a mirror lobe, marble's
-    /// texture, conductors, glass, mesh triangles) by the scalar code, lane
-    /// by lane; rays are tested in packets when the world allows it
+    /// Every world is covered: hits on analytic shapes with smooth lobes
+    /// ([`LaneBsdf`]) are shaded on lanes, the others (a highlight, rough
+    /// microfacets, marble's texture, mesh triangles) by the scalar code,
+    /// lane by lane; rays are tested in packets when the world allows it
     /// ([`WavefrontScene::with_packets`]), else lane by lane through its BVH.
     /// Only the tests trace worlds without packets with it, for now: the
     /// film keeps the scalar lanes there (`trace_samples.rs` says why).
@@ -81,24 +105,36 @@ impl ObjectTable {
     fn new(world: &World) -> Self {
         let mut objects = ObjectTable::default();
         for (id, material) in world.materials.iter().enumerate() {
-            // A plain Lambertian lobe: no highlight, no mirror, no texture.
-            let diffuse = match *world.prepared_bsdf(id as u32) {
+            // Smooth lobes only (no highlight, no rough microfacets), no texture.
+            let (bsdf, diffuse, mirror, eta) = match *world.prepared_bsdf(id as u32) {
                 PreparedBsdf::Layered {
                     diffuse,
                     glossy: 0.0,
-                    mirror: 0.0,
+                    mirror,
                     ..
-                } if diffuse > 0.0 && material.base != BaseMaterial::Marble => Some(diffuse),
-                _ => None,
+                } if material.base != BaseMaterial::Marble => {
+                    (LaneBsdf::Layered, diffuse, mirror, (1.0, 1.0))
+                }
+                PreparedBsdf::Conductor { schlick, ggx: None } => {
+                    (LaneBsdf::Conductor { schlick }, 0.0, 0.0, (1.0, 1.0))
+                }
+                PreparedBsdf::Dielectric {
+                    eta_front,
+                    eta_back,
+                    ggx: None,
+                } => (LaneBsdf::Dielectric, 0.0, 0.0, (eta_front, eta_back)),
+                _ => (LaneBsdf::Scalar, 0.0, 0.0, (1.0, 1.0)),
             };
             let hit = Hit {
                 object: id as u32,
                 alpha: 0.0,
                 triangle: None,
             };
-            objects.lambertian.push(diffuse.is_some());
-            objects.albedo.push(material.color);
-            objects.diffuse.push(diffuse.unwrap_or(0.0));
+            objects.bsdf.push(bsdf);
+            objects.color.push(material.color);
+            objects.diffuse.push(diffuse);
+            objects.mirror.push(mirror);
+            objects.eta.push(eta);
             objects.emission.push(material.emission);
             objects.emitter.push(
                 world

@@ -100,9 +100,17 @@ impl<F: FloatLanes> BoxRays<F> {
             y: F::ONE / rays.dir.y,
             z: F::ONE / rays.dir.z,
         };
-        let negative = [0, 1, 2].map(|axis| coordinate(&inv_dir, axis).is_sign_negative());
+        // (Written out: a closure through `array::map` is not inlined into
+        // the caller's SIMD instruction set, and its lane operations then
+        // run as calls.)
+        let negative = [
+            inv_dir.x.is_sign_negative(),
+            inv_dir.y.is_sign_negative(),
+            inv_dir.z.is_sign_negative(),
+        ];
         let live_count = live.to_bitmask().count_ones();
-        let high_first = negative.map(|n| 2 * (n & live).to_bitmask().count_ones() > live_count);
+        let most = |n: F| 2 * (n & live).to_bitmask().count_ones() > live_count;
+        let high_first = [most(negative[0]), most(negative[1]), most(negative[2])];
         Self {
             origin: rays.origin,
             inv_dir,
