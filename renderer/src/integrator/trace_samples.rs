@@ -12,7 +12,10 @@ use super::path::PathLane;
 use super::wavefront::{WavefrontScene, trace_wavefront};
 use super::{Integrator, RenderOptions, sample_pixel};
 use crate::geometry::counters::shape_tests_on_this_thread;
+use crate::shapes::Method;
 use crate::world::World;
+use std::cell::RefCell;
+use std::rc::Rc;
 
 /// Traces every sample of `samples` with the integrator of `options` and
 /// writes each one's result to `results` (same length).
@@ -29,10 +32,28 @@ pub fn trace_samples(
 /// faster: when its rays are tested in packets. Traced lane by lane through
 /// the world's BVH, it computes the same samples but measured slower than
 /// the scalar lanes (320×240, 16 spp, 2 threads: spheres.xml 0.52 against
-/// 0.46 s, seed.xml 0.62 against 0.48 s), so those worlds keep them until
-/// packets traverse the BVH.
-fn wavefront_scene(world: &World, options: &RenderOptions) -> Option<WavefrontScene> {
-    WavefrontScene::with_packets(world, options.method)
+/// 0.46 s, seed.xml 0.62 against 0.48 s), so those worlds keep them.
+///
+/// Built once per world, method and thread, not per call: the film calls
+/// once per chunk of a pass, and building the tree of spheres.xml's 102
+/// primitives every time took 3% of its render.
+fn wavefront_scene(world: &World, options: &RenderOptions) -> Rc<Option<WavefrontScene>> {
+    /// A world's view: its id, the method, the view (`None`: no packets).
+    type Keyed = (u64, Method, Rc<Option<WavefrontScene>>);
+    thread_local! {
+        /// This thread's view of the last world it traced.
+        static LAST: RefCell<Option<Keyed>> = const { RefCell::new(None) };
+    }
+    LAST.with_borrow_mut(|last| match last {
+        Some((id, method, scene)) if *id == world.id() && *method == options.method => {
+            scene.clone()
+        }
+        _ => {
+            let scene = Rc::new(WavefrontScene::with_packets(world, options.method));
+            *last = Some((world.id(), options.method, scene.clone()));
+            scene
+        }
+    })
 }
 
 /// The most memory [`trace_samples`] holds at once for the path tracer's
@@ -51,8 +72,8 @@ pub fn trace_samples_batched(
     results: &mut [SampleResult],
 ) {
     match options.integrator {
-        Integrator::Path => match wavefront_scene(world, options) {
-            Some(scene) => trace_wavefront(world, &scene, options, samples, results),
+        Integrator::Path => match &*wavefront_scene(world, options) {
+            Some(scene) => trace_wavefront(world, scene, options, samples, results),
             None => trace_lanes::<PathLane<()>>(world, options, samples, batch, results),
         },
         Integrator::Whitted => {

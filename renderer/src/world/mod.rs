@@ -107,9 +107,18 @@ pub struct World {
     /// Per analytic object, the box the top level holds it in (padded for
     /// the rounding of its test); `None` for planes and models.
     shape_bounds: Vec<Option<Aabb>>,
+    /// Which [`World::new`] built it (see [`World::id`]).
+    id: u64,
 }
 
 impl World {
+    /// A number no other world built in this process has (a clone keeps
+    /// it: a world is never edited): what the renderer keys what it
+    /// derives from a world by, so it is derived once per world.
+    pub fn id(&self) -> u64 {
+        self.id
+    }
+
     /// The box around every hit point the analytic object `object`'s test
     /// can report (its bounds padded for rounding, as the top-level BVH
     /// holds it); `None` for an infinite plane or a model.

@@ -188,6 +188,31 @@ fn every_material_matches_lanes_and_handed_over_alike() {
 }
 
 #[test]
+fn emitters_seen_through_mirrors_metal_and_glass_match_too() {
+    // A mirror wall, a metal box, glass spheres (one inside another's
+    // view) and a partly reflective floor, all facing a wide emitter
+    // behind the camera: most paths reach it through a delta lobe, where
+    // no light sample competes (MIS weight 1), and some refract twice.
+    let world = world_from(
+        r#"<scene>
+  <camera eye="0 0.5 5" toward="0 -0.1 -1" up="0 1 0" theta="30" width="18" height="14"/>
+  <triangle t0="-4 -1 -2" t1="4 -1 -2" t2="4 4 -2" material="mirror" color="0.9 0.9 0.8"/>
+  <triangle t0="-4 -1 -2" t1="4 4 -2" t2="-4 4 -2" material="mirror" color="0.9 0.9 0.8"/>
+  <box center="-1.6 0 0" size="0.8 0.8 0.8" rotate="0 30 0" material="metal" color="0.95 0.64 0.54"/>
+  <sphere center="0.2 0.1 0" radius="0.7" material="glass" ior="1.5" color="0.95 0.9 0.8"/>
+  <sphere center="1.7 -0.3 0.8" radius="0.5" material="glass" ior="1.33"/>
+  <triangle t0="-6 -1 6" t1="6 -1 6" t2="6 -1 -6" material="matte" color="0.6 0.6 0.6" reflectivity="0.5"/>
+  <triangle t0="-6 -1 6" t1="6 -1 -6" t2="-6 -1 -6" material="matte" color="0.6 0.6 0.6" reflectivity="0.5"/>
+  <triangle t0="-5 -1 7" t1="5 5 7" t2="5 -1 7" material="matte" emission="3 3 3"/>
+  <triangle t0="-5 -1 7" t1="-5 5 7" t2="5 5 7" material="matte" emission="3 3 3"/>
+</scene>"#,
+        18,
+        14,
+    );
+    assert_every_pixel_matches(&world, &[(12, 4), (3, 8)], 3);
+}
+
+#[test]
 fn other_shapes_through_the_bvh_and_big_worlds_through_the_tree_match_too() {
     // Cylinders, cones, tori and planes have no packet test: their rays go
     // through the world's BVH, lane by lane; so does every shape under the
@@ -319,4 +344,48 @@ fn mesh_hits_handed_to_the_scalar_code_match_too() {
     let world = World::from_scene(&scene).expect("valid");
     assert!(world.triangle_count() > 0, "the model is in the world");
     assert_every_pixel_matches(&world, &[(8, 21)], 2);
+}
+
+#[test]
+fn the_film_traces_each_new_world_with_its_own_view() {
+    // Each thread keeps the wavefront view of the last world it traced
+    // (`trace_samples.rs`): alternating between two worlds of the same
+    // shapes but other materials, and between the two methods, every call
+    // must still trace the world it is given.
+    let scene = |color: &str| {
+        format!(
+            r#"<scene>
+  <camera eye="0 0 4" toward="0 0 -1" up="0 1 0" theta="30" width="8" height="6"/>
+  <sphere center="0 0 0" radius="1" material="matte" color="{color}"/>
+  <triangle t0="-3 2 -3" t1="3 2 -3" t2="0 2 3" material="matte" emission="4 4 4"/>
+  <triangle t0="-3 -1 3" t1="3 -1 3" t2="0 -1 -3" material="matte" color="0.5 0.5 0.5"/>
+</scene>"#
+        )
+    };
+    let red = world_from(&scene("0.9 0.1 0.1"), 8, 6);
+    let blue = world_from(&scene("0.1 0.1 0.9"), 8, 6);
+    assert_ne!(red.id(), blue.id(), "two worlds, two ids");
+    assert_eq!(red.clone().id(), red.id(), "a clone is the same world");
+    let samples = all_samples(8, 6, 2);
+    for (world, method) in [
+        (&red, Method::Robust),
+        (&blue, Method::Robust),
+        (&blue, Method::Lecture),
+        (&red, Method::Robust),
+    ] {
+        let options = RenderOptions {
+            method,
+            ..path_options(Sampling::Sobol, 6, 1)
+        };
+        let mut results = vec![SampleResult::default(); samples.len()];
+        crate::integrator::trace_samples(world, &options, &samples, &mut results);
+        for (s, result) in samples.iter().zip(&results) {
+            let scalar = sample_pixel(world, &options, s.i, s.j, s.sample);
+            assert_eq!(
+                result.radiance.to_array().map(f32::to_bits),
+                scalar.to_array().map(f32::to_bits),
+                "{method:?} sample {s:?}"
+            );
+        }
+    }
 }
