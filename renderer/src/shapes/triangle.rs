@@ -369,6 +369,16 @@ pub struct TriangleSampler {
 }
 
 impl TriangleSampler {
+    /// t0, t1 − t0 and t2 − t0: a drawn point is t0 + b (t1 − t0) + c (t2 − t0).
+    pub fn corner_and_edges(&self) -> [Vec3; 3] {
+        [self.t0, self.v1, self.v2]
+    }
+
+    /// The unit normal (t1 − t0) × (t2 − t0) / ‖…‖.
+    pub fn normal(&self) -> Vec3 {
+        self.normal
+    }
+
     /// The point drawn from `u` ∈ [0, 1)² (barycentrics from the unit square
     /// folded along its diagonal), with the normal and density.
     #[inline]

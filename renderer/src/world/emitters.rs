@@ -175,14 +175,28 @@ impl Emitters {
         Some(index as usize)
     }
 
+    /// The emitter `u_select` chooses (what [`Emitters::sample`] draws
+    /// first) and the probability of choosing it; `None` when that is not
+    /// positive.
+    #[inline]
+    pub fn choose(&self, u_select: f32) -> Option<(usize, f32)> {
+        let index = self.choice.as_ref()?.sample(u_select);
+        let pmf = self.pmf[index];
+        (pmf > 0.0).then_some((index, pmf))
+    }
+
+    /// Emitter `index` when it is a triangle, prepared for drawing points
+    /// (as [`Emitters::sample`] draws them), with its radiance.
+    #[inline]
+    pub fn triangle(&self, index: usize) -> Option<(&TriangleSampler, Vec3)> {
+        let triangle = self.triangles.get(index)?.as_ref()?;
+        Some((triangle, self.emitters[index].radiance))
+    }
+
     /// Draws an emitter with `u_select` and a point on it with `u`, as seen
     /// from `from`; `None` when nothing can be drawn.
     pub fn sample(&self, from: Vec3, u_select: f32, u: Vec2) -> Option<EmitterSample> {
-        let index = self.choice.as_ref()?.sample(u_select);
-        let pmf = self.pmf[index];
-        if !(pmf > 0.0) {
-            return None;
-        }
+        let (index, pmf) = self.choose(u_select)?;
         let emitter = &self.emitters[index];
         if let Shape::Sphere(sphere) = emitter.shape
             && let Some(cone) = SphereCone::new(from, sphere.center, sphere.radius)

@@ -5,7 +5,7 @@
 
 use crate::geometry::ray::Ray;
 use crate::integrator::sampler::{BounceDraw, Sampler};
-use crate::packet::{FloatLanes, Vec3s, WIDTH, lane_set};
+use crate::packet::{FloatLanes, Vec3s, WIDTH, lane_set, mask_from};
 use crate::shading::bsdf::lambert::sample_cosine_hemisphere;
 use crate::world::World;
 use glam::{Vec2, Vec3};
@@ -26,8 +26,9 @@ pub(super) struct EmitterDraws<F> {
 
 /// For each lane of `lanes`, its light sample at bounce `depth`: seeks its
 /// stream to the bounce's light numbers, draws which emitter and where
-/// (three numbers), and asks the world's emitters for that point as seen
-/// from `point`.
+/// (three numbers), and the point on it as seen from `point`. Triangles
+/// are drawn on lanes, with `Emitters::sample`'s arithmetic; other shapes
+/// (a sphere's cone of directions) by `Emitters::sample` itself.
 #[inline(always)]
 pub(super) fn emitter_draws<F: FloatLanes>(
     world: &World,
@@ -36,11 +37,23 @@ pub(super) fn emitter_draws<F: FloatLanes>(
     depth: &[u32; WIDTH],
     point: Vec3s<F>,
 ) -> EmitterDraws<F> {
-    let mut found = [0.0f32; WIDTH];
+    let emitters = &world.emitters;
+    // Lanes done by `Emitters::sample`, with its results.
+    let mut scalar = [false; WIDTH];
+    let mut found = [false; WIDTH];
     let mut to_light = [Vec3::X; WIDTH];
     let mut distance = [0.0f32; WIDTH];
     let mut radiance = [Vec3::ZERO; WIDTH];
     let mut pdf = [1.0f32; WIDTH];
+    // Lanes that drew a triangle: its corner t0, edges, normal, the
+    // probability of the point (pmf · 1/area) and the two numbers.
+    let mut on_triangle = [false; WIDTH];
+    let mut corner = [Vec3::ZERO; WIDTH];
+    let mut edge1 = [Vec3::ZERO; WIDTH];
+    let mut edge2 = [Vec3::ZERO; WIDTH];
+    let mut normal = [Vec3::Z; WIDTH];
+    let (mut pmf, mut pdf_area) = ([0.0f32; WIDTH], [0.0f32; WIDTH]);
+    let mut u = [Vec2::ZERO; WIDTH];
     for k in 0..WIDTH {
         if !lane_set(lanes, k) {
             continue;
@@ -48,22 +61,65 @@ pub(super) fn emitter_draws<F: FloatLanes>(
         let sampler = &mut samplers[k];
         sampler.seek_bounce(depth[k], BounceDraw::Light);
         let u_select = sampler.next_f32();
-        let u = sampler.next_2d();
-        if let Some(s) = world.emitters.sample(point.lane(k), u_select, u) {
-            found[k] = 1.0;
+        u[k] = sampler.next_2d();
+        let Some((index, p)) = emitters.choose(u_select) else {
+            continue;
+        };
+        if let Some((triangle, emitted)) = emitters.triangle(index) {
+            on_triangle[k] = true;
+            [corner[k], edge1[k], edge2[k]] = triangle.corner_and_edges();
+            normal[k] = triangle.normal();
+            (pmf[k], pdf_area[k]) = (p, triangle.pdf_area);
+            radiance[k] = emitted;
+            continue;
+        }
+        scalar[k] = true;
+        if let Some(s) = emitters.sample(point.lane(k), u_select, u[k]) {
+            found[k] = true;
             to_light[k] = s.to_light;
             distance[k] = s.distance;
             radiance[k] = s.radiance;
             pdf[k] = s.pdf;
         }
     }
-    EmitterDraws {
-        found: F::from_array(found).simd_gt(F::ZERO),
+    let scalar = mask_from::<F>(|k| scalar[k]);
+    let scalar_found = mask_from::<F>(|k| found[k]);
+    let on_triangle = mask_from::<F>(|k| on_triangle[k]);
+    let mut draws = EmitterDraws {
+        found: scalar_found,
         to_light: Vec3s::from_lanes(&to_light),
         distance: F::from_array(distance),
         radiance: Vec3s::from_lanes(&radiance),
         pdf: F::from_array(pdf),
+    };
+    if !on_triangle.any() {
+        return draws;
     }
+    // `TriangleSampler::sample`: barycentrics from the square folded along
+    // its diagonal, the point t0 + b v1 + c v2.
+    let (mut ux, mut uy) = ([0.0f32; WIDTH], [0.0f32; WIDTH]);
+    for k in 0..WIDTH {
+        (ux[k], uy[k]) = (u[k].x, u[k].y);
+    }
+    let (ux, uy) = (F::from_array(ux), F::from_array(uy));
+    let fold = (ux + uy).simd_gt(F::ONE);
+    let b = fold.select(F::ONE - ux, ux);
+    let c = fold.select(F::ONE - uy, uy);
+    let on =
+        Vec3s::from_lanes(&corner) + Vec3s::from_lanes(&edge1) * b + Vec3s::from_lanes(&edge2) * c;
+    // The rest of `Emitters::sample` for an area sample.
+    let to = on - point;
+    let distance_sq = to.length_squared();
+    let distance = distance_sq.sqrt();
+    let to_light = to.div_lanes(distance);
+    let cos_light = -to_light.dot(Vec3s::from_lanes(&normal));
+    let pdf = F::from_array(pmf) * F::from_array(pdf_area) * distance_sq / cos_light;
+    let drawn = on_triangle & distance_sq.simd_gt(F::ZERO) & cos_light.simd_gt(F::ZERO);
+    draws.found = scalar_found | drawn;
+    draws.to_light = Vec3s::select(scalar, draws.to_light, to_light);
+    draws.distance = scalar.select(draws.distance, distance);
+    draws.pdf = scalar.select(draws.pdf, pdf);
+    draws
 }
 
 /// For each lane of `lanes`, its BSDF sample's numbers at bounce `depth`:
