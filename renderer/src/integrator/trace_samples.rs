@@ -31,11 +31,12 @@ pub fn trace_samples(
 /// The wavefront view of `world` when the wavefront path tracer is the
 /// faster: when its rays are tested in packets. Traced lane by lane through
 /// the world's BVH, it computes the same samples but measured slower than
-/// the scalar lanes (320×240, 16 spp, 2 threads: spheres.xml 0.52 against
-/// 0.46 s, seed.xml 0.62 against 0.48 s), so those worlds keep them.
+/// the scalar lanes (320×240, 16 spp, 2 threads: seed.xml 0.62 against
+/// 0.48 s; spheres.xml 0.52 against 0.46 s before its shapes went into
+/// packets), so those worlds keep them.
 ///
 /// Built once per world, method and thread, not per call: the film calls
-/// once per chunk of a pass, and building the tree of spheres.xml's 102
+/// once per chunk of a pass, and building the tree of spheres.xml's 104
 /// primitives every time took 3% of its render.
 fn wavefront_scene(world: &World, options: &RenderOptions) -> Rc<Option<WavefrontScene>> {
     /// A world's view: its id, the method, the view (`None`: no packets).

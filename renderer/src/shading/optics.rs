@@ -37,7 +37,11 @@ pub fn fresnel_dielectric(cos_i: f32, eta: f32) -> f32 {
 
 /// Schlick's approximation of a conductor's reflectance, tinted by `f0`.
 pub fn fresnel_schlick(cos_i: f32, f0: Vec3) -> Vec3 {
-    let m = (1.0 - cos_i.clamp(0.0, 1.0)).powi(5);
+    // (1 − cos)⁵ as x · (x²)², written out (what `powi(5)` compiles to) so
+    // that the wavefront's lanes can form it the same way, bit for bit.
+    let x = 1.0 - cos_i.clamp(0.0, 1.0);
+    let x2 = x * x;
+    let m = x * (x2 * x2);
     f0 + (Vec3::ONE - f0) * m
 }
 

@@ -21,9 +21,6 @@ use std::sync::Arc;
 /// box is still found.
 const BOX_PADDING: f32 = 1.0e-3;
 
-/// The id of the next world built ([`World::id`]).
-static NEXT_ID: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
-
 impl World {
     /// Resolves `scene`'s defaults and prepares it.
     pub fn from_scene(scene: &Scene) -> Result<World, RenderError> {
@@ -131,7 +128,7 @@ impl World {
             unbounded,
             magnitudes,
             shape_bounds,
-            id: NEXT_ID.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
+            id: super::WorldId::fresh(),
         })
     }
 }

@@ -107,16 +107,36 @@ pub struct World {
     /// Per analytic object, the box the top level holds it in (padded for
     /// the rounding of its test); `None` for planes and models.
     shape_bounds: Vec<Option<Aabb>>,
-    /// Which [`World::new`] built it (see [`World::id`]).
-    id: u64,
+    /// Its own number (see [`World::id`]).
+    id: WorldId,
+}
+
+/// A number no other world in this process has: drawn when a world is
+/// built, and drawn afresh for a clone (which may then be changed through
+/// its public fields without being taken for the original).
+#[derive(Debug)]
+struct WorldId(u64);
+
+impl WorldId {
+    /// A number not handed out before.
+    fn fresh() -> Self {
+        static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+        WorldId(NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed))
+    }
+}
+
+impl Clone for WorldId {
+    fn clone(&self) -> Self {
+        WorldId::fresh()
+    }
 }
 
 impl World {
-    /// A number no other world built in this process has (a clone keeps
-    /// it: a world is never edited): what the renderer keys what it
-    /// derives from a world by, so it is derived once per world.
+    /// A number no other world in this process has, a clone included:
+    /// what the renderer keys what it derives from a world by, so that it
+    /// is derived once per world.
     pub fn id(&self) -> u64 {
-        self.id
+        self.id.0
     }
 
     /// The box around every hit point the analytic object `object`'s test

@@ -32,8 +32,8 @@ fn clamp_unit<F: FloatLanes>(x: F) -> F {
     x.simd_gt(F::ONE).select(F::ONE, x)
 }
 
-/// `fresnel_schlick(cos, f0)`: f0 + (1 − f0) m with m = (1 − clamp(cos))⁵,
-/// the fifth power formed as `powi(5)` forms it, x · (x²)².
+/// `optics::fresnel_schlick(cos, f0)`: f0 + (1 − f0) m with
+/// m = (1 − clamp(cos))⁵ formed as x · (x²)².
 #[inline(always)]
 pub(super) fn fresnel_schlick<F: FloatLanes>(cos: F, f0: Vec3s<F>) -> Vec3s<F> {
     let x = F::ONE - clamp_unit(cos);

@@ -53,9 +53,9 @@ pub(crate) struct ObjectTable {
 
 /// A world as the wavefront path tracer sees it.
 pub(crate) struct WavefrontScene {
-    /// Every primitive, for packet tests, when the world is a few lone
-    /// triangles, boxes and spheres (robust formulas); `None`: each lane's
-    /// rays go through the world's BVH.
+    /// Every primitive, for packet tests, when the world is lone triangles,
+    /// boxes and spheres, at most [`PacketShapes::MAX_PRIMITIVES`] (robust
+    /// formulas); `None`: each lane's rays go through the world's BVH.
     pub(crate) shapes: Option<PacketShapes>,
     /// Shading data by object id.
     pub(crate) objects: ObjectTable,
@@ -79,8 +79,9 @@ impl WavefrontScene {
     }
 
     /// The wavefront view of `world` when its rays can be tested in
-    /// packets: a few lone triangles, boxes and spheres and the robust
-    /// formulas. Asks that first, so a big world costs next to nothing.
+    /// packets: lone triangles, boxes and spheres (at most
+    /// [`PacketShapes::MAX_PRIMITIVES`]) and the robust formulas. Asks that
+    /// first, so a world without packets costs next to nothing.
     pub(crate) fn with_packets(world: &World, method: Method) -> Option<Self> {
         let shapes = packet_shapes(world, method)?;
         Some(Self {

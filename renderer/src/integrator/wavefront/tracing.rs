@@ -1,6 +1,6 @@
-//! A group's ray queries: packets tested against every primitive when the
-//! world is small and made of lone triangles, boxes and spheres
-//! ([`PacketShapes`]), else each lane's ray traced through the world's BVH
+//! A group's ray queries: packets tested against the primitives of a world
+//! of lone triangles, boxes and spheres ([`PacketShapes`]: every primitive,
+//! or those a tree lets through), else each lane's ray traced through the world's BVH
 //! (`World::intersect` and `World::occluded`, the scalar path tracer's own
 //! queries). Either way a lane's hit is the scalar one bit for bit.
 
@@ -39,7 +39,8 @@ impl<F: FloatLanes> Closest<F> {
 }
 
 /// The closest hits of the lanes `live` of `rays`, counting rays and shape
-/// tests (per lane into `tests`) as the scalar queries do.
+/// tests (per lane into `tests`): the primitives a packet tested each lane
+/// against, or what the scalar query counts.
 #[inline(always)]
 pub(super) fn closest<F: FloatLanes>(
     world: &World,

@@ -128,7 +128,7 @@ impl PacketShapes {
     /// Up to this many primitives, every packet tests every primitive:
     /// below it the tree's box tests cost more than the primitives they
     /// skip (path-traced Cornell box, 14 primitives: 17% slower through a
-    /// tree; spheres.xml, 102: twice as fast).
+    /// tree; spheres.xml, 104: twice as fast).
     pub const BRUTE_FORCE_MAX: usize = 20;
 
     /// The most primitives [`PacketShapes::new`] accepts. A packet walks
@@ -140,8 +140,10 @@ impl PacketShapes {
     pub const MAX_PRIMITIVES: usize = 512;
 
     /// `None` when `world` holds anything else (a model/mesh, an unbounded
-    /// plane, a cylinder, cone, torus, ...) or more than
-    /// [`PacketShapes::MAX_PRIMITIVES`] primitives.
+    /// plane, a cylinder, cone, torus, ...), more than
+    /// [`PacketShapes::MAX_PRIMITIVES`] primitives, or primitives so
+    /// unevenly spread that their tree would be deeper than its walk's stack
+    /// (64 levels); such worlds are traced by the scalar lanes.
     pub fn new(world: &World) -> Option<Self> {
         Self::laid_out(world, world.objects.len() > Self::BRUTE_FORCE_MAX)
     }
@@ -246,7 +248,7 @@ impl PacketShapes {
         };
         if live.any() {
             match &self.tree {
-                Some(tree) => tree.walk(&BoxRays::new(rays, live), &mut search),
+                Some(tree) => tree.walk(&BoxRays::new(rays), &mut search),
                 None => {
                     search.leaf(&self.everything(), live);
                 }
@@ -275,7 +277,7 @@ impl PacketShapes {
             tests: *tests,
         };
         match &self.tree {
-            Some(tree) => tree.walk(&BoxRays::new(rays, live), &mut search),
+            Some(tree) => tree.walk(&BoxRays::new(rays), &mut search),
             None => {
                 search.leaf(&self.everything(), live);
             }
@@ -918,7 +920,7 @@ mod tests {
         let many = PacketShapes::new(&reference_world("spheres.xml")).expect("lone shapes");
         assert!(
             many.tree.is_some(),
-            "102 primitives are walked through a tree"
+            "104 primitives are walked through a tree"
         );
     }
 
@@ -977,6 +979,79 @@ mod tests {
             assert!(mean < 40.0, "{mean} tests per ray of 400 primitives");
         }
         check_rays(&world, &rays_for(&world, 5, 800));
+    }
+
+    /// Each ray's (α bits, object) in lane `k % 8` alone, then in packets
+    /// of eight consecutive rays of the list rotated by each offset, in lanes `F`.
+    #[derive(Clone)]
+    struct AloneAndAmongOthers<'a>(&'a PacketShapes, &'a [Ray]);
+
+    impl WithLanes for AloneAndAmongOthers<'_> {
+        type Output = Vec<Vec<(u32, i32)>>;
+        fn run<F: FloatLanes>(self) -> Self::Output {
+            let (shapes, rays) = (self.0, self.1);
+            let answer = |lanes: &[Ray; WIDTH], k: usize| {
+                let packet = Rays::<F>::from_lanes(lanes);
+                let hits = shapes.closest(&packet, &mut F::Ints::splat(0));
+                (
+                    hits.alpha.to_array()[k].to_bits(),
+                    hits.object.to_array()[k],
+                )
+            };
+            let alone = (0..rays.len())
+                .map(|k| answer(&packet(&[rays[k]], &[k % WIDTH]), k % WIDTH))
+                .collect();
+            let mut runs = vec![alone];
+            for offset in [1, 3, 5] {
+                let mut among = vec![(0, 0); rays.len()];
+                for start in (0..rays.len()).step_by(WIDTH) {
+                    let ids: Vec<usize> = (0..WIDTH)
+                        .map(|j| (start + j * offset) % rays.len())
+                        .collect();
+                    let group: Vec<Ray> = ids.iter().map(|&i| rays[i]).collect();
+                    let lanes = packet(&group, &(0..WIDTH).collect::<Vec<_>>());
+                    for (j, &i) in ids.iter().enumerate() {
+                        among[i] = answer(&lanes, j);
+                    }
+                }
+                runs.push(among);
+            }
+            runs
+        }
+    }
+
+    #[test]
+    fn a_lanes_hit_does_not_depend_on_the_other_rays_of_its_packet() {
+        // Rays through the floor's shared diagonal meet two triangles at
+        // exactly the same α; with random rays around them, in every lane
+        // and every company, each ray gets the same α and object.
+        let world = reference_world("spheres.xml");
+        let shapes = PacketShapes::new(&world).expect("lone shapes");
+        assert!(shapes.tree.is_some(), "walked through the tree");
+        let mut rays = rays_for(&world, 9, 160);
+        let eye = Vec3::new(0.3, 5.0, 9.0);
+        for k in 0..40 {
+            let x = -4.05 + 0.2 * k as f32;
+            rays.push(Ray::new(eye, Vec3::new(x, 0.0, -x) - eye));
+        }
+        for runs in on_every_lane_type(AloneAndAmongOthers(&shapes, &rays)) {
+            for among in &runs[1..] {
+                assert_eq!(among, &runs[0], "answers alone and among others");
+            }
+        }
+    }
+
+    #[test]
+    fn one_primitive_past_the_brute_force_limit_gets_a_tree() {
+        let spheres = |n: usize| {
+            let list: String = (0..n)
+                .map(|k| format!(r#"<sphere center="{k} 0 0" radius="0.3"/>"#))
+                .collect();
+            world_of(&format!("<scene>{list}</scene>"))
+        };
+        let at = PacketShapes::new(&spheres(PacketShapes::BRUTE_FORCE_MAX)).expect("small");
+        let past = PacketShapes::new(&spheres(PacketShapes::BRUTE_FORCE_MAX + 1)).expect("lone");
+        assert!(at.tree.is_none() && past.tree.is_some());
     }
 
     #[test]
