@@ -2,6 +2,7 @@
 
 use super::delta::{dielectric_samples, fresnel_schlick, mirrored};
 use super::draws::{cosine_warps, dead_ray, emitter_draws, roulette_draws, scatter_draws};
+use super::glossy::RoughConductors;
 use super::handover::{Handover, Target};
 use super::lane_math::{Frame, offset_origins, power_heuristics};
 use super::paths::Paths;
@@ -188,11 +189,23 @@ impl<F: FloatLanes> PathGroup<F> {
 
         let frame = Frame::new(n);
         let wo = frame.to_local(-dir);
-        let lambert = at.diffuse * F::splat(FRAC_1_PI);
         let above = offset_origins(point, n, at.magnitude);
-        // Lights are sampled where a lobe is not a delta: the Lambertian one.
-        let lit = go & at.diffuse.simd_gt(F::ZERO);
-
+        // Lights are sampled where a lobe is not a delta: a Lambertian or a
+        // rough conductor's.
+        let rough = go & at.rough;
+        let lit = go & (at.diffuse.simd_gt(F::ZERO) | rough);
+        let microfacets = RoughConductors {
+            alpha: at.alpha,
+            f0: at.color,
+            schlick: at.schlick,
+        };
+        // f · cos θ_i toward a local direction and the density of sampling it.
+        let lobes = Lobes {
+            color: at.color,
+            diffuse: at.diffuse,
+            rough,
+            microfacets,
+        };
         // The light sample: a point drawn on the emitters, its BSDF value
         // and MIS weight, and the shadow ray toward it.
         let light = emitter_draws(
@@ -203,13 +216,7 @@ impl<F: FloatLanes> PathGroup<F> {
             point,
         );
         let toward = light.to_light.dot(n).simd_gt(F::ZERO);
-        let wi_z = light.to_light.dot(frame.n);
-        let dark_side = wi_z.simd_le(F::ZERO) | wo.z.simd_le(F::ZERO);
-        let f = Vec3s::select(dark_side, Vec3s::ZERO, at.color * (lambert * wi_z));
-        let bsdf_pdf = dark_side.select(
-            F::ZERO,
-            at.diffuse * (wi_z.max(F::ZERO) * F::splat(FRAC_1_PI)),
-        );
+        let (f, bsdf_pdf) = lobes.eval_pdf(wo, frame.to_local(light.to_light));
         let mis = power_heuristics(light.pdf, bsdf_pdf);
         let light_through = f.mul_lanes(light.radiance) * (mis / light.pdf);
         let shadowed = lit & light.found & toward & f.nonzero();
@@ -217,23 +224,34 @@ impl<F: FloatLanes> PathGroup<F> {
 
         // The BSDF sample. A layered lane picks its mirror lobe when the
         // lobe's number falls below the mirror's weight, else a
-        // cosine-weighted direction with weight f·cos/pdf; a conductor
-        // reflects, glass reflects or refracts.
+        // cosine-weighted direction; a rough conductor reflects about a
+        // visible micronormal; both weigh f·cos/pdf. A conductor reflects,
+        // glass reflects or refracts.
         let (u_lobe, u) = scatter_draws(go, &mut self.paths.samplers, &self.paths.depth);
         let layered_mirror = go & at.layered & u_lobe.simd_lt(at.mirror);
         let diffuse = go & at.layered & !layered_mirror;
         let wi = cosine_warps(diffuse, &u);
-        let dark_side = wi.z.simd_le(F::ZERO) | wo.z.simd_le(F::ZERO);
-        let f_cos = Vec3s::select(dark_side, Vec3s::ZERO, at.color * (lambert * wi.z));
-        let pdf = dark_side.select(
-            F::ZERO,
-            at.diffuse * (wi.z.max(F::ZERO) * F::splat(FRAC_1_PI)),
-        );
+        let (mut wi, mut f_cos, mut pdf) = {
+            let (f_cos, pdf) = lobes.eval_pdf(wo, wi);
+            (wi, f_cos, pdf)
+        };
+        if rough.any() {
+            let (mut ux, mut uy) = ([0.0f32; WIDTH], [0.0f32; WIDTH]);
+            for k in 0..WIDTH {
+                (ux[k], uy[k]) = (u[k].x, u[k].y);
+            }
+            let u = [F::from_array(ux), F::from_array(uy)];
+            let (rough_wi, rough_f, rough_pdf) = microfacets.sample(rough, wo, u);
+            wi = Vec3s::select(rough, rough_wi, wi);
+            f_cos = Vec3s::select(rough, rough_f, f_cos);
+            pdf = rough.select(rough_pdf, pdf);
+        }
+        let scattered = diffuse | rough;
         let conductor = go & at.conductor;
         let glass = go & at.dielectric;
         let delta = layered_mirror | conductor | glass;
-        let mut wi = Vec3s::select(diffuse, wi, mirrored(wo));
-        let mut weight = Vec3s::select(diffuse, f_cos.div_lanes(pdf), Vec3s::splat(Vec3::ONE));
+        wi = Vec3s::select(scattered, wi, mirrored(wo));
+        let mut weight = Vec3s::select(scattered, f_cos.div_lanes(pdf), Vec3s::splat(Vec3::ONE));
         let mut radiance_scale = F::ONE;
         if conductor.any() {
             let tinted = Vec3s::select(at.schlick, fresnel_schlick(wo.z, at.color), at.color);
@@ -246,7 +264,7 @@ impl<F: FloatLanes> PathGroup<F> {
             weight = Vec3s::select(glass, sample.weight, weight);
             radiance_scale = glass.select(sample.radiance_scale, radiance_scale);
         }
-        let moving = (diffuse & pdf.simd_gt(F::ZERO)) | delta;
+        let moving = (scattered & pdf.simd_gt(F::ZERO)) | delta;
         let wi_world = frame.to_world(wi);
         let throughput = Vec3s::select(
             moving,
@@ -289,9 +307,7 @@ impl<F: FloatLanes> PathGroup<F> {
         for (index, light) in world.lights.iter().enumerate() {
             let s = light_samples(light, point);
             let toward = s.to_light.dot(n).simd_gt(F::ZERO);
-            let wi_z = s.to_light.dot(frame.n);
-            let dark_side = wi_z.simd_le(F::ZERO) | wo.z.simd_le(F::ZERO);
-            let f = Vec3s::select(dark_side, Vec3s::ZERO, at.color * (lambert * wi_z));
+            let (f, _) = lobes.eval_pdf(wo, frame.to_local(s.to_light));
             let shadowed = lit & s.found & toward & f.nonzero();
             let rays = Rays {
                 origin: above,
@@ -331,6 +347,42 @@ impl<F: FloatLanes> PathGroup<F> {
             | self
                 .handover
                 .finish(&mut self.paths, &self.blocked_toward_lights, blocked)
+    }
+}
+
+/// The non-delta lobes of eight hits: a layered BSDF's Lambertian lobe
+/// or a rough conductor's GGX lobe, per lane.
+struct Lobes<F: FloatLanes> {
+    /// The Lambertian albedo.
+    color: Vec3s<F>,
+    /// The Lambertian lobe's weight (0 where there is none).
+    diffuse: F,
+    /// Lanes with a rough conductor.
+    rough: F,
+    /// The rough conductors.
+    microfacets: RoughConductors<F>,
+}
+
+impl<F: FloatLanes> Lobes<F> {
+    /// f · cos θ_i from `wo` toward `wi` (local) and the density of
+    /// sampling `wi`: `Bsdf::eval` and `Bsdf::pdf` lane by lane.
+    #[inline(always)]
+    fn eval_pdf(&self, wo: Vec3s<F>, wi: Vec3s<F>) -> (Vec3s<F>, F) {
+        let lambert = self.diffuse * F::splat(FRAC_1_PI);
+        let dark_side = wi.z.simd_le(F::ZERO) | wo.z.simd_le(F::ZERO);
+        let f = Vec3s::select(dark_side, Vec3s::ZERO, self.color * (lambert * wi.z));
+        let pdf = dark_side.select(
+            F::ZERO,
+            self.diffuse * (wi.z.max(F::ZERO) * F::splat(FRAC_1_PI)),
+        );
+        if !self.rough.any() {
+            return (f, pdf);
+        }
+        let (rough_f, rough_pdf) = self.microfacets.eval_pdf(wo, wi);
+        (
+            Vec3s::select(self.rough, rough_f, f),
+            self.rough.select(rough_pdf, pdf),
+        )
     }
 }
 
@@ -392,8 +444,13 @@ struct Surfaces<F: FloatLanes> {
     layered: F,
     /// Lanes with a smooth conductor.
     conductor: F,
-    /// Lanes whose conductor follows Schlick's approximation (metal).
+    /// Lanes whose conductor, smooth or rough, follows Schlick's
+    /// approximation (metal).
     schlick: F,
+    /// Lanes with a rough conductor.
+    rough: F,
+    /// The rough conductor's GGX α.
+    alpha: F,
     /// Lanes with smooth glass.
     dielectric: F,
     /// The material's colour.
@@ -441,7 +498,15 @@ impl<F: FloatLanes> Surfaces<F> {
             on_lanes: mask_from(|k| bsdf[k] != LaneBsdf::Scalar),
             layered: mask_from(|k| bsdf[k] == LaneBsdf::Layered),
             conductor: mask_from(|k| matches!(bsdf[k], LaneBsdf::Conductor { .. })),
-            schlick: mask_from(|k| bsdf[k] == LaneBsdf::Conductor { schlick: true }),
+            schlick: mask_from(|k| {
+                matches!(
+                    bsdf[k],
+                    LaneBsdf::Conductor { schlick: true }
+                        | LaneBsdf::RoughConductor { schlick: true }
+                )
+            }),
+            rough: mask_from(|k| matches!(bsdf[k], LaneBsdf::RoughConductor { .. })),
+            alpha: floats(&table.alpha),
             dielectric: mask_from(|k| bsdf[k] == LaneBsdf::Dielectric),
             color: vec3s(&table.color),
             diffuse: floats(&table.diffuse),

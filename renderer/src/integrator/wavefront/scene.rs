@@ -25,6 +25,11 @@ pub(crate) enum LaneBsdf {
     },
     /// Smooth glass.
     Dielectric,
+    /// A rough conductor: GGX microfacets of α = [`ObjectTable::alpha`].
+    RoughConductor {
+        /// Whether the reflectance follows Schlick's approximation.
+        schlick: bool,
+    },
 }
 
 /// Per object, what shading a hit on it takes (gathered lane by lane by the
@@ -42,6 +47,8 @@ pub(crate) struct ObjectTable {
     pub(crate) mirror: Vec<f32>,
     /// Glass's η met from outside (1 / ior) and from inside (ior).
     pub(crate) eta: Vec<(f32, f32)>,
+    /// A rough conductor's GGX α.
+    pub(crate) alpha: Vec<f32>,
     /// The radiance the front side emits (zero for most).
     pub(crate) emission: Vec<Vec3>,
     /// The object's index among the world's emitters, −1 when it is none.
@@ -65,7 +72,7 @@ impl WavefrontScene {
     /// The wavefront view of `world` traced with the formulas of `method`.
     /// Every world is covered: hits on analytic shapes with smooth lobes
     /// ([`LaneBsdf`]) are shaded on lanes, the others (a highlight, rough
-    /// microfacets, marble's texture, mesh triangles) by the scalar code,
+    /// glass, marble's texture, mesh triangles) by the scalar code,
     /// lane by lane; rays are tested in packets when the world allows it
     /// ([`WavefrontScene::with_packets`]), else lane by lane through its BVH.
     /// Only the tests trace worlds without packets with it, for now: the
@@ -106,7 +113,8 @@ impl ObjectTable {
     fn new(world: &World) -> Self {
         let mut objects = ObjectTable::default();
         for (id, material) in world.materials.iter().enumerate() {
-            // Smooth lobes only (no highlight, no rough microfacets), no texture.
+            // No highlight, no rough glass, no texture.
+            let mut alpha = 1.0;
             let (bsdf, diffuse, mirror, eta) = match *world.prepared_bsdf(id as u32) {
                 PreparedBsdf::Layered {
                     diffuse,
@@ -118,6 +126,13 @@ impl ObjectTable {
                 }
                 PreparedBsdf::Conductor { schlick, ggx: None } => {
                     (LaneBsdf::Conductor { schlick }, 0.0, 0.0, (1.0, 1.0))
+                }
+                PreparedBsdf::Conductor {
+                    schlick,
+                    ggx: Some(ggx),
+                } => {
+                    alpha = ggx.alpha;
+                    (LaneBsdf::RoughConductor { schlick }, 0.0, 0.0, (1.0, 1.0))
                 }
                 PreparedBsdf::Dielectric {
                     eta_front,
@@ -136,6 +151,7 @@ impl ObjectTable {
             objects.diffuse.push(diffuse);
             objects.mirror.push(mirror);
             objects.eta.push(eta);
+            objects.alpha.push(alpha);
             objects.emission.push(material.emission);
             objects.emitter.push(
                 world
