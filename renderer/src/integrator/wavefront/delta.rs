@@ -45,7 +45,7 @@ pub(super) fn fresnel_schlick<F: FloatLanes>(cos: F, f0: Vec3s<F>) -> Vec3s<F> {
 /// `fresnel_dielectric(cos_i, eta)`: the unpolarised reflectance, 1 on
 /// total internal reflection.
 #[inline(always)]
-fn fresnel_dielectric<F: FloatLanes>(cos_i: F, eta: F) -> F {
+pub(super) fn fresnel_dielectric<F: FloatLanes>(cos_i: F, eta: F) -> F {
     let cos_i = clamp_unit(cos_i);
     let sin2_t = eta * eta * (F::ONE - cos_i * cos_i);
     let cos_t = (F::ONE - sin2_t).sqrt();
@@ -53,6 +53,20 @@ fn fresnel_dielectric<F: FloatLanes>(cos_i: F, eta: F) -> F {
     let r_perpendicular = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
     let fresnel = F::splat(0.5) * (r_parallel * r_parallel + r_perpendicular * r_perpendicular);
     sin2_t.simd_ge(F::ONE).select(F::ONE, fresnel)
+}
+
+/// `optics::refract(dir, n, η)` lane by lane: the lanes of total internal
+/// reflection (where the scalar code gives `None`), and the refracted
+/// direction elsewhere.
+#[inline(always)]
+pub(super) fn refract<F: FloatLanes>(dir: Vec3s<F>, n: Vec3s<F>, eta: F) -> (F, Vec3s<F>) {
+    let cos_i = -dir.dot(n);
+    let sin2_t = eta * eta * (F::ONE - cos_i * cos_i).max(F::ZERO);
+    let cos_t = (F::ONE - sin2_t).sqrt();
+    (
+        sin2_t.simd_ge(F::ONE),
+        (dir * eta + n * (eta * cos_i - cos_t)).normalize(),
+    )
 }
 
 /// `SmoothDielectric::sample(wo, u)` lane by lane, with η and the tint per
@@ -66,14 +80,7 @@ pub(super) fn dielectric_samples<F: FloatLanes>(
     u: F,
 ) -> DeltaSamples<F> {
     let reflects = u.simd_lt(fresnel_dielectric(wo.z, eta));
-    // refract(dir, n, η) with dir = −wo and n = +z, term by term.
-    let n = Vec3s::splat(Vec3::Z);
-    let dir = -wo;
-    let cos_i = -dir.dot(n);
-    let sin2_t = eta * eta * (F::ONE - cos_i * cos_i).max(F::ZERO);
-    let internal = sin2_t.simd_ge(F::ONE);
-    let cos_t = (F::ONE - sin2_t).sqrt();
-    let refracted = (dir * eta + n * (eta * cos_i - cos_t)).normalize();
+    let (internal, refracted) = refract(-wo, Vec3s::splat(Vec3::Z), eta);
     let reflects = reflects | internal;
     let scale = eta * eta;
     DeltaSamples {

@@ -23,22 +23,16 @@ pub(super) struct RoughConductors<F> {
 }
 
 impl<F: FloatLanes> RoughConductors<F> {
-    /// `Ggx::d(h)`: the density of micronormals h, 0 below the surface.
+    /// `Ggx::d(h)`.
     #[inline(always)]
     fn d(&self, h: Vec3s<F>) -> F {
-        let a2 = self.alpha * self.alpha;
-        let k = h.z * h.z * (a2 - F::ONE) + F::ONE;
-        h.z.simd_le(F::ZERO)
-            .select(F::ZERO, a2 / (F::splat(PI) * k * k))
+        ggx_d(self.alpha, h)
     }
 
-    /// `Ggx::g1(v)`: Smith's shadowing of direction v.
+    /// `Ggx::g1(v)`.
     #[inline(always)]
     fn g1(&self, v: Vec3s<F>) -> F {
-        let cos2 = v.z * v.z;
-        let tan2 = ((F::ONE - cos2) / cos2).max(F::ZERO);
-        let g = F::splat(2.0) / (F::ONE + (F::ONE + self.alpha * self.alpha * tan2).sqrt());
-        cos2.simd_le(F::ZERO).select(F::ZERO, g)
+        ggx_g1(self.alpha, v)
     }
 
     /// `Ggx::reflection_half(wo, wi)`: the half vector where both lie above
@@ -73,49 +67,72 @@ impl<F: FloatLanes> RoughConductors<F> {
         )
     }
 
-    /// `Ggx::sample_visible(wo, u)` in the lanes of `lanes`: a micronormal
-    /// visible from wo (Heitz 2018).
-    #[inline(always)]
-    fn sample_visible(&self, lanes: F, wo: Vec3s<F>, [ux, uy]: [F; 2]) -> Vec3s<F> {
-        let alpha = self.alpha;
-        let v = Vec3s::new(alpha * wo.x, alpha * wo.y, wo.z).normalize();
-        let len2 = v.x * v.x + v.y * v.y;
-        let tilted = len2.simd_gt(F::ZERO);
-        let t1 = Vec3s::select(
-            tilted,
-            Vec3s::new(-v.y, v.x, F::ZERO).div_lanes(len2.sqrt()),
-            Vec3s::splat(Vec3::X),
-        );
-        let t2 = v.cross(t1);
-        let r = ux.sqrt();
-        let phi = F::splat(2.0 * PI) * uy;
-        // libm's cosine and sine, lane by lane, as the scalar code calls them.
-        let angles = phi.to_array();
-        let (mut cos, mut sin) = ([1.0f32; WIDTH], [0.0f32; WIDTH]);
-        for k in 0..WIDTH {
-            if lane_set(lanes, k) {
-                (cos[k], sin[k]) = (angles[k].cos(), angles[k].sin());
-            }
-        }
-        let p1 = r * F::from_array(cos);
-        let s = F::splat(0.5) * (F::ONE + v.z);
-        let p2 = (F::ONE - s) * (F::ONE - p1 * p1).max(F::ZERO).sqrt() + s * r * F::from_array(sin);
-        let n = t1 * p1 + t2 * p2 + v * (F::ONE - p1 * p1 - p2 * p2).max(F::ZERO).sqrt();
-        Vec3s::new(alpha * n.x, alpha * n.y, n.z.max(F::splat(1.0e-6))).normalize()
-    }
-
     /// `RoughConductor::sample(wo, u)` in the lanes of `lanes`: wi reflected
     /// about a visible micronormal, with f · cos θ_i and the density (a lane
     /// whose density is not positive carries nothing).
     #[inline(always)]
     pub(super) fn sample(&self, lanes: F, wo: Vec3s<F>, u: [F; 2]) -> (Vec3s<F>, Vec3s<F>, F) {
-        let h = self.sample_visible(lanes, wo, u);
+        let h = sample_visible(self.alpha, lanes, wo, u);
         // optics::reflect(−wo, h) = d − 2 (d · h) h.
         let d = -wo;
         let wi = d - h * (F::splat(2.0) * d.dot(h));
         let (f, pdf) = self.eval_pdf(wo, wi);
         (wi, f, pdf)
     }
+}
+
+/// `Ggx::d(h)` with α per lane: the density of micronormals h, 0 below
+/// the surface.
+#[inline(always)]
+pub(super) fn ggx_d<F: FloatLanes>(alpha: F, h: Vec3s<F>) -> F {
+    let a2 = alpha * alpha;
+    let k = h.z * h.z * (a2 - F::ONE) + F::ONE;
+    h.z.simd_le(F::ZERO)
+        .select(F::ZERO, a2 / (F::splat(PI) * k * k))
+}
+
+/// `Ggx::g1(v)` with α per lane: Smith's shadowing of direction v.
+#[inline(always)]
+pub(super) fn ggx_g1<F: FloatLanes>(alpha: F, v: Vec3s<F>) -> F {
+    let cos2 = v.z * v.z;
+    let tan2 = ((F::ONE - cos2) / cos2).max(F::ZERO);
+    let g = F::splat(2.0) / (F::ONE + (F::ONE + alpha * alpha * tan2).sqrt());
+    cos2.simd_le(F::ZERO).select(F::ZERO, g)
+}
+
+/// `Ggx::sample_visible(wo, u)` with α per lane, in the lanes of `lanes`:
+/// a micronormal visible from wo (Heitz 2018).
+#[inline(always)]
+pub(super) fn sample_visible<F: FloatLanes>(
+    alpha: F,
+    lanes: F,
+    wo: Vec3s<F>,
+    [ux, uy]: [F; 2],
+) -> Vec3s<F> {
+    let v = Vec3s::new(alpha * wo.x, alpha * wo.y, wo.z).normalize();
+    let len2 = v.x * v.x + v.y * v.y;
+    let tilted = len2.simd_gt(F::ZERO);
+    let t1 = Vec3s::select(
+        tilted,
+        Vec3s::new(-v.y, v.x, F::ZERO).div_lanes(len2.sqrt()),
+        Vec3s::splat(Vec3::X),
+    );
+    let t2 = v.cross(t1);
+    let r = ux.sqrt();
+    let phi = F::splat(2.0 * PI) * uy;
+    // libm's cosine and sine, lane by lane, as the scalar code calls them.
+    let angles = phi.to_array();
+    let (mut cos, mut sin) = ([1.0f32; WIDTH], [0.0f32; WIDTH]);
+    for k in 0..WIDTH {
+        if lane_set(lanes, k) {
+            (cos[k], sin[k]) = (angles[k].cos(), angles[k].sin());
+        }
+    }
+    let p1 = r * F::from_array(cos);
+    let s = F::splat(0.5) * (F::ONE + v.z);
+    let p2 = (F::ONE - s) * (F::ONE - p1 * p1).max(F::ZERO).sqrt() + s * r * F::from_array(sin);
+    let n = t1 * p1 + t2 * p2 + v * (F::ONE - p1 * p1 - p2 * p2).max(F::ZERO).sqrt();
+    Vec3s::new(alpha * n.x, alpha * n.y, n.z.max(F::splat(1.0e-6))).normalize()
 }
 
 #[cfg(test)]

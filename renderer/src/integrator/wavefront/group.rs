@@ -6,6 +6,7 @@ use super::glossy::RoughConductors;
 use super::handover::{Handover, Target};
 use super::lane_math::{Frame, offset_origins, power_heuristics};
 use super::paths::Paths;
+use super::rough_glass::RoughDielectrics;
 use super::scene::{LaneBsdf, ObjectTable, WavefrontScene};
 use super::tracing;
 use crate::integrator::lanes::{SampleRef, SampleResult, camera_sample};
@@ -190,10 +191,18 @@ impl<F: FloatLanes> PathGroup<F> {
         let frame = Frame::new(n);
         let wo = frame.to_local(-dir);
         let above = offset_origins(point, n, at.magnitude);
-        // Lights are sampled where a lobe is not a delta: a Lambertian or a
-        // rough conductor's.
+        // Lights are sampled where a lobe is not a delta: a Lambertian, a
+        // rough conductor's or rough glass's. Rough glass also sees lights
+        // behind the surface, through shadow rays from below it.
         let rough = go & at.rough;
-        let lit = go & (at.diffuse.simd_gt(F::ZERO) | rough);
+        let rough_glass = go & at.rough_glass;
+        let below = offset_origins(point, -n, at.magnitude);
+        let lit = go & (at.diffuse.simd_gt(F::ZERO) | rough | rough_glass);
+        let frosted = RoughDielectrics {
+            alpha: at.alpha,
+            eta: front.select(at.eta.0, at.eta.1),
+            tint: at.color,
+        };
         let microfacets = RoughConductors {
             alpha: at.alpha,
             f0: at.color,
@@ -205,6 +214,8 @@ impl<F: FloatLanes> PathGroup<F> {
             diffuse: at.diffuse,
             rough,
             microfacets,
+            rough_glass,
+            frosted,
         };
         // The light sample: a point drawn on the emitters, its BSDF value
         // and MIS weight, and the shadow ray toward it.
@@ -219,7 +230,8 @@ impl<F: FloatLanes> PathGroup<F> {
         let (f, bsdf_pdf) = lobes.eval_pdf(wo, frame.to_local(light.to_light));
         let mis = power_heuristics(light.pdf, bsdf_pdf);
         let light_through = f.mul_lanes(light.radiance) * (mis / light.pdf);
-        let shadowed = lit & light.found & toward & f.nonzero();
+        let shadowed = lit & light.found & (toward | rough_glass) & f.nonzero();
+        let light_origin = Vec3s::select(toward, above, below);
         let lit_by = self.paths.throughput;
 
         // The BSDF sample. A layered lane picks its mirror lobe when the
@@ -235,24 +247,34 @@ impl<F: FloatLanes> PathGroup<F> {
             let (f_cos, pdf) = lobes.eval_pdf(wo, wi);
             (wi, f_cos, pdf)
         };
-        if rough.any() {
+        let mut radiance_scale = F::ONE;
+        if (rough | rough_glass).any() {
             let (mut ux, mut uy) = ([0.0f32; WIDTH], [0.0f32; WIDTH]);
             for k in 0..WIDTH {
                 (ux[k], uy[k]) = (u[k].x, u[k].y);
             }
             let u = [F::from_array(ux), F::from_array(uy)];
-            let (rough_wi, rough_f, rough_pdf) = microfacets.sample(rough, wo, u);
-            wi = Vec3s::select(rough, rough_wi, wi);
-            f_cos = Vec3s::select(rough, rough_f, f_cos);
-            pdf = rough.select(rough_pdf, pdf);
+            if rough.any() {
+                let (rough_wi, rough_f, rough_pdf) = microfacets.sample(rough, wo, u);
+                wi = Vec3s::select(rough, rough_wi, wi);
+                f_cos = Vec3s::select(rough, rough_f, f_cos);
+                pdf = rough.select(rough_pdf, pdf);
+            }
+            if rough_glass.any() {
+                let (glass_wi, glass_f, glass_pdf, scale) =
+                    frosted.sample(rough_glass, wo, u_lobe, u);
+                wi = Vec3s::select(rough_glass, glass_wi, wi);
+                f_cos = Vec3s::select(rough_glass, glass_f, f_cos);
+                pdf = rough_glass.select(glass_pdf, pdf);
+                radiance_scale = rough_glass.select(scale, radiance_scale);
+            }
         }
-        let scattered = diffuse | rough;
+        let scattered = diffuse | rough | rough_glass;
         let conductor = go & at.conductor;
         let glass = go & at.dielectric;
         let delta = layered_mirror | conductor | glass;
         wi = Vec3s::select(scattered, wi, mirrored(wo));
         let mut weight = Vec3s::select(scattered, f_cos.div_lanes(pdf), Vec3s::splat(Vec3::ONE));
-        let mut radiance_scale = F::ONE;
         if conductor.any() {
             let tinted = Vec3s::select(at.schlick, fresnel_schlick(wo.z, at.color), at.color);
             weight = Vec3s::select(conductor, tinted, weight);
@@ -308,9 +330,9 @@ impl<F: FloatLanes> PathGroup<F> {
             let s = light_samples(light, point);
             let toward = s.to_light.dot(n).simd_gt(F::ZERO);
             let (f, _) = lobes.eval_pdf(wo, frame.to_local(s.to_light));
-            let shadowed = lit & s.found & toward & f.nonzero();
+            let shadowed = lit & s.found & (toward | rough_glass) & f.nonzero();
             let rays = Rays {
-                origin: above,
+                origin: Vec3s::select(toward, above, below),
                 dir: s.to_light,
                 t_max: shadowed.select(s.distance, F::ZERO),
             };
@@ -323,7 +345,7 @@ impl<F: FloatLanes> PathGroup<F> {
             self.blocked_toward_lights.push(blocked);
         }
         let shadows = Rays {
-            origin: above,
+            origin: light_origin,
             dir: light.to_light,
             t_max: shadowed.select(light.distance * F::splat(1.0 - SHADOW_SHORTENING), F::ZERO),
         };
@@ -361,6 +383,10 @@ struct Lobes<F: FloatLanes> {
     rough: F,
     /// The rough conductors.
     microfacets: RoughConductors<F>,
+    /// Lanes with rough glass.
+    rough_glass: F,
+    /// The rough glass.
+    frosted: RoughDielectrics<F>,
 }
 
 impl<F: FloatLanes> Lobes<F> {
@@ -375,14 +401,18 @@ impl<F: FloatLanes> Lobes<F> {
             F::ZERO,
             self.diffuse * (wi.z.max(F::ZERO) * F::splat(FRAC_1_PI)),
         );
-        if !self.rough.any() {
-            return (f, pdf);
+        let (mut f, mut pdf) = (f, pdf);
+        if self.rough.any() {
+            let (rough_f, rough_pdf) = self.microfacets.eval_pdf(wo, wi);
+            f = Vec3s::select(self.rough, rough_f, f);
+            pdf = self.rough.select(rough_pdf, pdf);
         }
-        let (rough_f, rough_pdf) = self.microfacets.eval_pdf(wo, wi);
-        (
-            Vec3s::select(self.rough, rough_f, f),
-            self.rough.select(rough_pdf, pdf),
-        )
+        if self.rough_glass.any() {
+            let (glass_f, glass_pdf) = self.frosted.eval_pdf(wo, wi);
+            f = Vec3s::select(self.rough_glass, glass_f, f);
+            pdf = self.rough_glass.select(glass_pdf, pdf);
+        }
+        (f, pdf)
     }
 }
 
@@ -449,7 +479,9 @@ struct Surfaces<F: FloatLanes> {
     schlick: F,
     /// Lanes with a rough conductor.
     rough: F,
-    /// The rough conductor's GGX α.
+    /// Lanes with rough glass.
+    rough_glass: F,
+    /// The rough conductor's or glass's GGX α.
     alpha: F,
     /// Lanes with smooth glass.
     dielectric: F,
@@ -506,6 +538,7 @@ impl<F: FloatLanes> Surfaces<F> {
                 )
             }),
             rough: mask_from(|k| matches!(bsdf[k], LaneBsdf::RoughConductor { .. })),
+            rough_glass: mask_from(|k| bsdf[k] == LaneBsdf::RoughDielectric),
             alpha: floats(&table.alpha),
             dielectric: mask_from(|k| bsdf[k] == LaneBsdf::Dielectric),
             color: vec3s(&table.color),

@@ -16,10 +16,11 @@
 //! spheres ([`crate::packet::PacketShapes`]: against every primitive, or
 //! through a tree), else traced lane by lane through the world's BVH
 //! (`tracing.rs`). Hits on analytic shapes with smooth lobes are shaded on
-//! lanes: Lambertian with a mirror lobe and rough conductors (`glossy.rs`),
-//! point and directional lights included, mirror, metal and glass
-//! (`delta.rs`); any other hit (a highlight, rough glass, marble, a mesh
-//! triangle) is shaded by the scalar `PathLane` itself (`handover.rs`).
+//! lanes: Lambertian with a mirror lobe, rough conductors (`glossy.rs`) and
+//! rough glass (`rough_glass.rs`), point and directional lights included,
+//! mirror, metal and smooth glass (`delta.rs`); any other hit (a highlight,
+//! marble, a mesh triangle) is shaded by the scalar `PathLane` itself
+//! (`handover.rs`).
 //!
 //! Lane code is written in `#[inline(always)]` functions and methods, not
 //! closures: a closure that is not inlined is compiled without the AVX2
@@ -35,6 +36,7 @@ mod group;
 mod handover;
 mod lane_math;
 mod paths;
+mod rough_glass;
 mod scene;
 mod tracing;
 

@@ -30,6 +30,9 @@ pub(crate) enum LaneBsdf {
         /// Whether the reflectance follows Schlick's approximation.
         schlick: bool,
     },
+    /// Rough glass: GGX microfacets of α = [`ObjectTable::alpha`], η as
+    /// [`ObjectTable::eta`].
+    RoughDielectric,
 }
 
 /// Per object, what shading a hit on it takes (gathered lane by lane by the
@@ -47,7 +50,7 @@ pub(crate) struct ObjectTable {
     pub(crate) mirror: Vec<f32>,
     /// Glass's η met from outside (1 / ior) and from inside (ior).
     pub(crate) eta: Vec<(f32, f32)>,
-    /// A rough conductor's GGX α.
+    /// A rough conductor's or rough glass's GGX α.
     pub(crate) alpha: Vec<f32>,
     /// The radiance the front side emits (zero for most).
     pub(crate) emission: Vec<Vec3>,
@@ -71,8 +74,8 @@ pub(crate) struct WavefrontScene {
 impl WavefrontScene {
     /// The wavefront view of `world` traced with the formulas of `method`.
     /// Every world is covered: hits on analytic shapes with smooth lobes
-    /// ([`LaneBsdf`]) are shaded on lanes, the others (a highlight, rough
-    /// glass, marble's texture, mesh triangles) by the scalar code,
+    /// ([`LaneBsdf`]) are shaded on lanes, the others (a highlight,
+    /// marble's texture, mesh triangles) by the scalar code,
     /// lane by lane; rays are tested in packets when the world allows it
     /// ([`WavefrontScene::with_packets`]), else lane by lane through its BVH.
     /// Only the tests trace worlds without packets with it, for now: the
@@ -113,7 +116,7 @@ impl ObjectTable {
     fn new(world: &World) -> Self {
         let mut objects = ObjectTable::default();
         for (id, material) in world.materials.iter().enumerate() {
-            // No highlight, no rough glass, no texture.
+            // No highlight, no texture.
             let mut alpha = 1.0;
             let (bsdf, diffuse, mirror, eta) = match *world.prepared_bsdf(id as u32) {
                 PreparedBsdf::Layered {
@@ -139,6 +142,14 @@ impl ObjectTable {
                     eta_back,
                     ggx: None,
                 } => (LaneBsdf::Dielectric, 0.0, 0.0, (eta_front, eta_back)),
+                PreparedBsdf::Dielectric {
+                    eta_front,
+                    eta_back,
+                    ggx: Some(ggx),
+                } => {
+                    alpha = ggx.alpha;
+                    (LaneBsdf::RoughDielectric, 0.0, 0.0, (eta_front, eta_back))
+                }
                 _ => (LaneBsdf::Scalar, 0.0, 0.0, (1.0, 1.0)),
             };
             let hit = Hit {

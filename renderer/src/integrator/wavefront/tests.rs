@@ -156,7 +156,7 @@ fn a_world_with_spheres_boxes_a_sky_and_no_emitters_matches_too() {
 }
 
 #[test]
-fn rough_conductors_and_rough_glass_handed_to_the_scalar_code_match_too() {
+fn rough_conductors_and_rough_glass_on_lanes_match_too() {
     let world = world_from(
         include_str!("../../../../assets/reference/rough.xml"),
         20,
