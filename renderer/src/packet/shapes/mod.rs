@@ -214,12 +214,8 @@ impl PacketShapes {
     }
 
     /// How many primitives each kind holds.
-    fn counts(&self) -> [u32; 3] {
-        [
-            self.triangles.len() as u32,
-            self.boxes.len() as u32,
-            self.spheres.len() as u32,
-        ]
+    fn counts(&self) -> [usize; 3] {
+        [self.triangles.len(), self.boxes.len(), self.spheres.len()]
     }
 
     /// How many primitives there are.
@@ -238,23 +234,14 @@ impl PacketShapes {
     pub fn closest<F: FloatLanes>(&self, rays: &Rays<F>, tests: &mut F::Ints) -> PacketHits<F> {
         let live = live_lanes(rays);
         let mut search = Closest {
-            shapes: self,
-            rays,
-            sheared: (!self.triangles.is_empty()).then(|| ShearedRays::new(rays, live)),
-            spheres: SphereRays::new(rays),
+            prepared: Prepared::new(self, rays, live, *tests),
             nearest: Nearest::new(rays),
             live,
-            tests: *tests,
         };
         if live.any() {
-            match &self.tree {
-                Some(tree) => tree.walk(&BoxRays::new(rays), &mut search),
-                None => {
-                    search.leaf(&self.everything(), live);
-                }
-            }
+            self.search(rays, live, &mut search);
         }
-        *tests = search.tests;
+        *tests = search.prepared.tests;
         search.nearest.hits()
     }
 
@@ -268,22 +255,25 @@ impl PacketShapes {
             return F::ZERO;
         }
         let mut search = Occluded {
-            shapes: self,
-            rays,
-            sheared: (!self.triangles.is_empty()).then(|| ShearedRays::new(rays, live)),
-            spheres: SphereRays::new(rays),
+            prepared: Prepared::new(self, rays, live, *tests),
             // Lanes settled: blocked ones, and the dead ones from the start.
             settled: !live,
-            tests: *tests,
         };
+        self.search(rays, live, &mut search);
+        *tests = search.prepared.tests;
+        search.settled & live
+    }
+
+    /// Hands `visitor` the leaves the lanes `live` of `rays` may hit: those
+    /// the tree lets through, or every primitive as one leaf.
+    #[inline(always)]
+    fn search<F: FloatLanes>(&self, rays: &Rays<F>, live: F, visitor: &mut impl Visitor<F>) {
         match &self.tree {
-            Some(tree) => tree.walk(&BoxRays::new(rays), &mut search),
+            Some(tree) => tree.walk(&BoxRays::new(rays), visitor),
             None => {
-                search.leaf(&self.everything(), live);
+                visitor.leaf(&self.everything(), live);
             }
         }
-        *tests = search.tests;
-        search.settled & live
     }
 
     /// A leaf of every primitive (no tree).
@@ -341,20 +331,39 @@ impl PacketShapes {
     }
 }
 
-/// A nearest-hit search: the rays prepared for each kind's test and the
-/// nearest hit so far.
-struct Closest<'a, F: FloatLanes> {
+/// What both searches share: the rays prepared for each kind's test, and
+/// the count of tests.
+struct Prepared<'a, F: FloatLanes> {
     shapes: &'a PacketShapes,
     rays: &'a Rays<F>,
     /// The rays prepared for triangles (when there are any).
     sheared: Option<ShearedRays<F>>,
     /// The rays prepared for spheres.
     spheres: SphereRays<F>,
+    /// Per lane, primitives tested.
+    tests: F::Ints,
+}
+
+impl<'a, F: FloatLanes> Prepared<'a, F> {
+    /// `rays` (live in `live`) prepared for `shapes`' tests, `tests` counted so far.
+    #[inline(always)]
+    fn new(shapes: &'a PacketShapes, rays: &'a Rays<F>, live: F, tests: F::Ints) -> Self {
+        Self {
+            shapes,
+            rays,
+            sheared: (!shapes.triangles.is_empty()).then(|| ShearedRays::new(rays, live)),
+            spheres: SphereRays::new(rays),
+            tests,
+        }
+    }
+}
+
+/// A nearest-hit search: the prepared rays and the nearest hit so far.
+struct Closest<'a, F: FloatLanes> {
+    prepared: Prepared<'a, F>,
     nearest: Nearest<F>,
     /// The lanes with a ray.
     live: F,
-    /// Per lane, primitives tested.
-    tests: F::Ints,
 }
 
 impl<F: FloatLanes> Visitor<F> for Closest<'_, F> {
@@ -371,41 +380,35 @@ impl<F: FloatLanes> Visitor<F> for Closest<'_, F> {
     /// Tests the leaf's triangles, boxes, then spheres, each kind in order.
     #[inline(always)]
     fn leaf(&mut self, leaf: &Leaf, entered: F) -> bool {
-        let shapes = self.shapes;
-        if let Some(sheared) = &self.sheared {
-            let range = leaf.triangles.start as usize..leaf.triangles.end as usize;
-            shapes.triangles.closest(sheared, range, &mut self.nearest);
+        let p = &mut self.prepared;
+        if let Some(sheared) = &p.sheared {
+            let range = leaf.triangles.clone();
+            p.shapes
+                .triangles
+                .closest(sheared, range, &mut self.nearest);
         }
-        let range = leaf.boxes.start as usize..leaf.boxes.end as usize;
-        shapes.boxes.closest(self.rays, range, &mut self.nearest);
-        let range = leaf.spheres.start as usize..leaf.spheres.end as usize;
-        shapes
+        let range = leaf.boxes.clone();
+        p.shapes.boxes.closest(p.rays, range, &mut self.nearest);
+        let range = leaf.spheres.clone();
+        p.shapes
             .spheres
-            .closest(&self.spheres, range, &mut self.nearest);
-        self.tests = self.tests + count(entered, leaf.len());
+            .closest(&p.spheres, range, &mut self.nearest);
+        p.tests = p.tests + count(entered, leaf.len());
         false
     }
 }
 
-/// An any-hit search: the rays prepared for each kind's test and the lanes
-/// settled so far.
+/// An any-hit search: the prepared rays and the lanes settled so far.
 struct Occluded<'a, F: FloatLanes> {
-    shapes: &'a PacketShapes,
-    rays: &'a Rays<F>,
-    /// The rays prepared for triangles (when there are any).
-    sheared: Option<ShearedRays<F>>,
-    /// The rays prepared for spheres.
-    spheres: SphereRays<F>,
+    prepared: Prepared<'a, F>,
     /// Blocked lanes and dead ones.
     settled: F,
-    /// Per lane, primitives tested.
-    tests: F::Ints,
 }
 
 impl<F: FloatLanes> Visitor<F> for Occluded<'_, F> {
     #[inline(always)]
     fn limit(&self) -> F {
-        self.rays.t_max
+        self.prepared.rays.t_max
     }
 
     #[inline(always)]
@@ -417,25 +420,23 @@ impl<F: FloatLanes> Visitor<F> for Occluded<'_, F> {
     /// lane is settled.
     #[inline(always)]
     fn leaf(&mut self, leaf: &Leaf, entered: F) -> bool {
-        let (shapes, t_max) = (self.shapes, self.rays.t_max);
-        self.tests = self.tests + count(entered, leaf.len());
-        if let Some(sheared) = &self.sheared {
-            let range = leaf.triangles.start as usize..leaf.triangles.end as usize;
-            if shapes
+        let p = &mut self.prepared;
+        let t_max = p.rays.t_max;
+        p.tests = p.tests + count(entered, leaf.len());
+        let settled = &mut self.settled;
+        if let Some(sheared) = &p.sheared
+            && p.shapes
                 .triangles
-                .occluded(sheared, range, t_max, &mut self.settled)
-            {
-                return true;
-            }
-        }
-        let range = leaf.boxes.start as usize..leaf.boxes.end as usize;
-        if shapes.boxes.occluded(self.rays, range, &mut self.settled) {
+                .occluded(sheared, leaf.triangles.clone(), t_max, settled)
+        {
             return true;
         }
-        let range = leaf.spheres.start as usize..leaf.spheres.end as usize;
-        shapes
+        if p.shapes.boxes.occluded(p.rays, leaf.boxes.clone(), settled) {
+            return true;
+        }
+        p.shapes
             .spheres
-            .occluded(&self.spheres, range, t_max, &mut self.settled)
+            .occluded(&p.spheres, leaf.spheres.clone(), t_max, settled)
     }
 }
 

@@ -35,11 +35,11 @@ pub(super) const MAX_DEPTH: usize = 64;
 #[derive(Clone, Debug, Default)]
 pub(super) struct Leaf {
     /// Indices among the triangles.
-    pub(super) triangles: Range<u32>,
+    pub(super) triangles: Range<usize>,
     /// Indices among the boxes.
-    pub(super) boxes: Range<u32>,
+    pub(super) boxes: Range<usize>,
     /// Indices among the spheres.
-    pub(super) spheres: Range<u32>,
+    pub(super) spheres: Range<usize>,
 }
 
 impl Leaf {
