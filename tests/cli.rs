@@ -580,11 +580,14 @@ fn bench_export_is_refused_for_the_window_benchmarks() {
 #[test]
 fn chart_writes_error_against_time_per_method_as_csv_and_a_png() {
     let dir = tempfile::tempdir().expect("tempdir");
+    // The lamp is just above the frame: a lamp in view would put its edge
+    // in a few pixels whose error leaps whenever a sample lands on it, and
+    // the curve would fall or not by luck.
     let scene = dir.path().join("lamp.xml");
     std::fs::write(
         &scene,
         r#"<scene>
-  <camera eye="0 1 4" toward="0 -0.2 -1" theta="30" width="24" height="16"/>
+  <camera eye="0 1 4" toward="0 -0.2 -1" theta="20" width="24" height="16"/>
   <sphere center="0 0.5 0" radius="0.5" color="0.7 0.6 0.5"/>
   <triangle t0="-1 0 1" t1="1 0 1" t2="1 0 -1" color="0.5 0.5 0.5"/>
   <triangle t0="-1 0 1" t1="1 0 -1" t2="-1 0 -1" color="0.5 0.5 0.5"/>

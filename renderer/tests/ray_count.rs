@@ -43,7 +43,7 @@ fn hits(world: &World, options: &RenderOptions) -> u64 {
     let mut count = 0;
     for j in 0..world.camera.h {
         for i in 0..world.camera.w {
-            let mut sampler = Sampler::for_sample(options.seed, i, j, 0);
+            let mut sampler = Sampler::for_pixel_sample(options.sampling, options.seed, i, j, 0);
             let ray = world.camera.ray(i, j, sampler.next_2d());
             count += u64::from(world.intersect(&ray, Method::Robust).is_some());
         }

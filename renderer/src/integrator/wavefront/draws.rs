@@ -1,11 +1,13 @@
-//! The parts of a bounce the wavefront still takes lane by lane: random
-//! numbers (each lane has its own stream), the choice of an emitter and a
-//! point on it, and the warp of a cosine-weighted direction. Each is the
-//! scalar path tracer's own code, so the numbers are its numbers.
+//! A bounce's random numbers, drawn on lanes from each lane's stream
+//! ([`StreamLanes`]: the scalar streams' numbers bit for bit), and the parts
+//! the wavefront still takes lane by lane: the choice of an emitter and a
+//! point on it, and the warp of a cosine-weighted direction, each the
+//! scalar path tracer's own code.
 
 use crate::geometry::ray::Ray;
-use crate::integrator::sampler::{BounceDraw, Sampler};
-use crate::packet::{FloatLanes, Vec3s, WIDTH, lane_set, mask_from};
+use crate::integrator::sampler::lanes::StreamLanes;
+use crate::integrator::sampler::{BounceDraw, bounce_draw};
+use crate::packet::{FloatLanes, IntLanes, Vec3s, WIDTH, lane_set, mask_from};
 use crate::shading::bsdf::lambert::sample_cosine_hemisphere;
 use crate::world::World;
 use glam::{Vec2, Vec3};
@@ -24,19 +26,32 @@ pub(super) struct EmitterDraws<F> {
     pub(super) pdf: F,
 }
 
-/// For each lane of `lanes`, its light sample at bounce `depth`: seeks its
-/// stream to the bounce's light numbers, draws which emitter and where
-/// (three numbers), and the point on it as seen from `point`. Triangles
+/// Each lane's draw `at + offset` of its bounce `depth`.
+#[inline(always)]
+fn draw_at<F: FloatLanes>(depth: &[u32; WIDTH], at: BounceDraw, offset: u32) -> F::Ints {
+    let mut draws = [0i32; WIDTH];
+    for k in 0..WIDTH {
+        draws[k] = (bounce_draw(depth[k], at) + offset) as i32;
+    }
+    F::Ints::from_array(draws)
+}
+
+/// For each lane of `lanes`, its light sample at bounce `depth`: the
+/// bounce's light numbers — which emitter and where (three numbers) — and
+/// the point on it as seen from `point`. Triangles
 /// are drawn on lanes, with `Emitters::sample`'s arithmetic; other shapes
 /// (a sphere's cone of directions) by `Emitters::sample` itself.
 #[inline(always)]
 pub(super) fn emitter_draws<F: FloatLanes>(
     world: &World,
     lanes: F,
-    samplers: &mut [Sampler; WIDTH],
+    streams: &StreamLanes<F>,
     depth: &[u32; WIDTH],
     point: Vec3s<F>,
 ) -> EmitterDraws<F> {
+    let (u_select, _) = streams.numbers(draw_at::<F>(depth, BounceDraw::Light, 0));
+    let (ux, uy) = streams.numbers(draw_at::<F>(depth, BounceDraw::Light, 1));
+    let (u_select, ux_array, uy_array) = (u_select.as_array(), ux.as_array(), uy.as_array());
     let emitters = &world.emitters;
     // Lanes done by `Emitters::sample`, with its results.
     let mut scalar = [false; WIDTH];
@@ -53,15 +68,11 @@ pub(super) fn emitter_draws<F: FloatLanes>(
     let mut edge2 = [Vec3::ZERO; WIDTH];
     let mut normal = [Vec3::Z; WIDTH];
     let (mut pmf, mut pdf_area) = ([0.0f32; WIDTH], [0.0f32; WIDTH]);
-    let mut u = [Vec2::ZERO; WIDTH];
     for k in 0..WIDTH {
         if !lane_set(lanes, k) {
             continue;
         }
-        let sampler = &mut samplers[k];
-        sampler.seek_bounce(depth[k], BounceDraw::Light);
-        let u_select = sampler.next_f32();
-        u[k] = sampler.next_2d();
+        let (u_select, u) = (u_select[k], Vec2::new(ux_array[k], uy_array[k]));
         let Some((index, p)) = emitters.choose(u_select) else {
             continue;
         };
@@ -74,7 +85,7 @@ pub(super) fn emitter_draws<F: FloatLanes>(
             continue;
         }
         scalar[k] = true;
-        if let Some(s) = emitters.sample(point.lane(k), u_select, u[k]) {
+        if let Some(s) = emitters.sample(point.lane(k), u_select, u) {
             found[k] = true;
             to_light[k] = s.to_light;
             distance[k] = s.distance;
@@ -97,11 +108,6 @@ pub(super) fn emitter_draws<F: FloatLanes>(
     }
     // `TriangleSampler::sample`: barycentrics from the square folded along
     // its diagonal, the point t0 + b v1 + c v2.
-    let (mut ux, mut uy) = ([0.0f32; WIDTH], [0.0f32; WIDTH]);
-    for k in 0..WIDTH {
-        (ux[k], uy[k]) = (u[k].x, u[k].y);
-    }
-    let (ux, uy) = (F::from_array(ux), F::from_array(uy));
     let fold = (ux + uy).simd_gt(F::ONE);
     let b = fold.select(F::ONE - ux, ux);
     let c = fold.select(F::ONE - uy, uy);
@@ -122,27 +128,21 @@ pub(super) fn emitter_draws<F: FloatLanes>(
     draws
 }
 
-/// For each lane of `lanes`, its BSDF sample's numbers at bounce `depth`:
-/// seeks to the bounce's scattering numbers and draws the lobe's number
-/// and the direction's two.
+/// Each lane's BSDF sample's numbers at bounce `depth`: the lobe's number
+/// and the direction's two (a dead lane's are never used).
 #[inline(always)]
 pub(super) fn scatter_draws<F: FloatLanes>(
-    lanes: F,
-    samplers: &mut [Sampler; WIDTH],
+    streams: &StreamLanes<F>,
     depth: &[u32; WIDTH],
 ) -> (F, [Vec2; WIDTH]) {
-    let mut u_lobe = [0.0f32; WIDTH];
+    let (u_lobe, _) = streams.numbers(draw_at::<F>(depth, BounceDraw::Scatter, 0));
+    let (ux, uy) = streams.numbers(draw_at::<F>(depth, BounceDraw::Scatter, 1));
+    let (ux, uy) = (ux.as_array(), uy.as_array());
     let mut u = [Vec2::ZERO; WIDTH];
     for k in 0..WIDTH {
-        if !lane_set(lanes, k) {
-            continue;
-        }
-        let sampler = &mut samplers[k];
-        sampler.seek_bounce(depth[k], BounceDraw::Scatter);
-        u_lobe[k] = sampler.next_f32();
-        u[k] = sampler.next_2d();
+        u[k] = Vec2::new(ux[k], uy[k]);
     }
-    (F::from_array(u_lobe), u)
+    (u_lobe, u)
 }
 
 /// For each lane of `lanes`, its numbers `u` warped to a cosine-weighted
@@ -158,16 +158,20 @@ pub(super) fn cosine_warps<F: FloatLanes>(lanes: F, u: &[Vec2; WIDTH]) -> Vec3s<
     Vec3s::from_lanes(&wi)
 }
 
-/// For each lane of `lanes`, Russian roulette's number (the bounce's last draw).
+/// Russian roulette's number at bounce `depth` (the bounce's last draw,
+/// after the BSDF sample's), when any lane of `lanes` plays it.
 #[inline(always)]
-pub(super) fn roulette_draws<F: FloatLanes>(lanes: F, samplers: &mut [Sampler; WIDTH]) -> F {
-    let mut u = [0.0f32; WIDTH];
-    for k in 0..WIDTH {
-        if lane_set(lanes, k) {
-            u[k] = samplers[k].next_f32();
-        }
+pub(super) fn roulette_draws<F: FloatLanes>(
+    lanes: F,
+    streams: &StreamLanes<F>,
+    depth: &[u32; WIDTH],
+) -> F {
+    if !lanes.any() {
+        return F::ZERO;
     }
-    F::from_array(u)
+    streams
+        .numbers(draw_at::<F>(depth, BounceDraw::Scatter, 2))
+        .0
 }
 
 /// A stand-in ray for a dead lane: it hits nothing (t_max = 0).

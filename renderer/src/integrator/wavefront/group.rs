@@ -11,7 +11,7 @@ use super::scene::{LaneBsdf, ObjectTable, WavefrontScene};
 use super::tracing;
 use crate::integrator::lanes::{SampleRef, SampleResult, camera_sample};
 use crate::integrator::path::{RR_DEPTH, SHADOW_SHORTENING};
-use crate::integrator::sampler::Sampler;
+use crate::integrator::sampler::lanes::StreamLanes;
 use crate::integrator::{RenderOptions, path::power_heuristic};
 use crate::packet::{FloatLanes, IntLanes, Rays, Vec3s, WIDTH, lane_set, mask_from};
 use crate::world::World;
@@ -43,7 +43,7 @@ impl<F: FloatLanes> PathGroup<F> {
         Self {
             sample: [None; WIDTH],
             paths: Paths {
-                samplers: std::array::from_fn(|_| Sampler::for_sample(0, 0, 0, 0)),
+                streams: StreamLanes::new(),
                 rays: Rays::from_lanes(&[dead; WIDTH]),
                 radiance: Vec3s::ZERO,
                 throughput: Vec3s::ZERO,
@@ -78,7 +78,10 @@ impl<F: FloatLanes> PathGroup<F> {
     ) {
         let (sampler, _, ray) = camera_sample(world, options, s.i, s.j, Some(s.sample));
         self.sample[lane] = Some(index);
-        self.paths.samplers[lane] = sampler;
+        let stream = sampler
+            .pixel_stream()
+            .expect("a camera sample draws from a pixel stream");
+        self.paths.streams.set(lane, stream);
         self.paths.rays.origin.set_lane(lane, ray.origin);
         self.paths.rays.dir.set_lane(lane, ray.dir);
         self.paths.rays.t_max.as_mut_array()[lane] = ray.t_max;
@@ -219,13 +222,7 @@ impl<F: FloatLanes> PathGroup<F> {
         };
         // The light sample: a point drawn on the emitters, its BSDF value
         // and MIS weight, and the shadow ray toward it.
-        let light = emitter_draws(
-            world,
-            lit,
-            &mut self.paths.samplers,
-            &self.paths.depth,
-            point,
-        );
+        let light = emitter_draws(world, lit, &self.paths.streams, &self.paths.depth, point);
         let toward = light.to_light.dot(n).simd_gt(F::ZERO);
         let (f, bsdf_pdf) = lobes.eval_pdf(wo, frame.to_local(light.to_light));
         let mis = power_heuristics(light.pdf, bsdf_pdf);
@@ -239,7 +236,7 @@ impl<F: FloatLanes> PathGroup<F> {
         // cosine-weighted direction; a rough conductor reflects about a
         // visible micronormal; both weigh f·cos/pdf. A conductor reflects,
         // glass reflects or refracts.
-        let (u_lobe, u) = scatter_draws(go, &mut self.paths.samplers, &self.paths.depth);
+        let (u_lobe, u) = scatter_draws(&self.paths.streams, &self.paths.depth);
         let layered_mirror = go & at.layered & u_lobe.simd_lt(at.mirror);
         let diffuse = go & at.layered & !layered_mirror;
         let wi = cosine_warps(diffuse, &u);
@@ -300,7 +297,7 @@ impl<F: FloatLanes> PathGroup<F> {
 
         // Russian roulette from the RR_DEPTH-th scattering event on.
         let roulette = moving & mask_from(|k| depth[k] + 1 >= RR_DEPTH);
-        let u_roulette = roulette_draws(roulette, &mut self.paths.samplers);
+        let u_roulette = roulette_draws(roulette, &self.paths.streams, &self.paths.depth);
         let keep = (throughput.max_element() / self.paths.eta_scale).min(F::splat(0.95));
         let killed = roulette & !u_roulette.simd_lt(keep);
         let throughput = Vec3s::select(roulette & !killed, throughput.div_lanes(keep), throughput);

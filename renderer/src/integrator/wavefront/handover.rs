@@ -92,7 +92,7 @@ impl Handover {
                 }),
                 eta_scale: group.eta_scale.as_array()[k],
                 depth: group.depth[k],
-                sampler: std::mem::replace(&mut group.samplers[k], Sampler::for_sample(0, 0, 0, 0)),
+                sampler: Sampler::from_pixel_stream(group.streams.stream(k)),
             };
             let mut lane = PathLane::resume(state);
             let shadows = &mut self.shadows[k];
@@ -184,7 +184,6 @@ impl Handover {
             });
             group.eta_scale.as_mut_array()[k] = state.eta_scale;
             group.depth[k] = state.depth;
-            group.samplers[k] = state.sampler;
             if next == Next::Done {
                 finished |= 1 << k;
             }

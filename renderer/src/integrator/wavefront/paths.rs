@@ -1,13 +1,13 @@
 //! The state of eight paths between bounces, lane by lane: what `PathLane`
 //! carries from one bounce to the next, as structures of arrays.
 
-use crate::integrator::sampler::Sampler;
-use crate::packet::{Rays, Vec3s, WIDTH};
+use crate::integrator::sampler::lanes::StreamLanes;
+use crate::packet::{FloatLanes, Rays, Vec3s, WIDTH};
 
 /// Eight paths' state, one per lane.
-pub(super) struct Paths<F> {
+pub(super) struct Paths<F: FloatLanes> {
     /// Per lane, its random stream.
-    pub(super) samplers: [Sampler; WIDTH],
+    pub(super) streams: StreamLanes<F>,
     /// The rays whose closest hits the lanes wait for.
     pub(super) rays: Rays<F>,
     /// Radiance gathered so far.

@@ -286,4 +286,61 @@ impl IntLanes for Avx2Ints {
         // SAFETY: module invariant.
         Avx2(unsafe { _mm256_castsi256_ps(_mm256_cmpgt_epi32(self.0, o.0)) })
     }
+    #[inline(always)]
+    fn shr<const N: i32>(self) -> Self {
+        // SAFETY: module invariant.
+        Self(unsafe { _mm256_srli_epi32::<N>(self.0) })
+    }
+    #[inline(always)]
+    fn shl<const N: i32>(self) -> Self {
+        // SAFETY: module invariant.
+        Self(unsafe { _mm256_slli_epi32::<N>(self.0) })
+    }
+    #[inline(always)]
+    fn to_floats(self) -> Avx2 {
+        // SAFETY: module invariant.
+        Avx2(unsafe { _mm256_cvtepi32_ps(self.0) })
+    }
+    #[inline(always)]
+    fn bits_to_floats(self) -> Avx2 {
+        // SAFETY: module invariant.
+        Avx2(unsafe { _mm256_castsi256_ps(self.0) })
+    }
+}
+
+impl Mul for Avx2Ints {
+    type Output = Self;
+    /// The low 32 bits of each product (wrapping).
+    #[inline(always)]
+    fn mul(self, o: Self) -> Self {
+        // SAFETY: module invariant.
+        Self(unsafe { _mm256_mullo_epi32(self.0, o.0) })
+    }
+}
+
+impl BitAnd for Avx2Ints {
+    type Output = Self;
+    #[inline(always)]
+    fn bitand(self, o: Self) -> Self {
+        // SAFETY: module invariant.
+        Self(unsafe { _mm256_and_si256(self.0, o.0) })
+    }
+}
+
+impl BitOr for Avx2Ints {
+    type Output = Self;
+    #[inline(always)]
+    fn bitor(self, o: Self) -> Self {
+        // SAFETY: module invariant.
+        Self(unsafe { _mm256_or_si256(self.0, o.0) })
+    }
+}
+
+impl BitXor for Avx2Ints {
+    type Output = Self;
+    #[inline(always)]
+    fn bitxor(self, o: Self) -> Self {
+        // SAFETY: module invariant.
+        Self(unsafe { _mm256_xor_si256(self.0, o.0) })
+    }
 }

@@ -111,8 +111,22 @@ pub trait FloatLanes:
     fn is_sign_negative(self) -> Self;
 }
 
-/// Eight `i32`s, one per lane (object ids and counters).
-pub trait IntLanes: Copy + Debug + PartialEq + Send + Sync + 'static + Add<Output = Self> {
+/// Eight `i32`s, one per lane (object ids, counters, and as `u32` bits the
+/// hashes of the random streams: `+`, `*` and the shifts wrap and treat
+/// the lanes as unsigned).
+pub trait IntLanes:
+    Copy
+    + Debug
+    + PartialEq
+    + Send
+    + Sync
+    + 'static
+    + Add<Output = Self>
+    + Mul<Output = Self>
+    + BitAnd<Output = Self>
+    + BitOr<Output = Self>
+    + BitXor<Output = Self>
+{
     /// The `f32` lanes of the same instruction set, whose masks select these.
     type Floats: FloatLanes<Ints = Self>;
 
@@ -126,6 +140,14 @@ pub trait IntLanes: Copy + Debug + PartialEq + Send + Sync + 'static + Add<Outpu
     fn select(mask: Self::Floats, if_true: Self, if_false: Self) -> Self;
     /// Mask of `self > o`.
     fn simd_gt(self, o: Self) -> Self::Floats;
+    /// Shifted right by `N` bits, zeros shifted in (as `u32 >> N`).
+    fn shr<const N: i32>(self) -> Self;
+    /// Shifted left by `N` bits.
+    fn shl<const N: i32>(self) -> Self;
+    /// Converted to `f32`, rounded to nearest (exact below 2^24).
+    fn to_floats(self) -> Self::Floats;
+    /// The same bits read as `f32`s.
+    fn bits_to_floats(self) -> Self::Floats;
 }
 
 /// A computation over lanes of any [`FloatLanes`] type, run by

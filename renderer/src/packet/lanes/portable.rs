@@ -1,7 +1,7 @@
 //! [`FloatLanes`] by `wide`: whatever instructions the build targets.
 
 use super::{FloatLanes, IntLanes, WIDTH};
-use wide::{f32x8, i32x8};
+use wide::{f32x8, i32x8, u32x8};
 
 /// Eight `f32`s as `wide::f32x8`: two SSE registers on baseline x86-64,
 /// one AVX register where the build enables AVX, portable elsewhere.
@@ -135,5 +135,23 @@ impl IntLanes for i32x8 {
     #[inline(always)]
     fn simd_gt(self, o: Self) -> f32x8 {
         wide::bytemuck::cast(i32x8::simd_gt(self, o))
+    }
+    #[inline(always)]
+    fn shr<const N: i32>(self) -> Self {
+        let unsigned: u32x8 = wide::bytemuck::cast(self);
+        wide::bytemuck::cast(unsigned >> N as u32)
+    }
+    #[inline(always)]
+    fn shl<const N: i32>(self) -> Self {
+        let unsigned: u32x8 = wide::bytemuck::cast(self);
+        wide::bytemuck::cast(unsigned << N as u32)
+    }
+    #[inline(always)]
+    fn to_floats(self) -> f32x8 {
+        self.round_float()
+    }
+    #[inline(always)]
+    fn bits_to_floats(self) -> f32x8 {
+        wide::bytemuck::cast(self)
     }
 }

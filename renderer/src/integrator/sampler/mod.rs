@@ -1,11 +1,22 @@
 //! Random numbers that depend only on (seed, pixel, sample index), so images
 //! are identical for any thread count and any one sample can be re-traced.
 //!
-//! Two kinds of stream: independent numbers (PCG32), and Owen-scrambled
-//! Sobol points (Burley 2020, through the `sobol_burley` crate), where the
-//! samples of one pixel fill their dimensions evenly — the k-th sample
-//! avoids the places the first k − 1 already covered — so the error falls
-//! faster than 1/√n wherever the integrand is smooth enough to notice.
+//! A pixel sample's numbers are counter-based: draw `d` of a sample (a
+//! number or a 2D point, [`BounceDraw`] lays them out per bounce) is a pure
+//! function of the sample's keys and `d`, with no state carried from one
+//! draw to the next. Two kinds: independent numbers (a hash of the keys and
+//! the draw, [`independent_bits`]), and Owen-scrambled Sobol points (Burley
+//! 2020, through the `sobol_burley` crate), where the samples of one pixel
+//! fill their dimensions evenly — the k-th sample avoids the places the
+//! first k − 1 already covered — so the error falls faster than 1/√n
+//! wherever the integrand is smooth enough to notice.
+//!
+//! Being pure 32-bit integer functions, the same numbers are computed eight
+//! lanes at a time by the wavefront tracer ([`lanes`]), bit for bit. A
+//! general-purpose stream (PCG32, [`Sampler::for_sample`]) serves tests and
+//! diagnostics that want many numbers in a row.
+
+pub(crate) mod lanes;
 
 use glam::{Vec2, Vec3};
 use rand_core::Rng;
@@ -38,20 +49,20 @@ pub enum BounceDraw {
 
 /// Draws given to each bounce (see [`BounceDraw`]): a draw is one
 /// number or one 2D point.
-const DRAWS_PER_BOUNCE: u32 = 5;
+pub(crate) const DRAWS_PER_BOUNCE: u32 = 5;
 /// The camera's draw: the jitter (x, y) within the pixel.
-const CAMERA_DRAWS: u32 = 1;
+pub(crate) const CAMERA_DRAWS: u32 = 1;
 /// Draws taken from the Sobol sequence: the camera's jitter and the first
 /// hit's light and BSDF samples. Later draws are independent numbers: on the
 /// Cornell box, Sobol draws for every bounce gave no lower error at equal
 /// spp than for the first bounce alone, and each costs ~30 ns against a
 /// ~1.3 µs path (`raylab chart … --methods path,path-sobol`).
-const SOBOL_DRAWS: u32 = CAMERA_DRAWS + DRAWS_PER_BOUNCE;
+pub(crate) const SOBOL_DRAWS: u32 = CAMERA_DRAWS + DRAWS_PER_BOUNCE;
 /// The sequence length `sobol_burley` supports; later indices go on in a
 /// fresh scramble.
 const SOBOL_LENGTH: u32 = 1 << 16;
 
-/// A per-sample random stream.
+/// A random stream: a pixel sample's numbers, or a general-purpose one.
 #[derive(Clone)]
 pub struct Sampler {
     source: Source,
@@ -59,42 +70,84 @@ pub struct Sampler {
 
 #[derive(Clone)]
 enum Source {
-    Independent(Pcg32),
-    Sobol(SobolStream),
+    /// Numbers in a row from PCG32 ([`Sampler::for_sample`]).
+    General(Pcg32),
+    /// A pixel sample's draws ([`Sampler::for_pixel_sample`]).
+    Pixel(PixelStream),
 }
 
-/// Sample `index` of one pixel's scrambled Sobol sequence. Every draw — a
-/// number or a 2D point — takes the first one or two Sobol dimensions of
-/// its own scramble (Burley's padding), so each 2D point set is a (0, 2)
-/// sequence and separate draws are decorrelated at random.
-#[derive(Clone)]
-struct SobolStream {
-    index: u32,
-    pixel_seed: u64,
+/// The numbers of one pixel sample: what they are computed from, and the
+/// next draw. Each draw — a number or a 2D point — is
+/// - with Sobol sampling, before [`SOBOL_DRAWS`]: the first one or two
+///   Sobol dimensions of sample `index` of the draw's own scramble of the
+///   pixel's sequence (Burley's padding), so each 2D point set is a (0, 2)
+///   sequence and separate draws are decorrelated at random;
+/// - otherwise two independent numbers hashed from `keys` and the draw
+///   (the first alone when one number is asked for).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct PixelStream {
+    /// The sample's own keys, for its independent numbers.
+    pub(crate) keys: [u32; 2],
+    /// The pixel's key, from which each Sobol draw's scramble is hashed.
+    pub(crate) pixel_key: u32,
+    /// The sample's index k in its pixel's Sobol sequence.
+    pub(crate) index: u32,
+    /// Whether the first [`SOBOL_DRAWS`] draws are Sobol points.
+    pub(crate) sobol: bool,
     /// The next draw.
     draw: u32,
-    /// Independent numbers for the draws past [`SOBOL_DRAWS`].
-    tail: Pcg32,
 }
 
-impl SobolStream {
-    /// The next draw's first `N` (1 or 2) numbers: Sobol dimensions 0..N of
-    /// the draw's own scramble, or independent numbers past [`SOBOL_DRAWS`]
-    /// (two of them whatever `N`, so that later draws do not depend on it).
+impl PixelStream {
+    /// Draw `draw`'s first `N` (1 or 2) numbers.
+    #[inline]
+    fn numbers<const N: usize>(&self, draw: u32) -> [f32; N] {
+        if self.sobol && draw < SOBOL_DRAWS {
+            let (index, scramble) = sobol_index_and_scramble(self.pixel_key, self.index, draw);
+            return owen_sobol::<N>(index, scramble);
+        }
+        std::array::from_fn(|c| uniform(independent_bits(self.keys, 2 * draw + c as u32)))
+    }
+
+    /// The next draw's first `N` numbers.
     #[inline]
     fn next_draw<const N: usize>(&mut self) -> [f32; N] {
-        if self.draw >= SOBOL_DRAWS {
-            self.draw += 1;
-            let x = uniform(self.tail.next_u32());
-            let y = uniform(self.tail.next_u32());
-            return std::array::from_fn(|d| [x, y][d]);
-        }
-        // Indices past the crate's length go on in another scramble.
-        let lap = u64::from(self.index / SOBOL_LENGTH);
-        let seed = mix(self.pixel_seed ^ mix(u64::from(self.draw) | lap << 32)) as u32;
+        let numbers = self.numbers::<N>(self.draw);
         self.draw += 1;
-        owen_sobol::<N>(self.index % SOBOL_LENGTH, seed)
+        numbers
     }
+}
+
+/// Chris Wellons' `lowbias32`: a bijective 32-bit mix in which every input
+/// bit changes every output bit with probability close to ½.
+#[inline(always)]
+pub(crate) fn lowbias32(mut x: u32) -> u32 {
+    x ^= x >> 16;
+    x = x.wrapping_mul(0x7feb_352d);
+    x ^= x >> 15;
+    x = x.wrapping_mul(0x846c_a68b);
+    x ^ (x >> 16)
+}
+
+/// The 2^32·φ step of a Weyl sequence: consecutive counters land far apart.
+pub(crate) const GOLDEN: u32 = 0x9e37_79b9;
+
+/// Independent number `n` (draw d's numbers are 2d and 2d + 1) of the
+/// sample whose keys are `keys`: the 64 bits of key decide the whole
+/// stream, so two samples share their numbers only if both keys agree.
+#[inline(always)]
+pub(crate) fn independent_bits(keys: [u32; 2], n: u32) -> u32 {
+    lowbias32(keys[0] ^ lowbias32(keys[1].wrapping_add(n.wrapping_mul(GOLDEN))))
+}
+
+/// Where Sobol draw `draw` of sample `index` of a pixel (key `pixel_key`)
+/// is read: the index within the crate's sequence length, and the draw's
+/// scramble. Indices past the length go on in another scramble.
+#[inline(always)]
+pub(crate) fn sobol_index_and_scramble(pixel_key: u32, index: u32, draw: u32) -> (u32, u32) {
+    let lap = index / SOBOL_LENGTH;
+    let scramble = lowbias32(pixel_key ^ lowbias32(draw ^ lap.wrapping_mul(GOLDEN)));
+    (index % SOBOL_LENGTH, scramble)
 }
 
 /// Dimensions 0..N of sample `index` of the Owen-scrambled Sobol sequence
@@ -103,12 +156,10 @@ impl SobolStream {
 /// from [`SobolBytes`] (the crate's own parts otherwise, so the numbers are
 /// the same bit for bit; checked by a test).
 #[inline]
-fn owen_sobol<const N: usize>(index: u32, seed: u32) -> [f32; N] {
+pub(crate) fn owen_sobol<const N: usize>(index: u32, seed: u32) -> [f32; N] {
     use sobol_burley::parts::{hash, owen_scramble_rev, u32_to_f32_norm};
-    /// The crate's per-dimension scramble constants (dimensions 0–3).
-    const DIMENSION_KEYS: [u32; 4] = [0x912f_69ba, 0x174f_18ab, 0x691e_72ca, 0xb40c_c1b8];
-    let shuffled_rev = owen_scramble_rev(index.reverse_bits(), hash(seed ^ 0x79c6_8e4a));
-    let seed = seed.wrapping_mul(0x9c8f_2d3b);
+    let shuffled_rev = owen_scramble_rev(index.reverse_bits(), hash(seed ^ SHUFFLE_KEY));
+    let seed = seed.wrapping_mul(DIMENSION_SEED_FACTOR);
     let bytes = SobolBytes::get();
     std::array::from_fn(|d| {
         let sobol_rev = bytes.sobol_rev(shuffled_rev, d);
@@ -117,6 +168,13 @@ fn owen_sobol<const N: usize>(index: u32, seed: u32) -> [f32; N] {
     })
 }
 
+/// The crate's per-dimension scramble constants (dimensions 0–3).
+pub(crate) const DIMENSION_KEYS: [u32; 4] = [0x912f_69ba, 0x174f_18ab, 0x691e_72ca, 0xb40c_c1b8];
+/// The crate's scramble constant of the index shuffle.
+pub(crate) const SHUFFLE_KEY: u32 = 0x79c6_8e4a;
+/// The crate's multiplier of the seed before the dimensions' scrambles.
+pub(crate) const DIMENSION_SEED_FACTOR: u32 = 0x9c8f_2d3b;
+
 /// `sobol_burley::parts::sobol_rev` of dimensions 0 and 1 by two table
 /// lookups: the Sobol point is the XOR of the generator matrix's columns
 /// for the index's set bits (the top 16 of the reversed index), so it is
@@ -124,7 +182,7 @@ fn owen_sobol<const N: usize>(index: u32, seed: u32) -> [f32; N] {
 /// data-dependent number of steps, each waiting on the last, and ends in a
 /// mispredicted branch: ~20% of a path-traced Cornell pass with Sobol
 /// samples, where this costs two loads.
-struct SobolBytes {
+pub(crate) struct SobolBytes {
     /// [dimension][which byte: 0 the top][byte value] → that byte's Sobol point.
     table: [[[u32; 256]; 2]; 2],
 }
@@ -132,7 +190,7 @@ struct SobolBytes {
 impl SobolBytes {
     /// The tables, built on first use.
     #[inline]
-    fn get() -> &'static SobolBytes {
+    pub(crate) fn get() -> &'static SobolBytes {
         static TABLES: std::sync::OnceLock<Box<SobolBytes>> = std::sync::OnceLock::new();
         TABLES.get_or_init(|| {
             let point = |d: usize, byte: usize, value: u32| {
@@ -148,7 +206,7 @@ impl SobolBytes {
 
     /// `sobol_rev(index_rev, dimension)` for dimension 0 or 1.
     #[inline(always)]
-    fn sobol_rev(&self, index_rev: u32, dimension: usize) -> u32 {
+    pub(crate) fn sobol_rev(&self, index_rev: u32, dimension: usize) -> u32 {
         let t = &self.table[dimension];
         t[0][(index_rev >> 24) as usize] ^ t[1][((index_rev >> 16) & 0xff) as usize]
     }
@@ -156,7 +214,7 @@ impl SobolBytes {
 
 /// 24 random mantissa bits as a number in [0, 1): exactly representable, never 1.0.
 #[inline]
-fn uniform(bits: u32) -> f32 {
+pub(crate) fn uniform(bits: u32) -> f32 {
     (bits >> 8) as f32 * (1.0 / 16_777_216.0)
 }
 
@@ -168,46 +226,61 @@ fn mix(mut z: u64) -> u64 {
 }
 
 impl Sampler {
-    /// The independent stream of sample `sample` of pixel (i, j) for render seed `seed`.
+    /// A general-purpose stream (PCG32) of numbers in a row, seeded by
+    /// (`seed`, i, j, `sample`), for tests and diagnostics.
     pub fn for_sample(seed: u64, i: u32, j: u32, sample: u32) -> Self {
         let pixel = ((j as u64) << 32) | i as u64;
         let state = mix(mix(seed ^ mix(pixel)) ^ sample as u64);
         Self {
-            source: Source::Independent(Pcg32::new(state, mix(pixel ^ 0x5851_f42d_4c95_7f2d))),
+            source: Source::General(Pcg32::new(state, mix(pixel ^ 0x5851_f42d_4c95_7f2d))),
         }
     }
 
     /// The stream of sample `sample` of pixel (i, j) drawn as `sampling` says.
     pub fn for_pixel_sample(sampling: Sampling, seed: u64, i: u32, j: u32, sample: u32) -> Self {
-        match sampling {
-            Sampling::Independent => Self::for_sample(seed, i, j, sample),
-            Sampling::Sobol => {
-                let pixel = ((j as u64) << 32) | i as u64;
-                Self {
-                    source: Source::Sobol(SobolStream {
-                        index: sample,
-                        pixel_seed: mix(mix(seed) ^ mix(pixel ^ 0x2545_f491_4f6c_dd1d)),
-                        draw: 0,
-                        tail: Pcg32::new(mix(seed ^ mix(pixel) ^ u64::from(sample)), mix(pixel)),
-                    }),
-                }
-            }
+        let pixel = ((j as u64) << 32) | i as u64;
+        let keys = mix(mix(seed ^ mix(pixel)) ^ u64::from(sample));
+        Self {
+            source: Source::Pixel(PixelStream {
+                keys: [keys as u32, (keys >> 32) as u32],
+                pixel_key: mix(mix(seed) ^ mix(pixel ^ 0x2545_f491_4f6c_dd1d)) as u32,
+                index: sample,
+                sobol: sampling == Sampling::Sobol,
+                draw: 0,
+            }),
+        }
+    }
+
+    /// The pixel stream `stream` at draw 0.
+    pub(crate) fn from_pixel_stream(stream: PixelStream) -> Self {
+        Self {
+            source: Source::Pixel(PixelStream { draw: 0, ..stream }),
+        }
+    }
+
+    /// The pixel stream this is, if it is one.
+    pub(crate) fn pixel_stream(&self) -> Option<&PixelStream> {
+        match &self.source {
+            Source::Pixel(stream) => Some(stream),
+            Source::General(_) => None,
         }
     }
 
     /// Moves to the numbers of bounce `depth` (0 at the camera ray's hit),
-    /// at `at` within them. The independent stream just goes on.
+    /// at `at` within them. A general-purpose stream just goes on.
+    #[inline]
     pub fn seek_bounce(&mut self, depth: u32, at: BounceDraw) {
-        if let Source::Sobol(stream) = &mut self.source {
-            stream.draw = CAMERA_DRAWS + depth * DRAWS_PER_BOUNCE + at as u32;
+        if let Source::Pixel(stream) = &mut self.source {
+            stream.draw = bounce_draw(depth, at);
         }
     }
 
     /// A uniform number in [0, 1).
+    #[inline]
     pub fn next_f32(&mut self) -> f32 {
         match &mut self.source {
-            Source::Independent(rng) => uniform(rng.next_u32()),
-            Source::Sobol(stream) => stream.next_draw::<1>()[0],
+            Source::General(rng) => uniform(rng.next_u32()),
+            Source::Pixel(stream) => stream.next_draw::<1>()[0],
         }
     }
 
@@ -221,18 +294,25 @@ impl Sampler {
     }
 
     /// A uniform point in [0, 1)².
+    #[inline]
     pub fn next_2d(&mut self) -> Vec2 {
         match &mut self.source {
-            Source::Independent(_) => {
+            Source::General(_) => {
                 let x = self.next_f32();
                 Vec2::new(x, self.next_f32())
             }
-            Source::Sobol(stream) => {
+            Source::Pixel(stream) => {
                 let [x, y] = stream.next_draw::<2>();
                 Vec2::new(x, y)
             }
         }
     }
+}
+
+/// The index of the first draw of `at` at bounce `depth`.
+#[inline(always)]
+pub(crate) fn bounce_draw(depth: u32, at: BounceDraw) -> u32 {
+    CAMERA_DRAWS + depth * DRAWS_PER_BOUNCE + at as u32
 }
 
 #[cfg(test)]
@@ -341,6 +421,54 @@ mod tests {
         let b = Sampler::for_pixel_sample(Sampling::Sobol, 0, 0, 0, SOBOL_LENGTH + 3).next_f32();
         assert!((0.0..1.0).contains(&b));
         assert_ne!(a, b);
+    }
+
+    #[test]
+    fn counter_based_numbers_are_uniform_in_2d_and_uncorrelated_between_draws() {
+        // 16 384 samples of one pixel (and of neighbouring pixels), draws
+        // past the Sobol ones: each 2D draw fills a 16 × 16 grid evenly
+        // (chi-square), and no number is correlated with any other of the
+        // same sample.
+        let n = 16_384;
+        let streams: Vec<Sampler> = (0..n)
+            .map(|k| Sampler::for_pixel_sample(Sampling::Sobol, 1, k % 3, 0, k / 3))
+            .collect();
+        let numbers = |draw: u32| -> Vec<[f32; 2]> {
+            streams
+                .iter()
+                .map(|s| *s.pixel_stream().expect("pixel stream"))
+                .map(|s| s.numbers::<2>(draw))
+                .collect()
+        };
+        let draws: Vec<Vec<[f32; 2]>> = (SOBOL_DRAWS..SOBOL_DRAWS + 12).map(numbers).collect();
+        for points in &draws {
+            let mut cells = [0u32; 256];
+            for p in points {
+                cells[(p[1] * 16.0) as usize * 16 + (p[0] * 16.0) as usize] += 1;
+            }
+            let expected = n as f64 / 256.0;
+            let chi2: f64 = cells
+                .iter()
+                .map(|&c| (c as f64 - expected).powi(2) / expected)
+                .sum();
+            // 255 degrees of freedom: mean 255, standard deviation 22.6.
+            assert!(chi2 < 255.0 + 5.0 * 22.6, "chi-square {chi2}");
+        }
+        let column = |d: usize, c: usize| -> Vec<f64> {
+            draws[d].iter().map(|p| f64::from(p[c]) - 0.5).collect()
+        };
+        for a in 0..draws.len() * 2 {
+            for b in a + 1..draws.len() * 2 {
+                let (x, y) = (column(a / 2, a % 2), column(b / 2, b % 2));
+                let covariance: f64 = x.iter().zip(&y).map(|(x, y)| x * y).sum::<f64>() / n as f64;
+                // Correlation = covariance / (1/12); its noise is 1/√n ≈ 0.008.
+                assert!(
+                    (covariance * 12.0).abs() < 0.04,
+                    "numbers {a} and {b}: correlation {}",
+                    covariance * 12.0
+                );
+            }
+        }
     }
 
     #[test]

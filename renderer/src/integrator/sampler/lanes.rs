@@ -1,0 +1,278 @@
+//! The pixel streams of eight samples at once, one per SIMD lane: each
+//! lane's draw is [`PixelStream`]'s, computed with the same 32-bit integer
+//! operations on all lanes together, so the numbers are the scalar
+//! stream's bit for bit (a test holds them to it on both lane types).
+//!
+//! Write lane code here as `#[inline(always)]` functions (see
+//! `integrator::wavefront`): they must compile inside the dispatched SIMD
+//! function.
+
+use super::{
+    DIMENSION_KEYS, DIMENSION_SEED_FACTOR, GOLDEN, PixelStream, SHUFFLE_KEY, SOBOL_DRAWS,
+    SOBOL_LENGTH, SobolBytes,
+};
+use crate::packet::{FloatLanes, IntLanes, WIDTH};
+use std::marker::PhantomData;
+
+/// Eight pixel streams, one per lane: what their numbers are computed from,
+/// kept as arrays (a lane is written alone when it starts a sample, and
+/// read as a vector when the lanes draw). The lanes hold no draw counter:
+/// the caller names each lane's draw.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct StreamLanes<F: FloatLanes> {
+    /// [`PixelStream::keys`] of each lane.
+    keys: [[i32; WIDTH]; 2],
+    /// [`PixelStream::pixel_key`] of each lane.
+    pixel_key: [i32; WIDTH],
+    /// [`PixelStream::index`] of each lane.
+    index: [i32; WIDTH],
+    /// Whether the streams draw Sobol points (the same for every lane).
+    sobol: bool,
+    lanes: PhantomData<F>,
+}
+
+impl<F: FloatLanes> StreamLanes<F> {
+    /// Lanes of all-zero keys (dead lanes' numbers are never used).
+    #[inline(always)]
+    pub(crate) fn new() -> Self {
+        Self {
+            keys: [[0; WIDTH]; 2],
+            pixel_key: [0; WIDTH],
+            index: [0; WIDTH],
+            sobol: false,
+            lanes: PhantomData,
+        }
+    }
+
+    /// Lane `lane` takes the stream `stream` (its draw counter aside).
+    #[inline(always)]
+    pub(crate) fn set(&mut self, lane: usize, stream: &PixelStream) {
+        self.keys[0][lane] = stream.keys[0] as i32;
+        self.keys[1][lane] = stream.keys[1] as i32;
+        self.pixel_key[lane] = stream.pixel_key as i32;
+        self.index[lane] = stream.index as i32;
+        self.sobol = stream.sobol;
+    }
+
+    /// Lane `lane`'s stream, at draw 0.
+    #[inline(always)]
+    pub(crate) fn stream(&self, lane: usize) -> PixelStream {
+        PixelStream {
+            keys: [self.keys[0][lane] as u32, self.keys[1][lane] as u32],
+            pixel_key: self.pixel_key[lane] as u32,
+            index: self.index[lane] as u32,
+            sobol: self.sobol,
+            draw: 0,
+        }
+    }
+
+    /// Both numbers of each lane's draw `draw` (`PixelStream::numbers`;
+    /// a draw of one number is the first of these). `draw` is a small
+    /// non-negative count in every lane.
+    #[inline(always)]
+    pub(crate) fn numbers(&self, draw: F::Ints) -> (F, F) {
+        let n = draw.shl::<1>();
+        let one = F::Ints::splat(1);
+        let keys = [
+            F::Ints::from_array(self.keys[0]),
+            F::Ints::from_array(self.keys[1]),
+        ];
+        let x = uniform::<F>(independent_bits::<F>(keys, n));
+        let y = uniform::<F>(independent_bits::<F>(keys, n + one));
+        if !self.sobol {
+            return (x, y);
+        }
+        let sobol = F::Ints::splat(SOBOL_DRAWS as i32).simd_gt(draw);
+        if !sobol.any() {
+            return (x, y);
+        }
+        let (pixel_key, index) = (
+            F::Ints::from_array(self.pixel_key),
+            F::Ints::from_array(self.index),
+        );
+        let (sx, sy) = owen_sobol::<F>(pixel_key, index, draw);
+        (sobol.select(sx, x), sobol.select(sy, y))
+    }
+}
+
+/// [`super::lowbias32`] on lanes.
+#[inline(always)]
+fn lowbias32<I: IntLanes>(mut x: I) -> I {
+    x = x ^ x.shr::<16>();
+    x = x * I::splat(0x7feb_352d);
+    x = x ^ x.shr::<15>();
+    x = x * I::splat(0x846c_a68b_u32 as i32);
+    x ^ x.shr::<16>()
+}
+
+/// [`super::independent_bits`] on lanes.
+#[inline(always)]
+fn independent_bits<F: FloatLanes>(keys: [F::Ints; 2], n: F::Ints) -> F::Ints {
+    let golden = F::Ints::splat(GOLDEN as i32);
+    lowbias32(keys[0] ^ lowbias32(keys[1] + n * golden))
+}
+
+/// [`super::uniform`] on lanes: the top 24 bits, exactly, times 2^−24.
+#[inline(always)]
+fn uniform<F: FloatLanes>(bits: F::Ints) -> F {
+    bits.shr::<8>().to_floats() * F::splat(1.0 / 16_777_216.0)
+}
+
+/// `x` in every lane, as bits.
+#[inline(always)]
+fn splat<I: IntLanes>(x: u32) -> I {
+    I::splat(x as i32)
+}
+
+/// `u32::reverse_bits` on lanes: halves, then quarters, … swapped.
+#[inline(always)]
+fn reverse_bits<I: IntLanes>(mut x: I) -> I {
+    x = x.shr::<16>() | x.shl::<16>();
+    let m = splat::<I>(0x00ff_00ff);
+    x = (x.shr::<8>() & m) | (x & m).shl::<8>();
+    let m = splat::<I>(0x0f0f_0f0f);
+    x = (x.shr::<4>() & m) | (x & m).shl::<4>();
+    let m = splat::<I>(0x3333_3333);
+    x = (x.shr::<2>() & m) | (x & m).shl::<2>();
+    let m = splat::<I>(0x5555_5555);
+    (x.shr::<1>() & m) | (x & m).shl::<1>()
+}
+
+/// `sobol_burley::parts::hash` on lanes.
+#[inline(always)]
+fn hash<I: IntLanes>(x: I) -> I {
+    lowbias32(x ^ I::splat(0xe6fe_3beb_u32 as i32))
+}
+
+/// `sobol_burley::parts::owen_scramble_rev` on lanes.
+#[inline(always)]
+fn owen_scramble_rev<I: IntLanes>(mut n_rev: I, scramble: I) -> I {
+    n_rev = n_rev ^ (n_rev * I::splat(0x3d20_adea));
+    n_rev = n_rev + scramble;
+    n_rev = n_rev * (scramble.shr::<16>() | I::splat(1));
+    n_rev = n_rev ^ (n_rev * I::splat(0x0552_6c56));
+    n_rev ^ (n_rev * I::splat(0x53a2_2864))
+}
+
+/// Dimensions 0 and 1 of each lane's Sobol draw `draw`:
+/// `sobol_index_and_scramble` then `owen_sobol::<2>`, on lanes.
+#[inline(always)]
+fn owen_sobol<F: FloatLanes>(pixel_key: F::Ints, index: F::Ints, draw: F::Ints) -> (F, F) {
+    // `sobol_index_and_scramble`.
+    debug_assert_eq!(SOBOL_LENGTH, 1 << 16);
+    let lap = index.shr::<16>();
+    let scramble = lowbias32(pixel_key ^ lowbias32(draw ^ (lap * splat(GOLDEN))));
+    let index = index & splat(SOBOL_LENGTH - 1);
+    // `owen_sobol`.
+    let shuffled_rev = owen_scramble_rev(reverse_bits(index), hash(scramble ^ splat(SHUFFLE_KEY)));
+    let seed = scramble * splat(DIMENSION_SEED_FACTOR);
+    let bytes = SobolBytes::get();
+    (
+        sobol_dimension::<F>(bytes, shuffled_rev, seed, 0),
+        sobol_dimension::<F>(bytes, shuffled_rev, seed, 1),
+    )
+}
+
+/// Dimension `d` of the Sobol points of the shuffled (reversed) indices
+/// `shuffled_rev`, scrambled by `seed`: the inner step of `owen_sobol`.
+#[inline(always)]
+fn sobol_dimension<F: FloatLanes>(
+    bytes: &SobolBytes,
+    shuffled_rev: F::Ints,
+    seed: F::Ints,
+    d: usize,
+) -> F {
+    let shuffled = shuffled_rev.to_array();
+    let mut sobol_rev = [0i32; WIDTH];
+    for k in 0..WIDTH {
+        sobol_rev[k] = bytes.sobol_rev(shuffled[k] as u32, d) as i32;
+    }
+    let scrambled = owen_scramble_rev(
+        F::Ints::from_array(sobol_rev),
+        hash(seed ^ splat(DIMENSION_KEYS[d])),
+    );
+    // `u32_to_f32_norm`: the top 23 bits as the mantissa of [1, 2), minus 1.
+    (reverse_bits(scrambled).shr::<9>() | splat(0x3f80_0000)).bits_to_floats() - F::ONE
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::integrator::sampler::{Sampler, Sampling};
+    use crate::packet::lanes::{WithLanes, on_every_lane_type};
+
+    /// Every draw 0..40 of 64 pixel samples (both samplings, indices past
+    /// the Sobol length among them), from the lanes and from the scalar
+    /// streams: the bits of both numbers of each draw.
+    #[derive(Clone)]
+    struct Compare;
+
+    impl WithLanes for Compare {
+        type Output = ();
+        #[inline(always)]
+        fn run<F: FloatLanes>(self) {
+            for sampling in [Sampling::Independent, Sampling::Sobol] {
+                for group in 0..8u32 {
+                    let streams: [PixelStream; WIDTH] = std::array::from_fn(|k| {
+                        let sample = group * 40_000 + k as u32 * 3;
+                        let sampler =
+                            Sampler::for_pixel_sample(sampling, 5, group, k as u32, sample);
+                        *sampler.pixel_stream().expect("a pixel stream")
+                    });
+                    let mut lanes = StreamLanes::<F>::new();
+                    for (k, stream) in streams.iter().enumerate() {
+                        lanes.set(k, stream);
+                        assert_eq!(lanes.stream(k), *stream);
+                    }
+                    for first in 0..40u32 {
+                        // Each lane at a different draw.
+                        let draws: [u32; WIDTH] = std::array::from_fn(|k| (first + k as u32) % 40);
+                        let (x, y) = lanes.numbers(F::Ints::from_array(draws.map(|d| d as i32)));
+                        for k in 0..WIDTH {
+                            let expected = streams[k].numbers::<2>(draws[k]);
+                            let got = [x.as_array()[k], y.as_array()[k]];
+                            assert_eq!(
+                                got.map(f32::to_bits),
+                                expected.map(f32::to_bits),
+                                "{sampling:?}, lane {k}, draw {}",
+                                draws[k]
+                            );
+                            let one = streams[k].numbers::<1>(draws[k]);
+                            assert_eq!(one[0].to_bits(), expected[0].to_bits());
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn lane_streams_give_the_scalar_streams_numbers_bit_for_bit() {
+        on_every_lane_type(Compare);
+    }
+
+    #[test]
+    fn reverse_bits_on_lanes_is_u32_reverse_bits() {
+        #[derive(Clone)]
+        struct Reverse;
+        impl WithLanes for Reverse {
+            type Output = ();
+            #[inline(always)]
+            fn run<F: FloatLanes>(self) {
+                let mut x = 0x1234_5678u32;
+                for _ in 0..1000 {
+                    let values: [u32; WIDTH] = std::array::from_fn(|k| {
+                        x = super::super::lowbias32(x.wrapping_add(k as u32));
+                        x
+                    });
+                    let lanes = F::Ints::from_array(values.map(|v| v as i32));
+                    let reversed = reverse_bits(lanes).to_array();
+                    for k in 0..WIDTH {
+                        assert_eq!(reversed[k] as u32, values[k].reverse_bits());
+                    }
+                }
+            }
+        }
+        on_every_lane_type(Reverse);
+    }
+}
