@@ -7,13 +7,14 @@ use super::handover::{Handover, Target};
 use super::lane_math::{Frame, offset_origins, power_heuristics};
 use super::paths::Paths;
 use super::rough_glass::RoughDielectrics;
-use super::scene::{LaneBsdf, ObjectTable, WavefrontScene};
+use super::scene::WavefrontScene;
+use super::surfaces::Surfaces;
 use super::tracing;
 use crate::integrator::lanes::{SampleRef, SampleResult, camera_sample};
 use crate::integrator::path::{RR_DEPTH, SHADOW_SHORTENING};
 use crate::integrator::sampler::lanes::StreamLanes;
 use crate::integrator::{RenderOptions, path::power_heuristic};
-use crate::packet::{FloatLanes, IntLanes, Rays, Vec3s, WIDTH, lane_set, mask_from};
+use crate::packet::{FloatLanes, Rays, Vec3s, WIDTH, lane_set, mask_from};
 use crate::world::World;
 use crate::world::light::Light;
 use glam::Vec3;
@@ -460,91 +461,5 @@ fn light_samples<F: FloatLanes>(light: &Light, point: Vec3s<F>) -> LightSamples<
             distance: F::ZERO,
             irradiance: Vec3s::ZERO,
         },
-    }
-}
-
-/// What the objects hit are made of, gathered lane by lane.
-struct Surfaces<F: FloatLanes> {
-    /// Lanes whose BSDF the lanes evaluate.
-    on_lanes: F,
-    /// Lanes with a layered BSDF (Lambertian and mirror lobes).
-    layered: F,
-    /// Lanes with a smooth conductor.
-    conductor: F,
-    /// Lanes whose conductor, smooth or rough, follows Schlick's
-    /// approximation (metal).
-    schlick: F,
-    /// Lanes with a rough conductor.
-    rough: F,
-    /// Lanes with rough glass.
-    rough_glass: F,
-    /// The rough conductor's or glass's GGX α.
-    alpha: F,
-    /// Lanes with smooth glass.
-    dielectric: F,
-    /// The material's colour.
-    color: Vec3s<F>,
-    /// The Lambertian lobe's weight.
-    diffuse: F,
-    /// The mirror lobe's weight.
-    mirror: F,
-    /// Glass's η from outside and from inside.
-    eta: (F, F),
-    emission: Vec3s<F>,
-    emitter: [i32; WIDTH],
-    magnitude: F,
-}
-
-impl<F: FloatLanes> Surfaces<F> {
-    /// The table's entries of the objects `object` in the lanes of `hit`.
-    #[inline(always)]
-    fn gather(table: &ObjectTable, hit: F, object: F::Ints) -> Self {
-        let ids = object.to_array();
-        let id = |k: usize| {
-            if lane_set(hit, k) {
-                ids[k] as usize
-            } else {
-                usize::MAX
-            }
-        };
-        let vec3s = |column: &[Vec3]| {
-            Vec3s::from_lanes(&std::array::from_fn(|k| {
-                column.get(id(k)).copied().unwrap_or(Vec3::ZERO)
-            }))
-        };
-        let floats = |column: &[f32]| {
-            F::from_array(std::array::from_fn::<f32, WIDTH, _>(|k| {
-                column.get(id(k)).copied().unwrap_or(0.0)
-            }))
-        };
-        let bsdf: [LaneBsdf; WIDTH] =
-            std::array::from_fn(|k| table.bsdf.get(id(k)).copied().unwrap_or_default());
-        let eta_front: [f32; WIDTH] =
-            std::array::from_fn(|k| table.eta.get(id(k)).map_or(1.0, |e| e.0));
-        let eta_back: [f32; WIDTH] =
-            std::array::from_fn(|k| table.eta.get(id(k)).map_or(1.0, |e| e.1));
-        Self {
-            on_lanes: mask_from(|k| bsdf[k] != LaneBsdf::Scalar),
-            layered: mask_from(|k| bsdf[k] == LaneBsdf::Layered),
-            conductor: mask_from(|k| matches!(bsdf[k], LaneBsdf::Conductor { .. })),
-            schlick: mask_from(|k| {
-                matches!(
-                    bsdf[k],
-                    LaneBsdf::Conductor { schlick: true }
-                        | LaneBsdf::RoughConductor { schlick: true }
-                )
-            }),
-            rough: mask_from(|k| matches!(bsdf[k], LaneBsdf::RoughConductor { .. })),
-            rough_glass: mask_from(|k| bsdf[k] == LaneBsdf::RoughDielectric),
-            alpha: floats(&table.alpha),
-            dielectric: mask_from(|k| bsdf[k] == LaneBsdf::Dielectric),
-            color: vec3s(&table.color),
-            diffuse: floats(&table.diffuse),
-            mirror: floats(&table.mirror),
-            eta: (F::from_array(eta_front), F::from_array(eta_back)),
-            emission: vec3s(&table.emission),
-            emitter: std::array::from_fn(|k| table.emitter.get(id(k)).copied().unwrap_or(-1)),
-            magnitude: floats(&table.magnitude),
-        }
     }
 }

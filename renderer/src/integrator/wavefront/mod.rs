@@ -38,6 +38,7 @@ mod lane_math;
 mod paths;
 mod rough_glass;
 mod scene;
+mod surfaces;
 mod tracing;
 
 pub(crate) use scene::WavefrontScene;

@@ -4,7 +4,6 @@ use crate::packet::PacketShapes;
 use crate::shading::bsdf::PreparedBsdf;
 use crate::shapes::Method;
 use crate::world::{Hit, World};
-use glam::Vec3;
 use scene::BaseMaterial;
 
 /// Which BSDF the lanes evaluate for an object (`Bsdf` without the
@@ -35,30 +34,77 @@ pub(crate) enum LaneBsdf {
     RoughDielectric,
 }
 
-/// Per object, what shading a hit on it takes (gathered lane by lane by the
-/// object id hit).
+/// Per object, what shading a hit on it takes: one row of [`Column`]s per
+/// object id, laid out so that a lane's hit reads one cache line, and a
+/// last row for lanes that hit nothing (no BSDF on lanes, no emitter).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct ObjectTable {
-    /// What the lanes evaluate.
-    pub(crate) bsdf: Vec<LaneBsdf>,
-    /// The material's colour: a layered albedo, a conductor's reflectance
-    /// f0, glass's tint.
-    pub(crate) color: Vec<Vec3>,
+    /// The rows, [`ROW`] numbers each.
+    rows: Vec<f32>,
+}
+
+/// The numbers in a row of an [`ObjectTable`].
+pub(crate) const ROW: usize = 16;
+
+/// Where each number sits in a row of an [`ObjectTable`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Column {
+    /// The material's colour (three numbers): a layered albedo, a
+    /// conductor's reflectance f0, glass's tint.
+    Color = 0,
     /// The weight of a layered BSDF's Lambertian lobe.
-    pub(crate) diffuse: Vec<f32>,
+    Diffuse = 3,
     /// The weight of a layered BSDF's mirror lobe.
-    pub(crate) mirror: Vec<f32>,
-    /// Glass's η met from outside (1 / ior) and from inside (ior).
-    pub(crate) eta: Vec<(f32, f32)>,
+    Mirror = 4,
+    /// Glass's η met from outside (1 / ior).
+    EtaFront = 5,
+    /// Glass's η met from inside (ior).
+    EtaBack = 6,
     /// A rough conductor's or rough glass's GGX α.
-    pub(crate) alpha: Vec<f32>,
-    /// The radiance the front side emits (zero for most).
-    pub(crate) emission: Vec<Vec3>,
-    /// The object's index among the world's emitters, −1 when it is none.
-    pub(crate) emitter: Vec<i32>,
+    Alpha = 7,
+    /// The radiance the front side emits (three numbers; zero for most).
+    Emission = 8,
     /// [`World::magnitude`]: secondary rays start off its surface by an
     /// offset that scales with it.
-    pub(crate) magnitude: Vec<f32>,
+    Magnitude = 11,
+    /// [`LaneBsdf::flags`], as the bits of an `f32`.
+    Flags = 12,
+    /// The object's index among the world's emitters, −1 when it is none,
+    /// as the bits of an `f32`.
+    Emitter = 13,
+}
+
+impl LaneBsdf {
+    /// Set when the lanes shade the BSDF.
+    pub(crate) const ON_LANES: i32 = 1;
+    /// Set for [`LaneBsdf::Layered`].
+    pub(crate) const LAYERED: i32 = 2;
+    /// Set for [`LaneBsdf::Conductor`].
+    pub(crate) const CONDUCTOR: i32 = 4;
+    /// Set for a conductor, smooth or rough, with Schlick's reflectance.
+    pub(crate) const SCHLICK: i32 = 8;
+    /// Set for [`LaneBsdf::RoughConductor`].
+    pub(crate) const ROUGH: i32 = 16;
+    /// Set for [`LaneBsdf::RoughDielectric`].
+    pub(crate) const ROUGH_GLASS: i32 = 32;
+    /// Set for [`LaneBsdf::Dielectric`].
+    pub(crate) const DIELECTRIC: i32 = 64;
+
+    /// The BSDF as a set of the flags above.
+    pub(crate) fn flags(self) -> i32 {
+        match self {
+            LaneBsdf::Scalar => 0,
+            LaneBsdf::Layered => Self::ON_LANES | Self::LAYERED,
+            LaneBsdf::Conductor { schlick } => {
+                Self::ON_LANES | Self::CONDUCTOR | if schlick { Self::SCHLICK } else { 0 }
+            }
+            LaneBsdf::Dielectric => Self::ON_LANES | Self::DIELECTRIC,
+            LaneBsdf::RoughConductor { schlick } => {
+                Self::ON_LANES | Self::ROUGH | if schlick { Self::SCHLICK } else { 0 }
+            }
+            LaneBsdf::RoughDielectric => Self::ON_LANES | Self::ROUGH_GLASS,
+        }
+    }
 }
 
 /// A world as the wavefront path tracer sees it.
@@ -112,6 +158,30 @@ fn packet_shapes(world: &World, method: Method) -> Option<PacketShapes> {
 }
 
 impl ObjectTable {
+    /// The row of lanes that hit nothing: η 1, no emitter, nothing on lanes.
+    fn miss_row() -> [f32; ROW] {
+        let mut row = [0.0; ROW];
+        row[Column::EtaFront as usize] = 1.0;
+        row[Column::EtaBack as usize] = 1.0;
+        row[Column::Emitter as usize] = f32::from_bits((-1i32) as u32);
+        row
+    }
+
+    /// The row of object `id`, or the miss row for an id past the objects.
+    #[inline(always)]
+    pub(crate) fn row(&self, id: usize) -> &[f32; ROW] {
+        let last = self.rows.len() / ROW - 1;
+        let at = id.min(last) * ROW;
+        self.rows[at..at + ROW]
+            .try_into()
+            .expect("rows are ROW numbers long")
+    }
+
+    /// The rows' count, the miss row's index.
+    pub(crate) fn miss(&self) -> usize {
+        self.rows.len() / ROW - 1
+    }
+
     /// The table of every object of `world`.
     fn new(world: &World) -> Self {
         let mut objects = ObjectTable::default();
@@ -157,21 +227,28 @@ impl ObjectTable {
                 alpha: 0.0,
                 triangle: None,
             };
-            objects.bsdf.push(bsdf);
-            objects.color.push(material.color);
-            objects.diffuse.push(diffuse);
-            objects.mirror.push(mirror);
-            objects.eta.push(eta);
-            objects.alpha.push(alpha);
-            objects.emission.push(material.emission);
-            objects.emitter.push(
-                world
-                    .emitters
-                    .index_of(&hit)
-                    .map_or(-1, |index| index as i32),
-            );
-            objects.magnitude.push(world.magnitude(id as u32));
+            let emitter = world
+                .emitters
+                .index_of(&hit)
+                .map_or(-1, |index| index as i32);
+            let mut row = [0.0f32; ROW];
+            let color = Column::Color as usize;
+            row[color..color + 3].copy_from_slice(&material.color.to_array());
+            row[Column::Diffuse as usize] = diffuse;
+            row[Column::Mirror as usize] = mirror;
+            (
+                row[Column::EtaFront as usize],
+                row[Column::EtaBack as usize],
+            ) = eta;
+            row[Column::Alpha as usize] = alpha;
+            let emission = Column::Emission as usize;
+            row[emission..emission + 3].copy_from_slice(&material.emission.to_array());
+            row[Column::Magnitude as usize] = world.magnitude(id as u32);
+            row[Column::Flags as usize] = f32::from_bits(bsdf.flags() as u32);
+            row[Column::Emitter as usize] = f32::from_bits(emitter as u32);
+            objects.rows.extend_from_slice(&row);
         }
+        objects.rows.extend_from_slice(&Self::miss_row());
         objects
     }
 }

@@ -250,6 +250,11 @@ impl FloatLanes for Avx2 {
         // SAFETY: module invariant; an arithmetic shift copies the sign bit over the lane.
         Self(unsafe { _mm256_castsi256_ps(_mm256_srai_epi32::<31>(_mm256_castps_si256(self.0))) })
     }
+    #[inline(always)]
+    fn bits(self) -> Avx2Ints {
+        // SAFETY: module invariant.
+        Avx2Ints(unsafe { _mm256_castps_si256(self.0) })
+    }
 }
 
 impl IntLanes for Avx2Ints {

@@ -109,6 +109,8 @@ pub trait FloatLanes:
     fn is_finite(self) -> Self;
     /// Mask of the lanes whose sign bit is set (−0 included).
     fn is_sign_negative(self) -> Self;
+    /// The same bits read as `i32`s.
+    fn bits(self) -> Self::Ints;
 }
 
 /// Eight `i32`s, one per lane (object ids, counters, and as `u32` bits the

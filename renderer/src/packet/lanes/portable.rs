@@ -110,6 +110,10 @@ impl FloatLanes for f32x8 {
     fn is_sign_negative(self) -> Self {
         f32x8::is_sign_negative(self)
     }
+    #[inline(always)]
+    fn bits(self) -> i32x8 {
+        wide::bytemuck::cast(self)
+    }
 }
 
 impl IntLanes for i32x8 {
