@@ -10,14 +10,15 @@ use super::rough_glass::RoughDielectrics;
 use super::scene::WavefrontScene;
 use super::surfaces::Surfaces;
 use super::tracing;
-use crate::integrator::lanes::{SampleRef, SampleResult, camera_sample};
+use crate::integrator::lanes::{SampleRef, SampleResult};
 use crate::integrator::path::{RR_DEPTH, SHADOW_SHORTENING};
+use crate::integrator::sampler::Sampler;
 use crate::integrator::sampler::lanes::StreamLanes;
 use crate::integrator::{RenderOptions, path::power_heuristic};
-use crate::packet::{FloatLanes, Rays, Vec3s, WIDTH, lane_set, mask_from};
+use crate::packet::{FloatLanes, IntLanes, Rays, Vec3s, WIDTH, lane_set, mask_from};
 use crate::world::World;
 use crate::world::light::Light;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
 
 /// Eight paths: each lane's radiance so far, throughput and next ray, as
@@ -34,6 +35,10 @@ pub(super) struct PathGroup<F: FloatLanes> {
     blocked_toward_lights: Vec<F>,
     /// Shape tests each lane's rays cost so far.
     shape_tests: [u64; WIDTH],
+    /// Each lane's pixel (i, j).
+    pixel: [(u32, u32); WIDTH],
+    /// Lanes started whose camera rays are still to be made (bit k for lane k).
+    unaimed: u32,
 }
 
 impl<F: FloatLanes> PathGroup<F> {
@@ -55,9 +60,34 @@ impl<F: FloatLanes> PathGroup<F> {
                 depth: [0; WIDTH],
             },
             shape_tests: [0; WIDTH],
+            pixel: [(0, 0); WIDTH],
+            unaimed: 0,
             handover: Handover::new(),
             blocked_toward_lights: Vec::new(),
         }
+    }
+
+    /// The camera rays of the lanes started since the last bounce, R_ij
+    /// through each one's pixel at its jitter — the first draw of its
+    /// stream, drawn on lanes — as `camera_sample` makes them.
+    #[inline(always)]
+    fn aim(&mut self, world: &World) {
+        if self.unaimed == 0 {
+            return;
+        }
+        let (x, y) = self.paths.streams.numbers(F::Ints::splat(0));
+        let (x, y) = (x.as_array(), y.as_array());
+        for lane in 0..WIDTH {
+            if self.unaimed & (1 << lane) == 0 {
+                continue;
+            }
+            let (i, j) = self.pixel[lane];
+            let ray = world.camera.ray(i, j, Vec2::new(x[lane], y[lane]));
+            self.paths.rays.origin.set_lane(lane, ray.origin);
+            self.paths.rays.dir.set_lane(lane, ray.dir);
+            self.paths.rays.t_max.as_mut_array()[lane] = ray.t_max;
+        }
+        self.unaimed = 0;
     }
 
     /// Whether any lane is tracing.
@@ -66,26 +96,22 @@ impl<F: FloatLanes> PathGroup<F> {
         self.sample.iter().any(Option::is_some)
     }
 
-    /// Lane `lane` starts sample `s` (the `index`th of the caller's list)
-    /// with its camera ray, as the scalar path tracer does.
+    /// Lane `lane` starts sample `s` (the `index`th of the caller's list):
+    /// its stream, and its camera ray at the next [`PathGroup::step`].
     #[inline(always)]
     pub(super) fn start(
         &mut self,
-        world: &World,
         options: &RenderOptions,
         lane: usize,
         index: usize,
         s: SampleRef,
     ) {
-        let (sampler, _, ray) = camera_sample(world, options, s.i, s.j, Some(s.sample));
+        let sampler = Sampler::for_pixel_sample(options.sampling, options.seed, s.i, s.j, s.sample);
         self.sample[lane] = Some(index);
-        let stream = sampler
-            .pixel_stream()
-            .expect("a camera sample draws from a pixel stream");
+        let stream = sampler.pixel_stream().expect("a pixel sample's stream");
         self.paths.streams.set(lane, stream);
-        self.paths.rays.origin.set_lane(lane, ray.origin);
-        self.paths.rays.dir.set_lane(lane, ray.dir);
-        self.paths.rays.t_max.as_mut_array()[lane] = ray.t_max;
+        self.pixel[lane] = (s.i, s.j);
+        self.unaimed |= 1 << lane;
         self.paths.radiance.set_lane(lane, Vec3::ZERO);
         self.paths.throughput.set_lane(lane, Vec3::ONE);
         self.paths.has_previous.as_mut_array()[lane] = 0.0;
@@ -127,6 +153,7 @@ impl<F: FloatLanes> PathGroup<F> {
         scene: &WavefrontScene,
         options: &RenderOptions,
     ) -> u32 {
+        self.aim(world);
         let live = self.live();
         let method = options.method;
         let closest = tracing::closest(

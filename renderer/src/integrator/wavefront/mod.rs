@@ -97,7 +97,7 @@ impl WithLanes for Trace<'_> {
         let mut group = PathGroup::<F>::new();
         for lane in 0..WIDTH {
             if let Some((index, s)) = queue.next() {
-                group.start(world, options, lane, index, s);
+                group.start(options, lane, index, s);
             }
         }
         while group.any_live() {
@@ -106,7 +106,7 @@ impl WithLanes for Trace<'_> {
                 let (index, result) = group.take(lane);
                 results[index] = result;
                 if let Some((index, s)) = queue.next() {
-                    group.start(world, options, lane, index, s);
+                    group.start(options, lane, index, s);
                 }
             }
         }
