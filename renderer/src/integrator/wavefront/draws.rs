@@ -5,12 +5,13 @@
 //! scalar path tracer's own code.
 
 use crate::geometry::ray::Ray;
+use crate::geometry::warp::{COS_TERMS, SIN_TERMS};
 use crate::integrator::sampler::lanes::StreamLanes;
 use crate::integrator::sampler::{BounceDraw, bounce_draw};
 use crate::packet::{FloatLanes, IntLanes, Vec3s, WIDTH, lane_set, mask_from};
-use crate::shading::bsdf::lambert::sample_cosine_hemisphere;
 use crate::world::World;
 use glam::{Vec2, Vec3};
+use std::f32::consts::FRAC_PI_4;
 
 /// Each lane's point drawn on an emitter, as seen from its shading point.
 pub(super) struct EmitterDraws<F> {
@@ -134,28 +135,48 @@ pub(super) fn emitter_draws<F: FloatLanes>(
 pub(super) fn scatter_draws<F: FloatLanes>(
     streams: &StreamLanes<F>,
     depth: &[u32; WIDTH],
-) -> (F, [Vec2; WIDTH]) {
+) -> (F, [F; 2]) {
     let (u_lobe, _) = streams.numbers(draw_at::<F>(depth, BounceDraw::Scatter, 0));
     let (ux, uy) = streams.numbers(draw_at::<F>(depth, BounceDraw::Scatter, 1));
-    let (ux, uy) = (ux.as_array(), uy.as_array());
-    let mut u = [Vec2::ZERO; WIDTH];
-    for k in 0..WIDTH {
-        u[k] = Vec2::new(ux[k], uy[k]);
-    }
-    (u_lobe, u)
+    (u_lobe, [ux, uy])
 }
 
-/// For each lane of `lanes`, its numbers `u` warped to a cosine-weighted
-/// local direction (`z` along the normal).
+/// Each lane's numbers `u` warped to a cosine-weighted local direction
+/// (`z` along the normal): `sample_cosine_hemisphere` on lanes, with the
+/// same operations (the concentric map with `sin_cos_quarter`).
 #[inline(always)]
-pub(super) fn cosine_warps<F: FloatLanes>(lanes: F, u: &[Vec2; WIDTH]) -> Vec3s<F> {
-    let mut wi = [Vec3::Z; WIDTH];
-    for k in 0..WIDTH {
-        if lane_set(lanes, k) {
-            wi[k] = sample_cosine_hemisphere(u[k]);
-        }
-    }
-    Vec3s::from_lanes(&wi)
+pub(super) fn cosine_warps<F: FloatLanes>(u: [F; 2]) -> Vec3s<F> {
+    let two = F::splat(2.0);
+    let (px, py) = (two * u[0] - F::ONE, two * u[1] - F::ONE);
+    let centre = px.simd_eq(F::ZERO) & py.simd_eq(F::ZERO);
+    let first = px.abs().simd_gt(py.abs());
+    let r = first.select(px, py);
+    let ratio = first.select(py / px, px / py);
+    let (sin, cos) = sin_cos_quarter(F::splat(FRAC_PI_4) * ratio);
+    let x = first.select(r * cos, r * sin);
+    let y = first.select(r * sin, r * cos);
+    let (x, y) = (centre.select(F::ZERO, x), centre.select(F::ZERO, y));
+    let z = (F::ONE - (x * x + y * y))
+        .max(F::ZERO)
+        .sqrt()
+        .max(F::splat(1.0e-6));
+    Vec3s { x, y, z }
+}
+
+/// `geometry::warp::sin_cos_quarter` on lanes.
+#[inline(always)]
+fn sin_cos_quarter<F: FloatLanes>(a: F) -> (F, F) {
+    let x2 = a * a;
+    let s = F::splat(SIN_TERMS[3]) + x2 * F::splat(SIN_TERMS[4]);
+    let s = F::splat(SIN_TERMS[2]) + x2 * s;
+    let s = F::splat(SIN_TERMS[1]) + x2 * s;
+    let s = F::splat(SIN_TERMS[0]) + x2 * s;
+    let c = F::splat(COS_TERMS[4]) + x2 * F::splat(COS_TERMS[5]);
+    let c = F::splat(COS_TERMS[3]) + x2 * c;
+    let c = F::splat(COS_TERMS[2]) + x2 * c;
+    let c = F::splat(COS_TERMS[1]) + x2 * c;
+    let c = F::splat(COS_TERMS[0]) + x2 * c;
+    (a * s, c)
 }
 
 /// Russian roulette's number at bounce `depth` (the bounce's last draw,

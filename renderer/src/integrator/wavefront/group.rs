@@ -267,18 +267,13 @@ impl<F: FloatLanes> PathGroup<F> {
         let (u_lobe, u) = scatter_draws(&self.paths.streams, &self.paths.depth);
         let layered_mirror = go & at.layered & u_lobe.simd_lt(at.mirror);
         let diffuse = go & at.layered & !layered_mirror;
-        let wi = cosine_warps(diffuse, &u);
+        let wi = cosine_warps(u);
         let (mut wi, mut f_cos, mut pdf) = {
             let (f_cos, pdf) = lobes.eval_pdf(wo, wi);
             (wi, f_cos, pdf)
         };
         let mut radiance_scale = F::ONE;
         if (rough | rough_glass).any() {
-            let (mut ux, mut uy) = ([0.0f32; WIDTH], [0.0f32; WIDTH]);
-            for k in 0..WIDTH {
-                (ux[k], uy[k]) = (u[k].x, u[k].y);
-            }
-            let u = [F::from_array(ux), F::from_array(uy)];
             if rough.any() {
                 let (rough_wi, rough_f, rough_pdf) = microfacets.sample(rough, wo, u);
                 wi = Vec3s::select(rough, rough_wi, wi);
