@@ -66,32 +66,49 @@ impl<F: FloatLanes> StreamLanes<F> {
         }
     }
 
-    /// Both numbers of each lane's draw `draw` (`PixelStream::numbers`;
-    /// a draw of one number is the first of these). `draw` is a small
-    /// non-negative count in every lane.
+    /// Both numbers of each lane's draw `draw` (`PixelStream::numbers`).
+    /// `draw` is a small non-negative count in every lane.
     #[inline(always)]
     pub(crate) fn numbers(&self, draw: F::Ints) -> (F, F) {
+        let [x, y] = self.draw::<2>(draw);
+        (x, y)
+    }
+
+    /// The number of each lane's one-number draw `draw`.
+    #[inline(always)]
+    pub(crate) fn number(&self, draw: F::Ints) -> F {
+        let [x] = self.draw::<1>(draw);
+        x
+    }
+
+    /// The first `N` (1 or 2) numbers of each lane's draw `draw`.
+    #[inline(always)]
+    fn draw<const N: usize>(&self, draw: F::Ints) -> [F; N] {
         let n = draw.shl::<1>();
-        let one = F::Ints::splat(1);
         let keys = [
             F::Ints::from_array(self.keys[0]),
             F::Ints::from_array(self.keys[1]),
         ];
-        let x = uniform::<F>(independent_bits::<F>(keys, n));
-        let y = uniform::<F>(independent_bits::<F>(keys, n + one));
+        let mut numbers = [F::ZERO; N];
+        for (c, number) in numbers.iter_mut().enumerate() {
+            *number = uniform::<F>(independent_bits::<F>(keys, n + splat(c as u32)));
+        }
         if !self.sobol {
-            return (x, y);
+            return numbers;
         }
         let sobol = F::Ints::splat(SOBOL_DRAWS as i32).simd_gt(draw);
         if !sobol.any() {
-            return (x, y);
+            return numbers;
         }
         let (pixel_key, index) = (
             F::Ints::from_array(self.pixel_key),
             F::Ints::from_array(self.index),
         );
-        let (sx, sy) = owen_sobol::<F>(pixel_key, index, draw);
-        (sobol.select(sx, x), sobol.select(sy, y))
+        let points = owen_sobol::<F, N>(pixel_key, index, draw);
+        for (number, point) in numbers.iter_mut().zip(points) {
+            *number = sobol.select(point, *number);
+        }
+        numbers
     }
 }
 
@@ -154,10 +171,14 @@ fn owen_scramble_rev<I: IntLanes>(mut n_rev: I, scramble: I) -> I {
     n_rev ^ (n_rev * I::splat(0x53a2_2864))
 }
 
-/// Dimensions 0 and 1 of each lane's Sobol draw `draw`:
-/// `sobol_index_and_scramble` then `owen_sobol::<2>`, on lanes.
+/// Dimensions 0..N of each lane's Sobol draw `draw`:
+/// `sobol_index_and_scramble` then `owen_sobol::<N>`, on lanes.
 #[inline(always)]
-fn owen_sobol<F: FloatLanes>(pixel_key: F::Ints, index: F::Ints, draw: F::Ints) -> (F, F) {
+fn owen_sobol<F: FloatLanes, const N: usize>(
+    pixel_key: F::Ints,
+    index: F::Ints,
+    draw: F::Ints,
+) -> [F; N] {
     // `sobol_index_and_scramble`.
     debug_assert_eq!(SOBOL_LENGTH, 1 << 16);
     let lap = index.shr::<16>();
@@ -167,10 +188,11 @@ fn owen_sobol<F: FloatLanes>(pixel_key: F::Ints, index: F::Ints, draw: F::Ints) 
     let shuffled_rev = owen_scramble_rev(reverse_bits(index), hash(scramble ^ splat(SHUFFLE_KEY)));
     let seed = scramble * splat(DIMENSION_SEED_FACTOR);
     let bytes = SobolBytes::get();
-    (
-        sobol_dimension::<F>(bytes, shuffled_rev, seed, 0),
-        sobol_dimension::<F>(bytes, shuffled_rev, seed, 1),
-    )
+    let mut points = [F::ZERO; N];
+    for (d, point) in points.iter_mut().enumerate() {
+        *point = sobol_dimension::<F>(bytes, shuffled_rev, seed, d);
+    }
+    points
 }
 
 /// Dimension `d` of the Sobol points of the shuffled (reversed) indices
@@ -227,7 +249,9 @@ mod tests {
                     for first in 0..40u32 {
                         // Each lane at a different draw.
                         let draws: [u32; WIDTH] = std::array::from_fn(|k| (first + k as u32) % 40);
-                        let (x, y) = lanes.numbers(F::Ints::from_array(draws.map(|d| d as i32)));
+                        let draw_lanes = F::Ints::from_array(draws.map(|d| d as i32));
+                        let (x, y) = lanes.numbers(draw_lanes);
+                        let single = lanes.number(draw_lanes);
                         for k in 0..WIDTH {
                             let expected = streams[k].numbers::<2>(draws[k]);
                             let got = [x.as_array()[k], y.as_array()[k]];
@@ -239,6 +263,7 @@ mod tests {
                             );
                             let one = streams[k].numbers::<1>(draws[k]);
                             assert_eq!(one[0].to_bits(), expected[0].to_bits());
+                            assert_eq!(single.as_array()[k].to_bits(), one[0].to_bits());
                         }
                     }
                 }

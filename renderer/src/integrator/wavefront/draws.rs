@@ -50,7 +50,7 @@ pub(super) fn emitter_draws<F: FloatLanes>(
     depth: &[u32; WIDTH],
     point: Vec3s<F>,
 ) -> EmitterDraws<F> {
-    let (u_select, _) = streams.numbers(draw_at::<F>(depth, BounceDraw::Light, 0));
+    let u_select = streams.number(draw_at::<F>(depth, BounceDraw::Light, 0));
     let (ux, uy) = streams.numbers(draw_at::<F>(depth, BounceDraw::Light, 1));
     let (u_select, ux_array, uy_array) = (u_select.as_array(), ux.as_array(), uy.as_array());
     let emitters = &world.emitters;
@@ -136,7 +136,7 @@ pub(super) fn scatter_draws<F: FloatLanes>(
     streams: &StreamLanes<F>,
     depth: &[u32; WIDTH],
 ) -> (F, [F; 2]) {
-    let (u_lobe, _) = streams.numbers(draw_at::<F>(depth, BounceDraw::Scatter, 0));
+    let u_lobe = streams.number(draw_at::<F>(depth, BounceDraw::Scatter, 0));
     let (ux, uy) = streams.numbers(draw_at::<F>(depth, BounceDraw::Scatter, 1));
     (u_lobe, [ux, uy])
 }
