@@ -220,7 +220,7 @@ fn sobol_dimension<F: FloatLanes>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::integrator::sampler::{Sampler, Sampling};
+    use crate::integrator::sampler::Sampling;
     use crate::packet::lanes::{WithLanes, on_every_lane_type};
 
     /// Every draw 0..40 of 64 pixel samples (both samplings, indices past
@@ -237,9 +237,7 @@ mod tests {
                 for group in 0..8u32 {
                     let streams: [PixelStream; WIDTH] = std::array::from_fn(|k| {
                         let sample = group * 40_000 + k as u32 * 3;
-                        let sampler =
-                            Sampler::for_pixel_sample(sampling, 5, group, k as u32, sample);
-                        *sampler.pixel_stream().expect("a pixel stream")
+                        PixelStream::new(sampling, 5, group, k as u32, sample)
                     });
                     let mut lanes = StreamLanes::<F>::new();
                     for (k, stream) in streams.iter().enumerate() {

@@ -99,6 +99,20 @@ pub(crate) struct PixelStream {
 }
 
 impl PixelStream {
+    /// The numbers of sample `sample` of pixel (i, j) for render seed
+    /// `seed`, drawn as `sampling` says, at draw 0.
+    pub(crate) fn new(sampling: Sampling, seed: u64, i: u32, j: u32, sample: u32) -> Self {
+        let pixel = ((j as u64) << 32) | i as u64;
+        let keys = mix(mix(seed ^ mix(pixel)) ^ u64::from(sample));
+        Self {
+            keys: [keys as u32, (keys >> 32) as u32],
+            pixel_key: mix(mix(seed) ^ mix(pixel ^ 0x2545_f491_4f6c_dd1d)) as u32,
+            index: sample,
+            sobol: sampling == Sampling::Sobol,
+            draw: 0,
+        }
+    }
+
     /// Draw `draw`'s first `N` (1 or 2) numbers.
     #[inline]
     fn numbers<const N: usize>(&self, draw: u32) -> [f32; N] {
@@ -238,16 +252,8 @@ impl Sampler {
 
     /// The stream of sample `sample` of pixel (i, j) drawn as `sampling` says.
     pub fn for_pixel_sample(sampling: Sampling, seed: u64, i: u32, j: u32, sample: u32) -> Self {
-        let pixel = ((j as u64) << 32) | i as u64;
-        let keys = mix(mix(seed ^ mix(pixel)) ^ u64::from(sample));
         Self {
-            source: Source::Pixel(PixelStream {
-                keys: [keys as u32, (keys >> 32) as u32],
-                pixel_key: mix(mix(seed) ^ mix(pixel ^ 0x2545_f491_4f6c_dd1d)) as u32,
-                index: sample,
-                sobol: sampling == Sampling::Sobol,
-                draw: 0,
-            }),
+            source: Source::Pixel(PixelStream::new(sampling, seed, i, j, sample)),
         }
     }
 
@@ -255,14 +261,6 @@ impl Sampler {
     pub(crate) fn from_pixel_stream(stream: PixelStream) -> Self {
         Self {
             source: Source::Pixel(PixelStream { draw: 0, ..stream }),
-        }
-    }
-
-    /// The pixel stream this is, if it is one.
-    pub(crate) fn pixel_stream(&self) -> Option<&PixelStream> {
-        match &self.source {
-            Source::Pixel(stream) => Some(stream),
-            Source::General(_) => None,
         }
     }
 
@@ -430,16 +428,11 @@ mod tests {
         // (chi-square), and no number is correlated with any other of the
         // same sample.
         let n = 16_384;
-        let streams: Vec<Sampler> = (0..n)
-            .map(|k| Sampler::for_pixel_sample(Sampling::Sobol, 1, k % 3, 0, k / 3))
+        let streams: Vec<PixelStream> = (0..n)
+            .map(|k| PixelStream::new(Sampling::Sobol, 1, k % 3, 0, k / 3))
             .collect();
-        let numbers = |draw: u32| -> Vec<[f32; 2]> {
-            streams
-                .iter()
-                .map(|s| *s.pixel_stream().expect("pixel stream"))
-                .map(|s| s.numbers::<2>(draw))
-                .collect()
-        };
+        let numbers =
+            |draw: u32| -> Vec<[f32; 2]> { streams.iter().map(|s| s.numbers::<2>(draw)).collect() };
         let draws: Vec<Vec<[f32; 2]>> = (SOBOL_DRAWS..SOBOL_DRAWS + 12).map(numbers).collect();
         for points in &draws {
             let mut cells = [0u32; 256];

@@ -1,8 +1,8 @@
 //! A bounce's random numbers, drawn on lanes from each lane's stream
-//! ([`StreamLanes`]: the scalar streams' numbers bit for bit), and the parts
-//! the wavefront still takes lane by lane: the choice of an emitter and a
-//! point on it, and the warp of a cosine-weighted direction, each the
-//! scalar path tracer's own code.
+//! ([`StreamLanes`]: the scalar streams' numbers bit for bit), what they
+//! become: a point on an emitter (the emitter's choice still lane by lane,
+//! with the scalar code's `Emitters::choose`) and a cosine-weighted
+//! direction, each with the scalar path tracer's operations.
 
 use crate::geometry::ray::Ray;
 use crate::geometry::warp::{COS_TERMS, SIN_TERMS};
@@ -190,9 +190,7 @@ pub(super) fn roulette_draws<F: FloatLanes>(
     if !lanes.any() {
         return F::ZERO;
     }
-    streams
-        .numbers(draw_at::<F>(depth, BounceDraw::Scatter, 2))
-        .0
+    streams.number(draw_at::<F>(depth, BounceDraw::Scatter, 2))
 }
 
 /// A stand-in ray for a dead lane: it hits nothing (t_max = 0).

@@ -12,7 +12,7 @@ use super::surfaces::Surfaces;
 use super::tracing;
 use crate::integrator::lanes::{SampleRef, SampleResult};
 use crate::integrator::path::{RR_DEPTH, SHADOW_SHORTENING};
-use crate::integrator::sampler::Sampler;
+use crate::integrator::sampler::PixelStream;
 use crate::integrator::sampler::lanes::StreamLanes;
 use crate::integrator::{RenderOptions, path::power_heuristic};
 use crate::packet::{FloatLanes, IntLanes, Rays, Vec3s, WIDTH, lane_set, mask_from};
@@ -106,10 +106,9 @@ impl<F: FloatLanes> PathGroup<F> {
         index: usize,
         s: SampleRef,
     ) {
-        let sampler = Sampler::for_pixel_sample(options.sampling, options.seed, s.i, s.j, s.sample);
+        let stream = PixelStream::new(options.sampling, options.seed, s.i, s.j, s.sample);
         self.sample[lane] = Some(index);
-        let stream = sampler.pixel_stream().expect("a pixel sample's stream");
-        self.paths.streams.set(lane, stream);
+        self.paths.streams.set(lane, &stream);
         self.pixel[lane] = (s.i, s.j);
         self.unaimed |= 1 << lane;
         self.paths.radiance.set_lane(lane, Vec3::ZERO);
@@ -267,27 +266,21 @@ impl<F: FloatLanes> PathGroup<F> {
         let (u_lobe, u) = scatter_draws(&self.paths.streams, &self.paths.depth);
         let layered_mirror = go & at.layered & u_lobe.simd_lt(at.mirror);
         let diffuse = go & at.layered & !layered_mirror;
-        let wi = cosine_warps(u);
-        let (mut wi, mut f_cos, mut pdf) = {
-            let (f_cos, pdf) = lobes.eval_pdf(wo, wi);
-            (wi, f_cos, pdf)
-        };
+        let mut wi = cosine_warps(u);
+        let (mut f_cos, mut pdf) = lobes.eval_pdf(wo, wi);
         let mut radiance_scale = F::ONE;
-        if (rough | rough_glass).any() {
-            if rough.any() {
-                let (rough_wi, rough_f, rough_pdf) = microfacets.sample(rough, wo, u);
-                wi = Vec3s::select(rough, rough_wi, wi);
-                f_cos = Vec3s::select(rough, rough_f, f_cos);
-                pdf = rough.select(rough_pdf, pdf);
-            }
-            if rough_glass.any() {
-                let (glass_wi, glass_f, glass_pdf, scale) =
-                    frosted.sample(rough_glass, wo, u_lobe, u);
-                wi = Vec3s::select(rough_glass, glass_wi, wi);
-                f_cos = Vec3s::select(rough_glass, glass_f, f_cos);
-                pdf = rough_glass.select(glass_pdf, pdf);
-                radiance_scale = rough_glass.select(scale, radiance_scale);
-            }
+        if rough.any() {
+            let (rough_wi, rough_f, rough_pdf) = microfacets.sample(rough, wo, u);
+            wi = Vec3s::select(rough, rough_wi, wi);
+            f_cos = Vec3s::select(rough, rough_f, f_cos);
+            pdf = rough.select(rough_pdf, pdf);
+        }
+        if rough_glass.any() {
+            let (glass_wi, glass_f, glass_pdf, scale) = frosted.sample(rough_glass, wo, u_lobe, u);
+            wi = Vec3s::select(rough_glass, glass_wi, wi);
+            f_cos = Vec3s::select(rough_glass, glass_f, f_cos);
+            pdf = rough_glass.select(glass_pdf, pdf);
+            radiance_scale = rough_glass.select(scale, radiance_scale);
         }
         let scattered = diffuse | rough | rough_glass;
         let conductor = go & at.conductor;
@@ -392,8 +385,8 @@ impl<F: FloatLanes> PathGroup<F> {
     }
 }
 
-/// The non-delta lobes of eight hits: a layered BSDF's Lambertian lobe
-/// or a rough conductor's GGX lobe, per lane.
+/// The non-delta lobes of eight hits: a layered BSDF's Lambertian lobe,
+/// a rough conductor's or rough glass's GGX lobes, per lane.
 struct Lobes<F: FloatLanes> {
     /// The Lambertian albedo.
     color: Vec3s<F>,
@@ -416,12 +409,11 @@ impl<F: FloatLanes> Lobes<F> {
     fn eval_pdf(&self, wo: Vec3s<F>, wi: Vec3s<F>) -> (Vec3s<F>, F) {
         let lambert = self.diffuse * F::splat(FRAC_1_PI);
         let dark_side = wi.z.simd_le(F::ZERO) | wo.z.simd_le(F::ZERO);
-        let f = Vec3s::select(dark_side, Vec3s::ZERO, self.color * (lambert * wi.z));
-        let pdf = dark_side.select(
+        let mut f = Vec3s::select(dark_side, Vec3s::ZERO, self.color * (lambert * wi.z));
+        let mut pdf = dark_side.select(
             F::ZERO,
             self.diffuse * (wi.z.max(F::ZERO) * F::splat(FRAC_1_PI)),
         );
-        let (mut f, mut pdf) = (f, pdf);
         if self.rough.any() {
             let (rough_f, rough_pdf) = self.microfacets.eval_pdf(wo, wi);
             f = Vec3s::select(self.rough, rough_f, f);
