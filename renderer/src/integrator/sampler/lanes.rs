@@ -8,8 +8,8 @@
 //! function.
 
 use super::{
-    DIMENSION_KEYS, DIMENSION_SEED_FACTOR, GOLDEN, PixelStream, SHUFFLE_KEY, SOBOL_DRAWS,
-    SOBOL_LENGTH, SobolBytes,
+    DIMENSION_KEYS, DIMENSION_SEED_FACTOR, GOLDEN, PASCAL_STEPS, PixelStream, SHUFFLE_KEY,
+    SOBOL_DRAWS, SOBOL_LENGTH,
 };
 use crate::packet::{FloatLanes, IntLanes, WIDTH};
 use std::marker::PhantomData;
@@ -81,9 +81,36 @@ impl<F: FloatLanes> StreamLanes<F> {
         x
     }
 
-    /// The first `N` (1 or 2) numbers of each lane's draw `draw`.
+    /// The first `N` (1 or 2) numbers of each lane's draw `draw`: Sobol
+    /// points where the stream draws them, independent numbers elsewhere
+    /// (each computed only when some lane takes it).
     #[inline(always)]
     fn draw<const N: usize>(&self, draw: F::Ints) -> [F; N] {
+        if !self.sobol {
+            return self.independent::<N>(draw);
+        }
+        let sobol = F::Ints::splat(SOBOL_DRAWS as i32).simd_gt(draw);
+        if !sobol.any() {
+            return self.independent::<N>(draw);
+        }
+        let (pixel_key, index) = (
+            F::Ints::from_array(self.pixel_key),
+            F::Ints::from_array(self.index),
+        );
+        let mut points = owen_sobol::<F, N>(pixel_key, index, draw);
+        if sobol.all() {
+            return points;
+        }
+        let numbers = self.independent::<N>(draw);
+        for (point, number) in points.iter_mut().zip(numbers) {
+            *point = sobol.select(*point, number);
+        }
+        points
+    }
+
+    /// The first `N` numbers of each lane's independent draw `draw`.
+    #[inline(always)]
+    fn independent<const N: usize>(&self, draw: F::Ints) -> [F; N] {
         let n = draw.shl::<1>();
         let keys = [
             F::Ints::from_array(self.keys[0]),
@@ -92,21 +119,6 @@ impl<F: FloatLanes> StreamLanes<F> {
         let mut numbers = [F::ZERO; N];
         for (c, number) in numbers.iter_mut().enumerate() {
             *number = uniform::<F>(independent_bits::<F>(keys, n + splat(c as u32)));
-        }
-        if !self.sobol {
-            return numbers;
-        }
-        let sobol = F::Ints::splat(SOBOL_DRAWS as i32).simd_gt(draw);
-        if !sobol.any() {
-            return numbers;
-        }
-        let (pixel_key, index) = (
-            F::Ints::from_array(self.pixel_key),
-            F::Ints::from_array(self.index),
-        );
-        let points = owen_sobol::<F, N>(pixel_key, index, draw);
-        for (number, point) in numbers.iter_mut().zip(points) {
-            *number = sobol.select(point, *number);
         }
         numbers
     }
@@ -141,20 +153,6 @@ fn splat<I: IntLanes>(x: u32) -> I {
     I::splat(x as i32)
 }
 
-/// `u32::reverse_bits` on lanes: halves, then quarters, … swapped.
-#[inline(always)]
-fn reverse_bits<I: IntLanes>(mut x: I) -> I {
-    x = x.shr::<16>() | x.shl::<16>();
-    let m = splat::<I>(0x00ff_00ff);
-    x = (x.shr::<8>() & m) | (x & m).shl::<8>();
-    let m = splat::<I>(0x0f0f_0f0f);
-    x = (x.shr::<4>() & m) | (x & m).shl::<4>();
-    let m = splat::<I>(0x3333_3333);
-    x = (x.shr::<2>() & m) | (x & m).shl::<2>();
-    let m = splat::<I>(0x5555_5555);
-    (x.shr::<1>() & m) | (x & m).shl::<1>()
-}
-
 /// `sobol_burley::parts::hash` on lanes.
 #[inline(always)]
 fn hash<I: IntLanes>(x: I) -> I {
@@ -185,36 +183,29 @@ fn owen_sobol<F: FloatLanes, const N: usize>(
     let scramble = lowbias32(pixel_key ^ lowbias32(draw ^ (lap * splat(GOLDEN))));
     let index = index & splat(SOBOL_LENGTH - 1);
     // `owen_sobol`.
-    let shuffled_rev = owen_scramble_rev(reverse_bits(index), hash(scramble ^ splat(SHUFFLE_KEY)));
+    let shuffled_rev = owen_scramble_rev(index.reverse_bits(), hash(scramble ^ splat(SHUFFLE_KEY)));
     let seed = scramble * splat(DIMENSION_SEED_FACTOR);
-    let bytes = SobolBytes::get();
+    const { assert!(N <= 2, "Sobol draws have one or two dimensions") };
+    // `sobol_rev_2d`: the index the crate reads, and its Pascal product.
+    let unshuffled = (shuffled_rev & splat(0xffff_0000)).reverse_bits();
+    let mut pascal = unshuffled;
+    const {
+        let s = PASCAL_STEPS;
+        assert!(s[0].0 == 1 && s[1].0 == 2 && s[2].0 == 4 && s[3].0 == 8);
+    };
+    pascal = pascal ^ (pascal.shr::<1>() & splat(PASCAL_STEPS[0].1));
+    pascal = pascal ^ (pascal.shr::<2>() & splat(PASCAL_STEPS[1].1));
+    pascal = pascal ^ (pascal.shr::<4>() & splat(PASCAL_STEPS[2].1));
+    pascal = pascal ^ (pascal.shr::<8>() & splat(PASCAL_STEPS[3].1));
+    let sobol_rev = [unshuffled, pascal];
     let mut points = [F::ZERO; N];
     for (d, point) in points.iter_mut().enumerate() {
-        *point = sobol_dimension::<F>(bytes, shuffled_rev, seed, d);
+        let scrambled = owen_scramble_rev(sobol_rev[d], hash(seed ^ splat(DIMENSION_KEYS[d])));
+        // `u32_to_f32_norm`: the top 23 bits as the mantissa of [1, 2), minus 1.
+        *point =
+            (scrambled.reverse_bits().shr::<9>() | splat(0x3f80_0000)).bits_to_floats() - F::ONE;
     }
     points
-}
-
-/// Dimension `d` of the Sobol points of the shuffled (reversed) indices
-/// `shuffled_rev`, scrambled by `seed`: the inner step of `owen_sobol`.
-#[inline(always)]
-fn sobol_dimension<F: FloatLanes>(
-    bytes: &SobolBytes,
-    shuffled_rev: F::Ints,
-    seed: F::Ints,
-    d: usize,
-) -> F {
-    let shuffled = shuffled_rev.to_array();
-    let mut sobol_rev = [0i32; WIDTH];
-    for k in 0..WIDTH {
-        sobol_rev[k] = bytes.sobol_rev(shuffled[k] as u32, d) as i32;
-    }
-    let scrambled = owen_scramble_rev(
-        F::Ints::from_array(sobol_rev),
-        hash(seed ^ splat(DIMENSION_KEYS[d])),
-    );
-    // `u32_to_f32_norm`: the top 23 bits as the mantissa of [1, 2), minus 1.
-    (reverse_bits(scrambled).shr::<9>() | splat(0x3f80_0000)).bits_to_floats() - F::ONE
 }
 
 #[cfg(test)]
@@ -272,30 +263,5 @@ mod tests {
     #[test]
     fn lane_streams_give_the_scalar_streams_numbers_bit_for_bit() {
         on_every_lane_type(Compare);
-    }
-
-    #[test]
-    fn reverse_bits_on_lanes_is_u32_reverse_bits() {
-        #[derive(Clone)]
-        struct Reverse;
-        impl WithLanes for Reverse {
-            type Output = ();
-            #[inline(always)]
-            fn run<F: FloatLanes>(self) {
-                let mut x = 0x1234_5678u32;
-                for _ in 0..1000 {
-                    let values: [u32; WIDTH] = std::array::from_fn(|k| {
-                        x = super::super::lowbias32(x.wrapping_add(k as u32));
-                        x
-                    });
-                    let lanes = F::Ints::from_array(values.map(|v| v as i32));
-                    let reversed = reverse_bits(lanes).to_array();
-                    for k in 0..WIDTH {
-                        assert_eq!(reversed[k] as u32, values[k].reverse_bits());
-                    }
-                }
-            }
-        }
-        on_every_lane_type(Reverse);
     }
 }

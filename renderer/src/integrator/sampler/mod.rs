@@ -166,18 +166,18 @@ pub(crate) fn sobol_index_and_scramble(pixel_key: u32, index: u32, draw: u32) ->
 
 /// Dimensions 0..N of sample `index` of the Owen-scrambled Sobol sequence
 /// of `seed`: `sobol_burley::sample(index, d, seed)` for each d, with the
-/// index shuffled once for all of them and the unscrambled Sobol point read
-/// from [`SobolBytes`] (the crate's own parts otherwise, so the numbers are
+/// index shuffled once for all of them and the unscrambled Sobol point from
+/// [`sobol_rev_2d`] (the crate's own parts otherwise, so the numbers are
 /// the same bit for bit; checked by a test).
 #[inline]
 pub(crate) fn owen_sobol<const N: usize>(index: u32, seed: u32) -> [f32; N] {
     use sobol_burley::parts::{hash, owen_scramble_rev, u32_to_f32_norm};
+    const { assert!(N <= 2, "Sobol draws have one or two dimensions") };
     let shuffled_rev = owen_scramble_rev(index.reverse_bits(), hash(seed ^ SHUFFLE_KEY));
     let seed = seed.wrapping_mul(DIMENSION_SEED_FACTOR);
-    let bytes = SobolBytes::get();
+    let points = sobol_rev_2d(shuffled_rev);
     std::array::from_fn(|d| {
-        let sobol_rev = bytes.sobol_rev(shuffled_rev, d);
-        let scrambled = owen_scramble_rev(sobol_rev, hash(seed ^ DIMENSION_KEYS[d]));
+        let scrambled = owen_scramble_rev(points[d], hash(seed ^ DIMENSION_KEYS[d]));
         u32_to_f32_norm(scrambled.reverse_bits())
     })
 }
@@ -189,41 +189,39 @@ pub(crate) const SHUFFLE_KEY: u32 = 0x79c6_8e4a;
 /// The crate's multiplier of the seed before the dimensions' scrambles.
 pub(crate) const DIMENSION_SEED_FACTOR: u32 = 0x9c8f_2d3b;
 
-/// `sobol_burley::parts::sobol_rev` of dimensions 0 and 1 by two table
-/// lookups: the Sobol point is the XOR of the generator matrix's columns
-/// for the index's set bits (the top 16 of the reversed index), so it is
-/// the XOR of the points of its two bytes. The crate's loop takes a
+/// `sobol_burley::parts::sobol_rev(index_rev, d)` of dimensions d = 0 and
+/// 1, computed in a few steps that never branch. The crate reads the top 16
+/// bits of the reversed index, that is the index i < 2^16 itself, and XORs
+/// the generator matrix's columns for i's set bits; its loop takes a
 /// data-dependent number of steps, each waiting on the last, and ends in a
-/// mispredicted branch: ~20% of a path-traced Cornell pass with Sobol
-/// samples, where this costs two loads.
-pub(crate) struct SobolBytes {
-    /// [dimension][which byte: 0 the top][byte value] → that byte's Sobol point.
-    table: [[[u32; 256]; 2]; 2],
+/// mispredicted branch (~20% of a path-traced Cornell pass once). Here
+/// dimension 0's point, reversed, is i (van der Corput), and dimension 1's
+/// is i times Pascal's triangle mod 2 ([`pascal_mod2`]). Checked against
+/// the crate for every index.
+#[inline(always)]
+pub(crate) fn sobol_rev_2d(index_rev: u32) -> [u32; 2] {
+    let index = (index_rev & 0xffff_0000).reverse_bits();
+    [index, pascal_mod2(index)]
 }
 
-impl SobolBytes {
-    /// The tables, built on first use.
-    #[inline]
-    pub(crate) fn get() -> &'static SobolBytes {
-        static TABLES: std::sync::OnceLock<Box<SobolBytes>> = std::sync::OnceLock::new();
-        TABLES.get_or_init(|| {
-            let point = |d: usize, byte: usize, value: u32| {
-                sobol_burley::parts::sobol_rev(value << (24 - 8 * byte), d as u32)
-            };
-            Box::new(SobolBytes {
-                table: std::array::from_fn(|d| {
-                    std::array::from_fn(|byte| std::array::from_fn(|v| point(d, byte, v as u32)))
-                }),
-            })
-        })
-    }
+/// The shifts and masks of [`pascal_mod2`]: at step s, the bits j that
+/// lack bit s (of their position) take in bit j + s.
+pub(crate) const PASCAL_STEPS: [(u32, u32); 4] = [
+    (1, 0x5555_5555),
+    (2, 0x3333_3333),
+    (4, 0x0f0f_0f0f),
+    (8, 0x00ff_00ff),
+];
 
-    /// `sobol_rev(index_rev, dimension)` for dimension 0 or 1.
-    #[inline(always)]
-    pub(crate) fn sobol_rev(&self, index_rev: u32, dimension: usize) -> u32 {
-        let t = &self.table[dimension];
-        t[0][(index_rev >> 24) as usize] ^ t[1][((index_rev >> 16) & 0xff) as usize]
+/// The 16-bit `x` times Pascal's triangle mod 2 (Sobol's second
+/// dimension): bit j of the result is the XOR of the bits k of `x` whose
+/// position contains j's (k & j = j), one step per bit of the position.
+#[inline(always)]
+pub(crate) fn pascal_mod2(mut x: u32) -> u32 {
+    for (shift, mask) in PASCAL_STEPS {
+        x ^= (x >> shift) & mask;
     }
+    x
 }
 
 /// 24 random mantissa bits as a number in [0, 1): exactly representable, never 1.0.
@@ -318,13 +316,12 @@ mod tests {
     use super::*;
 
     #[test]
-    fn sobol_points_by_bytes_are_the_crates_for_every_index() {
-        let bytes = SobolBytes::get();
+    fn computed_sobol_points_are_the_crates_for_every_index() {
         for index in 0..1u32 << 16 {
             let rev = index.reverse_bits() | 0x1234; // low bits are ignored
             for d in 0..2 {
                 assert_eq!(
-                    bytes.sobol_rev(rev, d),
+                    sobol_rev_2d(rev)[d],
                     sobol_burley::parts::sobol_rev(rev, d as u32),
                     "index {index} dimension {d}"
                 );

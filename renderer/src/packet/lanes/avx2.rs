@@ -311,6 +311,66 @@ impl IntLanes for Avx2Ints {
         // SAFETY: module invariant.
         Avx2(unsafe { _mm256_castsi256_ps(self.0) })
     }
+    /// By byte shuffles: the lane's bytes in reverse order, then each
+    /// byte's two nibbles reversed by table and swapped.
+    #[inline(always)]
+    fn reverse_bits(self) -> Self {
+        // SAFETY: module invariant.
+        Self(unsafe {
+            let byte_order = _mm256_setr_epi8(
+                3, 2, 1, 0, 7, 6, 5, 4, 11, 10, 9, 8, 15, 14, 13, 12, //
+                3, 2, 1, 0, 7, 6, 5, 4, 11, 10, 9, 8, 15, 14, 13, 12,
+            );
+            // A nibble's bits reversed, as the high nibble of a byte, and as the low one.
+            let reversed_high = _mm256_setr_epi8(
+                0x00,
+                0x80u8 as i8,
+                0x40,
+                0xc0u8 as i8,
+                0x20,
+                0xa0u8 as i8,
+                0x60,
+                0xe0u8 as i8,
+                0x10,
+                0x90u8 as i8,
+                0x50,
+                0xd0u8 as i8,
+                0x30,
+                0xb0u8 as i8,
+                0x70,
+                0xf0u8 as i8,
+                0x00,
+                0x80u8 as i8,
+                0x40,
+                0xc0u8 as i8,
+                0x20,
+                0xa0u8 as i8,
+                0x60,
+                0xe0u8 as i8,
+                0x10,
+                0x90u8 as i8,
+                0x50,
+                0xd0u8 as i8,
+                0x30,
+                0xb0u8 as i8,
+                0x70,
+                0xf0u8 as i8,
+            );
+            let reversed_low = _mm256_setr_epi8(
+                0x0, 0x8, 0x4, 0xc, 0x2, 0xa, 0x6, 0xe, 0x1, 0x9, 0x5, 0xd, 0x3, 0xb, 0x7,
+                0xf, //
+                0x0, 0x8, 0x4, 0xc, 0x2, 0xa, 0x6, 0xe, 0x1, 0x9, 0x5, 0xd, 0x3, 0xb, 0x7, 0xf,
+            );
+            let nibble = _mm256_set1_epi8(0x0f);
+            let bytes = _mm256_shuffle_epi8(self.0, byte_order);
+            let low = _mm256_and_si256(bytes, nibble);
+            let high = _mm256_and_si256(_mm256_srli_epi16::<4>(bytes), nibble);
+            _mm256_or_si256(
+                _mm256_shuffle_epi8(reversed_high, low),
+                _mm256_shuffle_epi8(reversed_low, high),
+            )
+        })
+    }
 }
 
 impl Mul for Avx2Ints {

@@ -150,6 +150,8 @@ pub trait IntLanes:
     fn to_floats(self) -> Self::Floats;
     /// The same bits read as `f32`s.
     fn bits_to_floats(self) -> Self::Floats;
+    /// Each lane's bits in reverse order (`u32::reverse_bits`).
+    fn reverse_bits(self) -> Self;
 }
 
 /// A computation over lanes of any [`FloatLanes`] type, run by

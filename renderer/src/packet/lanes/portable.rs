@@ -158,4 +158,12 @@ impl IntLanes for i32x8 {
     fn bits_to_floats(self) -> f32x8 {
         wide::bytemuck::cast(self)
     }
+    #[inline(always)]
+    fn reverse_bits(self) -> Self {
+        let mut lanes = self.to_array();
+        for lane in &mut lanes {
+            *lane = lane.reverse_bits();
+        }
+        i32x8::from(lanes)
+    }
 }

@@ -145,3 +145,39 @@ fn this_machine_runs_the_widest_lanes_it_has() {
     assert_eq!(mask.to_bitmask(), 0b111);
     assert!(lane_set(mask, 2) && !lane_set(mask, 3));
 }
+
+/// Integer bit reversal on lanes, against `u32::reverse_bits`.
+#[derive(Clone)]
+struct Reverse;
+
+impl WithLanes for Reverse {
+    type Output = ();
+    #[inline(always)]
+    fn run<F: FloatLanes>(self) {
+        let mut x = 0x1234_5678u32;
+        for _ in 0..1000 {
+            let values: [u32; WIDTH] = std::array::from_fn(|k| {
+                // SplitMix32-style steps: every bit pattern is likely.
+                x = x.wrapping_add(0x9e37_79b9);
+                let z = (x ^ (x >> 16)).wrapping_mul(0x21f0_aaad);
+                (z ^ (z >> 15)).wrapping_mul(0x735a_2d97) ^ k as u32
+            });
+            let lanes = <F::Ints as IntLanes>::from_array(values.map(|v| v as i32));
+            let reversed = lanes.reverse_bits().to_array();
+            for k in 0..WIDTH {
+                assert_eq!(
+                    reversed[k] as u32,
+                    values[k].reverse_bits(),
+                    "{:#x}",
+                    values[k]
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn reverse_bits_on_lanes_is_u32_reverse_bits() {
+    run_portable(Reverse);
+    dispatch(Reverse);
+}
