@@ -45,10 +45,12 @@ pub fn run(args: &RenderArgs) -> Result<Duration> {
             }
             let pixels = film.linear();
             if let (Some(path), Some(reference)) = (&args.reference, &reference) {
+                let flip = super::chart::flip::FlipReference::new(&reference.pixels, w, h);
                 println!(
-                    "relMSE {:.4e}, RMSE {:.4e} against {}",
+                    "relMSE {:.4e}, RMSE {:.4e}, FLIP {:.4} against {}",
                     renderer::diagnostics::metrics::rel_mse(&pixels, &reference.pixels),
                     renderer::diagnostics::metrics::rmse(&pixels, &reference.pixels),
+                    flip.mean_error(&pixels),
                     path.display()
                 );
             }

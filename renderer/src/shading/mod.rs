@@ -6,3 +6,4 @@ pub mod bsdf;
 pub mod image_texture;
 pub mod optics;
 pub mod texture;
+pub mod turbulence;

@@ -1,8 +1,7 @@
 //! Procedural textures.
 
+use super::turbulence::TURBULENCE;
 use glam::Vec3;
-use noise::{Fbm, NoiseFn, Perlin};
-use std::sync::LazyLock;
 
 /// The albedo at `point` of a material of base `base` and colour `color`
 /// there (a mesh's texture applied): the colour, or for marble the solid
@@ -15,19 +14,16 @@ pub fn albedo_at(base: scene::BaseMaterial, color: Vec3, point: Vec3) -> Vec3 {
     }
 }
 
-/// Fractal Perlin noise shared by every marble surface.
-static TURBULENCE: LazyLock<Fbm<Perlin>> = LazyLock::new(|| Fbm::new(7));
-
 /// Veins per unit length along x.
-const VEIN_FREQUENCY: f64 = 2.0;
+const VEIN_FREQUENCY: f32 = 2.0;
 
 /// Marble: a solid texture of dark veins, sin(x + turbulence), through `color`.
 pub fn marble(point: Vec3, color: Vec3) -> Vec3 {
-    let p = point.as_dvec3();
-    let turbulence = TURBULENCE.get([p.x * 0.7, p.y * 0.7, p.z * 0.7]);
-    let phase = VEIN_FREQUENCY * (p.x + 0.5 * p.z) + 6.0 * turbulence;
+    let p = point * 0.7;
+    let turbulence = TURBULENCE.at([p.x, p.y, p.z]);
+    let phase = VEIN_FREQUENCY * (point.x + 0.5 * point.z) + 6.0 * turbulence;
     // Sharp, thin veins: 1 on the vein's centre line, falling off fast.
-    let vein = (1.0 - phase.sin().abs()).powi(6) as f32;
+    let vein = (1.0 - phase.sin().abs()).powi(6);
     color * (1.0 - 0.7 * vein)
 }
 

@@ -2,7 +2,7 @@
 //! with each method, records after every pass the time and the error against
 //! a reference, and writes the curves as CSV and as a log–log PNG chart.
 
-mod flip;
+pub(crate) mod flip;
 
 use super::args::{ChartArgs, ChartMethod};
 use super::prepare::UserError;
