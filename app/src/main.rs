@@ -29,6 +29,7 @@ fn default_scene() -> PathBuf {
 /// Opens the window on `path` (plotting the error against `reference`, if
 /// given); returns when it closes.
 fn run_window(path: PathBuf, reference: Option<PathBuf>) -> ExitCode {
+    gui::worker_priority::lower_tracer_priority();
     let scene = match scene::read_any(&path) {
         Ok(scene) => {
             io::output::warn_about_models(&scene);

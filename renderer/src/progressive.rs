@@ -1,6 +1,8 @@
 //! A progressive render session: a worker thread refines the image of the
-//! newest job — coarse previews first (every 8th, 4th, 2nd pixel), then full
-//! passes that accumulate samples — and hands each finished step over in a
+//! newest job — coarse previews first (one pixel in s × s, then s/2 × s/2,
+//! … down to 2 × 2, the first s chosen so that it fits a display frame at
+//! the speed the last step measured), then full passes that accumulate
+//! samples — and hands each finished step over in a
 //! one-frame slot where the newest frame wins. Submitting a job cancels the
 //! stale one at once: no frame of an older job is handed out after
 //! [`ProgressiveRenderer::submit`] returns. Nothing here ever blocks the caller
@@ -25,8 +27,47 @@ use std::sync::{Arc, Condvar, Mutex, MutexGuard, PoisonError};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
-/// The preview strides shown before the first full pass.
-pub const PREVIEW_STRIDES: [u32; 3] = [8, 4, 2];
+/// The coarsest preview: one sample per 32 × 32 block.
+pub const COARSEST_STRIDE: u32 = 32;
+
+/// The first preview's stride before anything has been measured.
+pub const UNMEASURED_STRIDE: u32 = 8;
+
+/// What the first preview of an edit may take on the render thread, its
+/// tracing and its conversion for display together: 10 ms of a 60 Hz
+/// display frame, leaving the rest for the stale job's last band of rows,
+/// the hand-over, the texture upload and drawing.
+pub const PREVIEW_BUDGET: Duration = Duration::from_millis(10);
+
+/// The first preview's stride for a `width` × `height` image when the last
+/// step took `per_sample` per traced sample (wall-clock, every worker
+/// counted) and its conversion for display took `publish`: the finest
+/// power of two, from 2 to [`COARSEST_STRIDE`], whose preview fits
+/// [`PREVIEW_BUDGET`]; 1 when a whole pass does (no previews then);
+/// [`UNMEASURED_STRIDE`] when nothing was measured.
+pub fn first_preview_stride(
+    width: u32,
+    height: u32,
+    per_sample: Option<Duration>,
+    publish: Duration,
+) -> u32 {
+    let Some(per_sample) = per_sample else {
+        return UNMEASURED_STRIDE;
+    };
+    let left = PREVIEW_BUDGET.saturating_sub(publish).as_secs_f64();
+    let fits = |stride: u32| {
+        let samples = width.div_ceil(stride) as f64 * height.div_ceil(stride) as f64;
+        samples * per_sample.as_secs_f64() <= left
+    };
+    if fits(1) {
+        return 1;
+    }
+    let mut stride = 2;
+    while stride < COARSEST_STRIDE && !fits(stride) {
+        stride *= 2;
+    }
+    stride
+}
 
 /// What to render: a prepared scene snapshot and how far to refine it.
 #[derive(Clone, Debug)]
@@ -151,6 +192,20 @@ impl ProgressiveRenderer {
         generation
     }
 
+    /// Stops the current job at its next band of rows, freeing the workers
+    /// at once, and hands out no more of its frames; the session then idles
+    /// until the next [`ProgressiveRenderer::submit`]. For an edit whose
+    /// world is about to be prepared: its BVH builds need the workers the
+    /// stale job would otherwise keep busy to the end of its pass.
+    pub fn cancel(&self) {
+        {
+            let mut slot = lock(&self.shared.slot);
+            *slot = None;
+            self.shared.generation.fetch_add(1, Ordering::SeqCst);
+        }
+        self.shared.wake.notify_all();
+    }
+
     /// Pauses or resumes refinement (a paused session finishes its current step).
     pub fn set_paused(&self, paused: bool) {
         lock(&self.shared.inbox).paused = paused;
@@ -197,7 +252,8 @@ struct Current {
     job: Job,
     submitted: Instant,
     film: Film,
-    next_preview: usize,
+    /// The next preview's stride; `None` once the previews are done.
+    next_stride: Option<u32>,
     /// The latest preview's samples, until the first pass has taken them.
     preview_samples: Option<PreviewSamples>,
     /// Samples the passes took from a preview instead of tracing them.
@@ -211,7 +267,7 @@ struct Current {
 
 impl Current {
     fn done(&self) -> bool {
-        self.next_preview >= PREVIEW_STRIDES.len()
+        self.next_stride.is_none()
             && (self.film.converged()
                 || self
                     .job
@@ -223,6 +279,10 @@ impl Current {
 fn work(shared: &Shared) {
     let mut current: Option<Current> = None;
     let mut display = Display::default();
+    // The wall-clock time per traced sample of the last step, any job's,
+    // and how long its conversion for display took.
+    let mut per_sample: Option<Duration> = None;
+    let mut publish_time = Duration::ZERO;
     loop {
         let mut republish = false;
         {
@@ -242,14 +302,22 @@ fn work(shared: &Shared) {
                     display = new;
                     republish = current.as_ref().is_some_and(|c| c.shown.is_some());
                 }
+                // A cancelled job is dropped (a submitted one replaces it below).
+                if current
+                    .as_ref()
+                    .is_some_and(|c| c.generation != shared.generation.load(Ordering::SeqCst))
+                {
+                    current = None;
+                }
                 if let Some((generation, job, submitted)) = inbox.pending.take() {
-                    let film = Film::new(job.world.camera.w, job.world.camera.h);
+                    let (w, h) = (job.world.camera.w, job.world.camera.h);
+                    let first = first_preview_stride(w, h, per_sample, publish_time);
                     current = Some(Current {
                         generation,
                         job,
                         submitted,
-                        film,
-                        next_preview: 0,
+                        film: Film::new(w, h),
+                        next_stride: (first > 1).then_some(first),
                         preview_samples: None,
                         reused: 0,
                         pass_time: Duration::ZERO,
@@ -271,8 +339,9 @@ fn work(shared: &Shared) {
         if let Some(c) = current.as_mut() {
             if republish {
                 publish(shared, c, display);
-            } else {
-                step(shared, c, display);
+            } else if let Some((traced, published)) = step(shared, c, display) {
+                per_sample = Some(traced);
+                publish_time = published;
             }
         }
     }
@@ -281,18 +350,29 @@ fn work(shared: &Shared) {
 /// Renders one preview or one full pass of `c` and publishes it unless stale.
 /// Each preview traces only the samples the previous one did not, and the
 /// first pass only those no preview did: after an edit, every sample 0 is
-/// traced once.
-fn step(shared: &Shared, c: &mut Current, display: Display) {
+/// traced once. Returns the step's wall-clock time per sample it traced and
+/// the time its publishing took, unless it was cut short.
+fn step(shared: &Shared, c: &mut Current, display: Display) -> Option<(Duration, Duration)> {
     let stale = || shared.generation.load(Ordering::SeqCst) != c.generation;
     let world = Arc::clone(&c.job.world);
-    if let Some(&stride) = PREVIEW_STRIDES.get(c.next_preview) {
-        c.next_preview += 1;
-        let samples =
-            PreviewSamples::trace(&world, &c.job.options, stride, c.preview_samples.as_ref());
+    let started = Instant::now();
+    let traced;
+    if let Some(stride) = c.next_stride {
+        c.next_stride = (stride > 2).then_some(stride / 2);
+        let known = c.preview_samples.as_ref().map_or(0, PreviewSamples::len);
+        let samples = PreviewSamples::trace_unless(
+            &world,
+            &c.job.options,
+            stride,
+            c.preview_samples.as_ref(),
+            &stale,
+        )?;
+        traced = samples.len().saturating_sub(known);
         c.preview_samples = Some(samples);
         c.shown = Some((Step::Preview { stride }, 0.0, 0.0));
     } else {
-        let started = Instant::now();
+        let samples_before = c.film.samples();
+        let reused_before = c.reused;
         let completed = match c.preview_samples.take() {
             Some(known) => {
                 c.reused += known.len() as u64;
@@ -302,8 +382,10 @@ fn step(shared: &Shared, c: &mut Current, display: Display) {
             None => c.film.add_pass_unless(&world, &c.job.options, &stale),
         };
         if !completed {
-            return;
+            return None;
         }
+        traced =
+            (c.film.samples() - samples_before).saturating_sub(c.reused - reused_before) as usize;
         c.pass_time += started.elapsed();
         let samples = c.film.samples() as f64 - c.reused as f64;
         let seconds = c.pass_time.as_secs_f64().max(1e-9);
@@ -312,7 +394,10 @@ fn step(shared: &Shared, c: &mut Current, display: Display) {
         };
         c.shown = Some((step, samples / seconds, c.film.rays() as f64 / seconds));
     }
+    let took = started.elapsed();
+    let publishing = Instant::now();
     publish(shared, c, display);
+    (traced > 0).then(|| (took / traced as u32, publishing.elapsed()))
 }
 
 /// Publishes the step last rendered in `display` unless the job is stale
@@ -361,4 +446,51 @@ fn publish(shared: &Shared, c: &mut Current, display: Display) {
         *slot = Some(frame);
     }
     (shared.on_frame)();
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The time one sample would take for a `stride` preview of a
+    /// `width` × `height` image to take exactly the budget.
+    fn filling(width: u32, height: u32, stride: u32) -> Duration {
+        let samples = width.div_ceil(stride) * height.div_ceil(stride);
+        PREVIEW_BUDGET / samples
+    }
+
+    #[test]
+    fn the_first_preview_is_the_finest_that_fits_the_budget() {
+        let (w, h) = (1280, 720);
+        let free = Duration::ZERO;
+        assert_eq!(first_preview_stride(w, h, None, free), UNMEASURED_STRIDE);
+        for stride in [2, 4, 8, 16, 32] {
+            // Just fits at this stride, and not at the next finer one.
+            let per_sample = filling(w, h, stride);
+            assert_eq!(first_preview_stride(w, h, Some(per_sample), free), stride);
+            let slower = Some(per_sample + Duration::from_nanos(5));
+            let coarser = (stride * 2).min(COARSEST_STRIDE);
+            assert_eq!(
+                first_preview_stride(w, h, slower, free),
+                coarser,
+                "{stride}"
+            );
+            // Publishing takes its share of the budget.
+            let publish = Duration::from_millis(1);
+            assert_eq!(
+                first_preview_stride(w, h, Some(per_sample), publish),
+                coarser
+            );
+        }
+        // A whole pass fits: no previews.
+        assert_eq!(first_preview_stride(w, h, Some(filling(w, h, 1)), free), 1);
+        // However slow, or however long publishing takes, never coarser than the coarsest.
+        let glacial = Some(Duration::from_secs(1));
+        assert_eq!(first_preview_stride(w, h, glacial, free), COARSEST_STRIDE);
+        let quick = Some(filling(w, h, 8));
+        assert_eq!(
+            first_preview_stride(w, h, quick, PREVIEW_BUDGET),
+            COARSEST_STRIDE
+        );
+    }
 }

@@ -2,7 +2,7 @@
 //! up to exactly the offline render; a new job hides every older frame; pause
 //! stops refinement; dropping the session stops its thread.
 
-use renderer::progressive::{Job, PREVIEW_STRIDES, ProgressiveRenderer, RenderedFrame, Step};
+use renderer::progressive::{COARSEST_STRIDE, Job, ProgressiveRenderer, RenderedFrame, Step};
 use renderer::{Film, RenderOptions, World};
 use scene::{Object, Scene, Shape};
 use std::sync::Arc;
@@ -78,13 +78,14 @@ fn previews_come_first_and_passes_add_up_to_the_offline_render() {
         "first frame {:?}",
         first.step
     );
-    // Newest wins: frames may be skipped, but they never go backwards.
+    // Newest wins: frames may be skipped, but they never go backwards:
+    // previews ever finer, then passes.
     let order = |s: Step| match s {
-        Step::Preview { stride } => PREVIEW_STRIDES
-            .iter()
-            .position(|&x| x == stride)
-            .expect("known stride") as u32,
-        Step::Passes { spp } => PREVIEW_STRIDES.len() as u32 + spp,
+        Step::Preview { stride } => {
+            assert!(stride.is_power_of_two() && (2..=COARSEST_STRIDE).contains(&stride));
+            COARSEST_STRIDE - stride
+        }
+        Step::Passes { spp } => COARSEST_STRIDE + spp,
     };
     assert!(
         frames
@@ -150,6 +151,47 @@ fn pause_stops_refinement_and_resume_continues() {
     assert!(session.take_frame().is_none(), "no new frame while paused");
     session.set_paused(false);
     frames_until(&session, |f| matches!(f.step, Step::Passes { .. }));
+}
+
+#[test]
+fn cancel_frees_the_workers_and_the_session_idles_until_the_next_submit() {
+    let session = ProgressiveRenderer::new(|| {});
+    // Passes of about a second (path traced, 1600×1200): without the
+    // cancel, rayon work would wait for most of one.
+    let options = RenderOptions {
+        integrator: renderer::integrator::Integrator::Path,
+        ..Default::default()
+    };
+    session.submit(Job {
+        world: world(1600, 1200, 1.0),
+        options,
+        target_spp: None,
+    });
+    frames_until(&session, |f| matches!(f.step, Step::Passes { .. }));
+    session.cancel();
+    // The workers are free within a band of rows: rayon work from this
+    // thread (as a BVH build for the next job) runs at once, and not after
+    // the stale pass's remaining bands.
+    let started = Instant::now();
+    let sum: u64 = rayon::iter::ParallelIterator::sum(
+        rayon::iter::IntoParallelIterator::into_par_iter(0..1000u64),
+    );
+    assert_eq!(sum, 499_500);
+    assert!(
+        started.elapsed() < Duration::from_millis(300),
+        "rayon waited {:?} for the cancelled job",
+        started.elapsed()
+    );
+    // No frame of the cancelled job, and nothing more until a submit.
+    std::thread::sleep(Duration::from_millis(200));
+    assert!(session.take_frame().is_none(), "a frame after the cancel");
+    let next = session.submit(Job {
+        world: world(40, 30, 0.5),
+        options: RenderOptions::default(),
+        target_spp: Some(1),
+    });
+    let frames = frames_until(&session, |f| f.step == Step::Passes { spp: 1 });
+    assert!(frames.iter().all(|f| f.generation == next));
 }
 
 #[test]

@@ -203,7 +203,10 @@ pub struct BenchArgs {
     /// Print the figures as JSON instead of a table.
     #[arg(long)]
     pub json: bool,
-    /// How many edits to time.
+    /// interactive: which integrator the window traces with.
+    #[arg(long, value_enum, default_value_t = IntegratorArg::Whitted)]
+    pub integrator: IntegratorArg,
+    /// How many edits to time (interactive: θ, orbit, colour and move in turn).
     #[arg(long, default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..=10000))]
     pub edits: u32,
     /// How many display frames to time (debug-view).
@@ -212,6 +215,10 @@ pub struct BenchArgs {
     /// debug-view: keep the debug view hidden, to compare the same frames without it.
     #[arg(long)]
     pub hide_debug_view: bool,
+    /// debug-view: let the tracer finish one pass and idle before the frames
+    /// are timed, to compare them with the tracer running on every core.
+    #[arg(long)]
+    pub idle_tracer: bool,
     /// With a scene to measure: first write its triangles (world space; a
     /// plane as a large square of 2 triangles) and the primary and incoherent
     /// rays to this folder as raw little-endian arrays with a manifest.json,
@@ -239,7 +246,7 @@ pub struct RenderArgs {
     #[arg(long, value_enum, default_value_t = AovArg::Color)]
     pub aov: AovArg,
     /// A linear EXR of the same scene and size: print the render's relative
-    /// MSE and RMSE against it (colour only).
+    /// MSE, RMSE and mean FLIP (the pictures as shown) against it (colour only).
     #[arg(long, value_name = "REF.exr")]
     pub reference: Option<PathBuf>,
 }

@@ -113,11 +113,13 @@ fn line(name: &str, values: &mut [Duration]) {
 }
 
 fn debug_view(args: &BenchArgs, seed: &Path) -> Result<()> {
+    // As in the window: the tracer below the UI.
+    crate::gui::worker_priority::lower_tracer_priority();
     let (scene, label, path) = window_scene(args, seed)?;
     let size = [1600u32, 900];
     let gpu = HeadlessGpu::new(size)?;
     println!(
-        "{label} at {}×{}, debug view {} in a {}×{} window drawn by {}, {} frames, {} tracer threads",
+        "{label} at {}×{}, debug view {} in a {}×{} window drawn by {}, {} frames, {} tracer threads {}",
         scene.camera.width,
         scene.camera.height,
         if args.hide_debug_view {
@@ -129,13 +131,22 @@ fn debug_view(args: &BenchArgs, seed: &Path) -> Result<()> {
         size[1],
         gpu.adapter(),
         args.frames,
-        rayon::current_num_threads()
+        rayon::current_num_threads(),
+        match (
+            args.idle_tracer,
+            crate::gui::worker_priority::tracer_priority_lowered()
+        ) {
+            (true, _) => "idle (one pass, then none)",
+            (false, true) => "running, at low priority",
+            (false, false) => "running, at normal priority",
+        }
     );
     let mut report = bench::debug_view(
         scene,
         path,
         args.frames,
         !args.hide_debug_view,
+        args.idle_tracer,
         &gpu,
         egui::vec2(size[0] as f32, size[1] as f32),
     )?;
@@ -146,13 +157,24 @@ fn debug_view(args: &BenchArgs, seed: &Path) -> Result<()> {
 }
 
 fn interactive(args: &BenchArgs, seed: &Path) -> Result<()> {
+    // As in the window: the tracer below the UI.
+    crate::gui::worker_priority::lower_tracer_priority();
     let (scene, label, path) = window_scene(args, seed)?;
     let threads = rayon::current_num_threads();
+    let integrator = renderer::integrator::Integrator::from(args.integrator);
     println!(
-        "{label} at {}×{}, {} edits of θ, {threads} tracer threads",
-        scene.camera.width, scene.camera.height, args.edits
+        "{label} at {}×{}, {:?}, {} edits (θ, orbit, colour, move in turn), {threads} tracer threads{}",
+        scene.camera.width,
+        scene.camera.height,
+        integrator,
+        args.edits,
+        if crate::gui::worker_priority::tracer_priority_lowered() {
+            " at low priority"
+        } else {
+            " at normal priority"
+        }
     );
-    let mut report = bench::interactive(scene, path, args.edits);
+    let mut report = bench::interactive(scene, path, integrator, args.edits);
     if report.to_full_pass.len() < args.edits as usize {
         anyhow::bail!(
             "only {} of {} edits reached a full pass within 10 s",
@@ -160,15 +182,36 @@ fn interactive(args: &BenchArgs, seed: &Path) -> Result<()> {
             args.edits
         );
     }
-    line("edit → first preview on screen", &mut report.to_preview);
+    line(
+        "edit → first preview on screen",
+        &mut report.to_preview.clone(),
+    );
     line(
         "  of which the render thread",
         &mut report.preview_handed_over,
     );
-    line("edit → first full pass on screen", &mut report.to_full_pass);
+    line(
+        "edit → first full pass on screen",
+        &mut report.to_full_pass.clone(),
+    );
+    for kind in bench::EditKind::ALL {
+        let of_kind = |times: &[Duration]| -> Vec<Duration> {
+            times
+                .iter()
+                .zip(&report.kinds)
+                .filter(|&(_, &k)| k == kind)
+                .map(|(&t, _)| t)
+                .collect()
+        };
+        let (mut preview, mut full) = (of_kind(&report.to_preview), of_kind(&report.to_full_pass));
+        if !preview.is_empty() {
+            line(&format!("  {}: preview", kind.name()), &mut preview);
+            line(&format!("  {}: full pass", kind.name()), &mut full);
+        }
+    }
     line("UI frame time while rendering", &mut report.frame_times);
     println!(
-        "({} UI frames; targets: preview ≤ 16 ms, full pass ≤ 150 ms, UI frame < 16 ms)",
+        "({} UI frames; targets: preview p95 ≤ 16 ms, full pass median ≤ 150 ms, UI frame < 16 ms)",
         report.frame_times.len()
     );
     Ok(())

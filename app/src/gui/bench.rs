@@ -9,14 +9,50 @@
 //! `cli/bench.rs` runs them and prints their figures.
 
 use super::RaylabApp;
+use renderer::integrator::Integrator;
 use renderer::progressive::Step;
-use scene::Scene;
+use scene::{Geometry, Scene, Shape};
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
+
+/// An edit `interactive` makes: the kinds a user makes most, in turn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EditKind {
+    /// θ, the half-height angle, as a drag in the camera panel.
+    Theta,
+    /// The eye turned about the point it looks at, as a drag in the image.
+    Orbit,
+    /// An object's colour, as a colour picker.
+    Color,
+    /// A sphere or box moved, as a drag of its position.
+    Move,
+}
+
+impl EditKind {
+    /// Every kind, in the order `interactive` takes them.
+    pub const ALL: [EditKind; 4] = [
+        EditKind::Theta,
+        EditKind::Orbit,
+        EditKind::Color,
+        EditKind::Move,
+    ];
+
+    /// Its name in the report.
+    pub fn name(self) -> &'static str {
+        match self {
+            EditKind::Theta => "θ",
+            EditKind::Orbit => "orbit",
+            EditKind::Color => "colour",
+            EditKind::Move => "move",
+        }
+    }
+}
 
 /// What one run measured.
 #[derive(Clone, Debug, Default)]
 pub struct Report {
+    /// Each timed edit's kind, in the order made (parallel to the timings).
+    pub kinds: Vec<EditKind>,
     /// Edit → the frame that first shows a preview of the new job.
     pub to_preview: Vec<Duration>,
     /// Edit → the frame that first shows a full pass of the new job.
@@ -30,11 +66,79 @@ pub struct Report {
 /// How long one display frame lasts at 60 Hz: the UI loop's pace.
 const FRAME: Duration = Duration::from_micros(16_667);
 
-/// Runs `edits` θ edits on `scene` and times each until its first full pass.
-pub fn interactive(scene: Scene, path: Option<PathBuf>, edits: u32) -> Report {
+/// Makes edit number `edit`, of kind `kind`, to the app's scene as the panel
+/// or a drag in the image would. Returns false when the scene has nothing
+/// that kind applies to (no sphere or box to move, no object to colour).
+fn make_edit(app: &mut RaylabApp, kind: EditKind, edit: u32) -> bool {
+    let step = (edit % 5) as f32;
+    let sign = if edit.is_multiple_of(2) { 1.0 } else { -1.0 };
+    match kind {
+        EditKind::Theta => app.doc.state.scene.camera.theta_deg = 24.0 + step,
+        EditKind::Orbit => {
+            let Some(prepared) = &app.session.prepared else {
+                return false;
+            };
+            let camera = &prepared.world.camera;
+            let view = super::viewport::navigation::OrbitView {
+                eye: camera.p0,
+                target: camera.p0 + camera.t * camera.p0.length().max(1.0),
+                up: camera.u,
+            }
+            .orbit(0.02 * sign, 0.0);
+            let Some((eye, toward)) = view.as_stored() else {
+                return false;
+            };
+            let stored = &mut app.doc.state.scene.camera;
+            stored.eye = Some(eye);
+            stored.toward = Some(toward);
+        }
+        EditKind::Color => {
+            let Some(object) = app.doc.state.scene.objects.first_mut() else {
+                return false;
+            };
+            object.params.color = Some(glam::Vec3::new(0.2 + 0.15 * step, 0.5, 0.8 - 0.1 * step));
+        }
+        EditKind::Move => {
+            let Some(prepared) = &app.session.prepared else {
+                return false;
+            };
+            let placed = prepared
+                .resolved
+                .objects
+                .iter()
+                .enumerate()
+                .find_map(|(k, o)| match o.geometry {
+                    Geometry::Sphere { center, .. } | Geometry::Box { center, .. } => {
+                        Some((k, center))
+                    }
+                    _ => None,
+                });
+            let Some((k, at)) = placed else {
+                return false;
+            };
+            let to = at + glam::Vec3::new(0.05 * sign, 0.0, 0.0);
+            match &mut app.doc.state.scene.objects[k].shape {
+                Shape::Sphere { center, .. } | Shape::Box { center, .. } => *center = Some(to),
+                _ => return false,
+            }
+        }
+    }
+    true
+}
+
+/// Runs `edits` edits, of each [`EditKind`] in turn that the scene offers,
+/// on `scene` traced by `integrator`, and times each until its first full
+/// pass.
+pub fn interactive(
+    scene: Scene,
+    path: Option<PathBuf>,
+    integrator: Integrator,
+    edits: u32,
+) -> Report {
     let ctx = egui::Context::default();
     let mut app = RaylabApp::new(scene, path);
     app.doc.state.render.target_spp = None; // refine forever: the tracer never idles
+    app.doc.state.render.integrator = integrator;
     let input = || egui::RawInput {
         screen_rect: Some(egui::Rect::from_min_size(
             egui::Pos2::ZERO,
@@ -59,9 +163,22 @@ pub fn interactive(scene: Scene, path: Option<PathBuf>, edits: u32) -> Report {
         std::thread::sleep(Duration::from_millis(1));
     }
     let mut report = Report::default();
+    let mut next_kind = 0;
     for edit in 0..edits {
-        // Edit θ as a drag in the panel would, then run frames as the display would.
-        app.doc.state.scene.camera.theta_deg = 24.0 + (edit % 5) as f32;
+        // The next kind of edit that applies here.
+        let mut made = None;
+        for _ in 0..EditKind::ALL.len() {
+            let kind = EditKind::ALL[next_kind % EditKind::ALL.len()];
+            next_kind += 1;
+            if make_edit(&mut app, kind, edit) {
+                made = Some(kind);
+                break;
+            }
+        }
+        let Some(made) = made else {
+            break;
+        };
+        // Then frames, as the display would run them.
         let edited = Instant::now();
         let mut preview = None;
         let deadline = edited + Duration::from_secs(10);
@@ -84,6 +201,7 @@ pub fn interactive(scene: Scene, path: Option<PathBuf>, edits: u32) -> Report {
                         .to_preview
                         .push(preview.unwrap_or_else(|| edited.elapsed()));
                     report.to_full_pass.push(edited.elapsed());
+                    report.kinds.push(made);
                     break;
                 }
                 _ => {}
@@ -116,18 +234,20 @@ pub struct DebugViewReport {
 /// to compare, hidden), the
 /// centre pixel inspected (its rays drawn) and the observer turning a little
 /// every frame so the 3D view is redrawn each time, while the tracer refines
-/// the image on every core.
+/// the image on every core (or, with `idle_tracer`, after it has finished
+/// one pass and stopped).
 pub fn debug_view(
     scene: Scene,
     path: Option<PathBuf>,
     frames: u32,
     show_debug: bool,
+    idle_tracer: bool,
     gpu: &crate::bench::headless_gpu::HeadlessGpu,
     size: egui::Vec2,
 ) -> anyhow::Result<DebugViewReport> {
     let ctx = egui::Context::default();
     let mut app = RaylabApp::new(scene, path).with_gpu(Some(gpu.render_state.clone()));
-    app.doc.state.render.target_spp = None;
+    app.doc.state.render.target_spp = if idle_tracer { Some(1) } else { None };
     app.show_debug = show_debug;
     let input = || egui::RawInput {
         screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, size)),

@@ -33,6 +33,7 @@ mod panels;
 mod session;
 mod settings;
 mod viewport;
+pub mod worker_priority;
 
 #[cfg(test)]
 mod tests;

@@ -91,6 +91,8 @@ impl SessionSync {
         }
         self.submitted = Some((state.scene.clone(), options));
         self.submitted_target = Some(target);
+        // Free the workers first: the world's BVH builds run on them.
+        session.cancel();
         let prepared = scene::resolve(&state.scene)
             .map_err(renderer::RenderError::from)
             .and_then(|resolved| {

@@ -5,14 +5,14 @@
 //! the very samples that finer previews and the first full pass trace again;
 //! [`PreviewSamples`] keeps them so that they are traced once per edit.
 
-use crate::geometry::counters::shape_tests_on_this_thread;
-use crate::integrator::{RenderOptions, sample_pixel};
+use crate::integrator::{RenderOptions, SampleRef, SampleResult, trace_samples};
 use crate::world::World;
 use glam::Vec3;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Sample 0 of pixel (i, j) for every i and j that are multiples of the
-/// stride, exactly as [`sample_pixel`] returns it (NaN and infinities kept).
+/// stride, exactly as [`sample_pixel`](crate::integrator::sample_pixel) returns it (NaN and infinities kept).
 #[derive(Clone, Debug)]
 pub struct PreviewSamples {
     stride: u32,
@@ -47,6 +47,21 @@ impl PreviewSamples {
         stride: u32,
         coarser: Option<&PreviewSamples>,
     ) -> Self {
+        Self::trace_unless(world, options, stride, coarser, &|| false).expect("never cancelled")
+    }
+
+    /// Like [`PreviewSamples::trace`], but rows not yet started are skipped
+    /// once `cancelled()` returns true, and then the preview is `None`: an
+    /// edit need not wait for a stale preview to finish. A row's samples go
+    /// through [`trace_samples`] together (the path tracer's SIMD lanes), each
+    /// one [`sample_pixel`](crate::integrator::sample_pixel)'s bit for bit.
+    pub fn trace_unless(
+        world: &World,
+        options: &RenderOptions,
+        stride: u32,
+        coarser: Option<&PreviewSamples>,
+        cancelled: &(dyn Fn() -> bool + Sync),
+    ) -> Option<Self> {
         let (width, height) = (world.camera.w, world.camera.h);
         let stride = stride.max(1);
         let columns = width.div_ceil(stride) as usize;
@@ -55,31 +70,52 @@ impl PreviewSamples {
             coarser.filter(|c| c.is_for(width, height) && c.stride.is_multiple_of(stride));
         let mut values = vec![Vec3::ZERO; columns * rows];
         let mut tests = vec![0u32; columns * rows];
+        let skipped = AtomicBool::new(false);
         values
             .par_chunks_mut(columns)
             .zip(tests.par_chunks_mut(columns))
             .enumerate()
             .for_each(|(row, (out, out_tests))| {
+                if cancelled() {
+                    skipped.store(true, Ordering::Relaxed);
+                    return;
+                }
                 let j = row as u32 * stride;
                 let known = coarser
                     .and_then(|c| c.row(j))
                     .map(|row| (row, (row.stride / stride) as usize));
-                for_each_with_known(out.len(), known, |k, sample| {
-                    let i = k as u32 * stride;
-                    (out[k], out_tests[k]) = sample.unwrap_or_else(|| {
-                        let (value, spent) = trace_with_cost(world, options, i, j, 0);
-                        (value, u32::try_from(spent).unwrap_or(u32::MAX))
-                    });
+                // The row's samples no coarser preview holds, traced together.
+                let mut wanted = Vec::with_capacity(out.len());
+                for_each_with_known(out.len(), known, |k, sample| match sample {
+                    Some((value, tests)) => (out[k], out_tests[k]) = (value, tests),
+                    None => wanted.push(k),
                 });
+                let samples: Vec<SampleRef> = wanted
+                    .iter()
+                    .map(|&k| SampleRef {
+                        i: k as u32 * stride,
+                        j,
+                        sample: 0,
+                    })
+                    .collect();
+                let mut results = vec![SampleResult::default(); samples.len()];
+                trace_samples(world, options, &samples, &mut results);
+                for (&k, result) in wanted.iter().zip(&results) {
+                    out[k] = result.radiance;
+                    out_tests[k] = u32::try_from(result.shape_tests).unwrap_or(u32::MAX);
+                }
             });
-        Self {
+        if skipped.load(Ordering::Relaxed) {
+            return None;
+        }
+        Some(Self {
             stride,
             width,
             height,
             columns,
             values,
             tests,
-        }
+        })
     }
 
     /// The stride: one sample per `stride` × `stride` block.
@@ -207,23 +243,11 @@ pub(super) fn for_each_with_known_in(
     }
 }
 
-/// Sample `sample` of pixel (i, j), traced, and the shape tests it cost.
-pub(super) fn trace_with_cost(
-    world: &World,
-    options: &RenderOptions,
-    i: u32,
-    j: u32,
-    sample: u32,
-) -> (Vec3, u64) {
-    let before = shape_tests_on_this_thread();
-    let value = sample_pixel(world, options, i, j, sample);
-    (value, shape_tests_on_this_thread() - before)
-}
-
 #[cfg(test)]
 pub(super) mod tests {
     use super::*;
     use crate::film::Film;
+    use crate::integrator::sample_pixel;
     use scene::{Object, Scene, Shape};
 
     /// A world of the default shapes of `tags` seen by the default camera
@@ -262,6 +286,44 @@ pub(super) mod tests {
             let corner = sample_pixel(&world, &options, (i / 8 * 8) as u32, (j / 8 * 8) as u32, 0);
             assert_eq!(coarse[j * 37 + i], corner, "pixel ({i}, {j})");
         }
+    }
+
+    /// Preview samples go through the batched tracer (the path tracer's
+    /// SIMD lanes where the world allows them): each is still
+    /// `sample_pixel`'s, bit for bit, for both integrators.
+    #[test]
+    fn every_preview_sample_is_sample_pixels_for_both_integrators() {
+        use crate::integrator::Integrator;
+        for world in [world(), world_of(&["sphere", "box", "sphere"], 37, 21)] {
+            for integrator in [Integrator::Whitted, Integrator::Path] {
+                let options = RenderOptions {
+                    integrator,
+                    ..Default::default()
+                };
+                let samples = PreviewSamples::trace(&world, &options, 2, None);
+                for j in (0..21).step_by(2) {
+                    for i in (0..37).step_by(2) {
+                        let want = sample_pixel(&world, &options, i, j, 0);
+                        let got = samples.get(i, j).expect("on the grid");
+                        assert_eq!(
+                            got.to_array().map(f32::to_bits),
+                            want.to_array().map(f32::to_bits),
+                            "{integrator:?} ({i}, {j})"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_cancelled_preview_is_none() {
+        let world = world();
+        let options = RenderOptions::default();
+        let cancelled = PreviewSamples::trace_unless(&world, &options, 2, None, &|| true);
+        assert!(cancelled.is_none());
+        let done = PreviewSamples::trace_unless(&world, &options, 2, None, &|| false);
+        assert_eq!(done.map(|d| d.len()), Some(19 * 11));
     }
 
     #[test]

@@ -24,13 +24,20 @@ pub fn bvhs_for(meshes: &[Arc<TriangleMesh>]) -> Vec<Arc<MeshBvh>> {
         cache.retain(|(weak, _)| weak.strong_count() > 0);
         meshes.iter().map(|m| cached(&cache, m)).collect()
     };
-    let built: Vec<Arc<MeshBvh>> = meshes
-        .par_iter()
-        .zip(known)
-        .map(|(mesh, known)| {
-            known.unwrap_or_else(|| Arc::new(MeshBvh::build(&mesh.positions, &mesh.triangles)))
-        })
-        .collect();
+    // Only BVHs to build go to rayon's workers: a world whose meshes are
+    // all cached (an edit of the camera or of another object) is prepared
+    // without waiting for them.
+    let built: Vec<Arc<MeshBvh>> = if known.iter().all(Option::is_some) {
+        known.into_iter().flatten().collect()
+    } else {
+        meshes
+            .par_iter()
+            .zip(known)
+            .map(|(mesh, known)| {
+                known.unwrap_or_else(|| Arc::new(MeshBvh::build(&mesh.positions, &mesh.triangles)))
+            })
+            .collect()
+    };
     let mut cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
     for (mesh, bvh) in meshes.iter().zip(&built) {
         if cached(&cache, mesh).is_none() {

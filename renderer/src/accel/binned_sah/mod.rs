@@ -124,21 +124,23 @@ pub struct Span {
 
 impl Span {
     /// The span of all of `refs`, whose first element has index `begin`.
+    /// Few primitives are bounded on the calling thread: a world of a few
+    /// shapes is prepared by the UI thread, which must not wait for rayon's
+    /// workers.
     pub fn around(refs: &[PrimRef], begin: usize) -> Span {
-        let (bounds, centroids) = refs
-            .par_iter()
-            .fold(
-                || (Bounds::EMPTY, Bounds::EMPTY),
-                |(mut b, mut c), r| {
-                    b.grow(r.lo(), r.hi());
-                    c.grow_point(r.centroid());
-                    (b, c)
-                },
-            )
-            .reduce(
-                || (Bounds::EMPTY, Bounds::EMPTY),
-                |a, b| (a.0.union(b.0), a.1.union(b.1)),
-            );
+        let grow = |(mut b, mut c): (Bounds, Bounds), r: &PrimRef| {
+            b.grow(r.lo(), r.hi());
+            c.grow_point(r.centroid());
+            (b, c)
+        };
+        let empty = (Bounds::EMPTY, Bounds::EMPTY);
+        let (bounds, centroids) = if refs.len() < PARALLEL_BINNING {
+            refs.iter().fold(empty, grow)
+        } else {
+            refs.par_iter()
+                .fold(|| empty, grow)
+                .reduce(|| empty, |a, b| (a.0.union(b.0), a.1.union(b.1)))
+        };
         Span {
             begin,
             end: begin + refs.len(),
