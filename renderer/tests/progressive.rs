@@ -66,18 +66,30 @@ fn previews_come_first_and_passes_add_up_to_the_offline_render() {
     let session = ProgressiveRenderer::new(|| {});
     let world = world(48, 32, 1.0);
     let options = RenderOptions::default();
+    // A target of no passes: the session traces its previews and stops, so
+    // the frames taken cannot race past them (the slot keeps only the newest).
     session.submit(Job {
         world: Arc::clone(&world),
         options,
-        target_spp: Some(3),
+        target_spp: Some(0),
     });
-    let frames = frames_until(&session, |f| f.step == Step::Passes { spp: 3 });
-    let first = &frames[0];
+    let mut frames = frames_until(&session, |f| f.step == Step::Preview { stride: 2 });
+    std::thread::sleep(Duration::from_millis(100));
     assert!(
-        matches!(first.step, Step::Preview { .. }),
-        "first frame {:?}",
-        first.step
+        session.take_frame().is_none(),
+        "no pass before the target asks for one"
     );
+    assert!(
+        frames
+            .iter()
+            .all(|f| matches!(f.step, Step::Preview { .. })),
+        "{:?}",
+        frames.iter().map(|f| f.step).collect::<Vec<_>>()
+    );
+    session.set_target_spp(Some(3));
+    frames.extend(frames_until(&session, |f| {
+        f.step == Step::Passes { spp: 3 }
+    }));
     // Newest wins: frames may be skipped, but they never go backwards:
     // previews ever finer, then passes.
     let order = |s: Step| match s {
