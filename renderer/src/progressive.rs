@@ -404,6 +404,11 @@ fn step(shared: &Shared, c: &mut Current, display: Display) -> Option<(Duration,
 /// (an AOV the mode needs is traced first, and abandoned if it goes stale).
 fn publish(shared: &Shared, c: &mut Current, display: Display) {
     let stale = || shared.generation.load(Ordering::SeqCst) != c.generation;
+    // An edit made while the step ran: its preview should not wait for
+    // this step's conversion.
+    if stale() {
+        return;
+    }
     let Some((step, samples_per_second, rays_per_second)) = c.shown else {
         return;
     };

@@ -30,8 +30,9 @@ impl Film {
         debug_assert!(completed);
     }
 
-    /// Like [`Film::add_pass`], but bands not yet started are skipped once
-    /// `cancelled()` returns true. Returns false when the pass was cut short:
+    /// Like [`Film::add_pass`], but once `cancelled()` returns true, bands
+    /// not yet started are skipped and bands under way stop at their next
+    /// chunk of samples. Returns false when the pass was cut short:
     /// the film then holds a partial pass and must be discarded.
     pub fn add_pass_unless(
         &mut self,
@@ -134,6 +135,11 @@ impl Film {
                         start = end;
                         let last = row + 1 == rows_in_band && end == width;
                         if chunk.len() == PASS_CHUNK || last {
+                            // A stale pass stops within a chunk, not a band:
+                            // an edit's preview waits for at most this much.
+                            if cancelled() {
+                                return (bad, 1, rays_on_this_thread() - rays_before, traced);
+                            }
                             let (b, t) = chunk.trace_and_add(world, options, rows, stats, counts);
                             (bad, traced) = (bad + b, traced + t);
                         }
@@ -278,6 +284,27 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// A pass cancelled while a band is under way stops at that band's next
+    /// chunk: with one band of several chunks, a cancel seen at the second
+    /// check leaves most of the band untraced, and the pass says it was cut
+    /// short.
+    #[test]
+    fn a_cancelled_pass_stops_within_a_band() {
+        let (w, h) = (3 * PASS_CHUNK as u32, BAND_ROWS as u32);
+        let world = wide_world(w, h);
+        let checks = std::sync::atomic::AtomicUsize::new(0);
+        // False at the band's start and its first chunk, true from then on.
+        let cancelled = || checks.fetch_add(1, std::sync::atomic::Ordering::SeqCst) >= 2;
+        let mut film = Film::new(w, h);
+        assert!(!film.add_pass_unless(&world, &RenderOptions::default(), &cancelled));
+        assert_eq!(
+            film.samples(),
+            PASS_CHUNK as u64,
+            "one chunk traced of {}",
+            w * h
+        );
     }
 
     #[test]
