@@ -153,6 +153,19 @@ fn splat<I: IntLanes>(x: u32) -> I {
     I::splat(x as i32)
 }
 
+/// [`super::pascal_mod2`] on lanes: the same steps, shift by shift.
+#[inline(always)]
+fn pascal_mod2<I: IntLanes>(mut x: I) -> I {
+    const {
+        let s = PASCAL_STEPS;
+        assert!(s[0].0 == 1 && s[1].0 == 2 && s[2].0 == 4 && s[3].0 == 8);
+    };
+    x = x ^ (x.shr::<1>() & splat(PASCAL_STEPS[0].1));
+    x = x ^ (x.shr::<2>() & splat(PASCAL_STEPS[1].1));
+    x = x ^ (x.shr::<4>() & splat(PASCAL_STEPS[2].1));
+    x ^ (x.shr::<8>() & splat(PASCAL_STEPS[3].1))
+}
+
 /// `sobol_burley::parts::hash` on lanes.
 #[inline(always)]
 fn hash<I: IntLanes>(x: I) -> I {
@@ -188,16 +201,7 @@ fn owen_sobol<F: FloatLanes, const N: usize>(
     const { assert!(N <= 2, "Sobol draws have one or two dimensions") };
     // `sobol_rev_2d`: the index the crate reads, and its Pascal product.
     let unshuffled = (shuffled_rev & splat(0xffff_0000)).reverse_bits();
-    let mut pascal = unshuffled;
-    const {
-        let s = PASCAL_STEPS;
-        assert!(s[0].0 == 1 && s[1].0 == 2 && s[2].0 == 4 && s[3].0 == 8);
-    };
-    pascal = pascal ^ (pascal.shr::<1>() & splat(PASCAL_STEPS[0].1));
-    pascal = pascal ^ (pascal.shr::<2>() & splat(PASCAL_STEPS[1].1));
-    pascal = pascal ^ (pascal.shr::<4>() & splat(PASCAL_STEPS[2].1));
-    pascal = pascal ^ (pascal.shr::<8>() & splat(PASCAL_STEPS[3].1));
-    let sobol_rev = [unshuffled, pascal];
+    let sobol_rev = [unshuffled, pascal_mod2(unshuffled)];
     let mut points = [F::ZERO; N];
     for (d, point) in points.iter_mut().enumerate() {
         let scrambled = owen_scramble_rev(sobol_rev[d], hash(seed ^ splat(DIMENSION_KEYS[d])));

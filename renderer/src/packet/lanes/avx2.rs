@@ -257,6 +257,11 @@ impl FloatLanes for Avx2 {
     }
 }
 
+/// Each 4-bit value with its bits in reverse order.
+const NIBBLE_REVERSED: [u8; 16] = [
+    0x0, 0x8, 0x4, 0xc, 0x2, 0xa, 0x6, 0xe, 0x1, 0x9, 0x5, 0xd, 0x3, 0xb, 0x7, 0xf,
+];
+
 impl IntLanes for Avx2Ints {
     type Floats = Avx2;
 
@@ -315,52 +320,17 @@ impl IntLanes for Avx2Ints {
     /// byte's two nibbles reversed by table and swapped.
     #[inline(always)]
     fn reverse_bits(self) -> Self {
-        // SAFETY: module invariant.
+        // SAFETY: module invariant; the load reads the 16 bytes of `NIBBLE_REVERSED`.
         Self(unsafe {
             let byte_order = _mm256_setr_epi8(
                 3, 2, 1, 0, 7, 6, 5, 4, 11, 10, 9, 8, 15, 14, 13, 12, //
                 3, 2, 1, 0, 7, 6, 5, 4, 11, 10, 9, 8, 15, 14, 13, 12,
             );
-            // A nibble's bits reversed, as the high nibble of a byte, and as the low one.
-            let reversed_high = _mm256_setr_epi8(
-                0x00,
-                0x80u8 as i8,
-                0x40,
-                0xc0u8 as i8,
-                0x20,
-                0xa0u8 as i8,
-                0x60,
-                0xe0u8 as i8,
-                0x10,
-                0x90u8 as i8,
-                0x50,
-                0xd0u8 as i8,
-                0x30,
-                0xb0u8 as i8,
-                0x70,
-                0xf0u8 as i8,
-                0x00,
-                0x80u8 as i8,
-                0x40,
-                0xc0u8 as i8,
-                0x20,
-                0xa0u8 as i8,
-                0x60,
-                0xe0u8 as i8,
-                0x10,
-                0x90u8 as i8,
-                0x50,
-                0xd0u8 as i8,
-                0x30,
-                0xb0u8 as i8,
-                0x70,
-                0xf0u8 as i8,
-            );
-            let reversed_low = _mm256_setr_epi8(
-                0x0, 0x8, 0x4, 0xc, 0x2, 0xa, 0x6, 0xe, 0x1, 0x9, 0x5, 0xd, 0x3, 0xb, 0x7,
-                0xf, //
-                0x0, 0x8, 0x4, 0xc, 0x2, 0xa, 0x6, 0xe, 0x1, 0x9, 0x5, 0xd, 0x3, 0xb, 0x7, 0xf,
-            );
+            // A nibble's bits reversed, in both halves, as a byte's low
+            // nibble and (shifted; each byte is below 16) as its high one.
+            let reversed_low =
+                _mm256_broadcastsi128_si256(_mm_loadu_si128(NIBBLE_REVERSED.as_ptr().cast()));
+            let reversed_high = _mm256_slli_epi16::<4>(reversed_low);
             let nibble = _mm256_set1_epi8(0x0f);
             let bytes = _mm256_shuffle_epi8(self.0, byte_order);
             let low = _mm256_and_si256(bytes, nibble);
