@@ -2,64 +2,13 @@
 //! up to exactly the offline render; a new job hides every older frame; pause
 //! stops refinement; dropping the session stops its thread.
 
-use renderer::progressive::{COARSEST_STRIDE, Job, ProgressiveRenderer, RenderedFrame, Step};
-use renderer::{Film, RenderOptions, World};
-use scene::{Object, Scene, Shape};
+mod session;
+
+use renderer::progressive::{COARSEST_STRIDE, Job, ProgressiveRenderer, Step};
+use renderer::{Film, RenderOptions};
+use session::{frames_until, world};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
-
-fn world(width: u32, height: u32, radius: f32) -> Arc<World> {
-    let scene = Scene {
-        camera: scene::Camera {
-            width,
-            height,
-            ..Default::default()
-        },
-        objects: vec![
-            Object {
-                name: None,
-                shape: Shape::Sphere {
-                    center: None,
-                    radius,
-                },
-                material: Some("glass".into()),
-                params: Default::default(),
-            },
-            Object {
-                name: None,
-                shape: Shape::Floor { y: 0.0 },
-                material: Some("marble".into()),
-                params: Default::default(),
-            },
-        ],
-        ..Default::default()
-    };
-    Arc::new(World::from_scene(&scene).expect("valid"))
-}
-
-/// Polls until `until` accepts a frame or 60 s pass; returns every frame seen.
-fn frames_until(
-    session: &ProgressiveRenderer,
-    until: impl Fn(&RenderedFrame) -> bool,
-) -> Vec<RenderedFrame> {
-    let deadline = Instant::now() + Duration::from_secs(60);
-    let mut seen = Vec::new();
-    while Instant::now() < deadline {
-        if let Some(frame) = session.take_frame() {
-            let stop = until(&frame);
-            seen.push(frame);
-            if stop {
-                return seen;
-            }
-        } else {
-            std::thread::sleep(Duration::from_millis(1));
-        }
-    }
-    panic!(
-        "no accepted frame within 60 s; saw {:?}",
-        seen.iter().map(|f| f.step).collect::<Vec<_>>()
-    );
-}
 
 #[test]
 fn previews_come_first_and_passes_add_up_to_the_offline_render() {
@@ -163,47 +112,6 @@ fn pause_stops_refinement_and_resume_continues() {
     assert!(session.take_frame().is_none(), "no new frame while paused");
     session.set_paused(false);
     frames_until(&session, |f| matches!(f.step, Step::Passes { .. }));
-}
-
-#[test]
-fn cancel_frees_the_workers_and_the_session_idles_until_the_next_submit() {
-    let session = ProgressiveRenderer::new(|| {});
-    // Passes of about a second (path traced, 1600×1200): without the
-    // cancel, rayon work would wait for most of one.
-    let options = RenderOptions {
-        integrator: renderer::integrator::Integrator::Path,
-        ..Default::default()
-    };
-    session.submit(Job {
-        world: world(1600, 1200, 1.0),
-        options,
-        target_spp: None,
-    });
-    frames_until(&session, |f| matches!(f.step, Step::Passes { .. }));
-    session.cancel();
-    // The workers are free within a band of rows: rayon work from this
-    // thread (as a BVH build for the next job) runs at once, and not after
-    // the stale pass's remaining bands.
-    let started = Instant::now();
-    let sum: u64 = rayon::iter::ParallelIterator::sum(
-        rayon::iter::IntoParallelIterator::into_par_iter(0..1000u64),
-    );
-    assert_eq!(sum, 499_500);
-    assert!(
-        started.elapsed() < Duration::from_millis(300),
-        "rayon waited {:?} for the cancelled job",
-        started.elapsed()
-    );
-    // No frame of the cancelled job, and nothing more until a submit.
-    std::thread::sleep(Duration::from_millis(200));
-    assert!(session.take_frame().is_none(), "a frame after the cancel");
-    let next = session.submit(Job {
-        world: world(40, 30, 0.5),
-        options: RenderOptions::default(),
-        target_spp: Some(1),
-    });
-    let frames = frames_until(&session, |f| f.step == Step::Passes { spp: 1 });
-    assert!(frames.iter().all(|f| f.generation == next));
 }
 
 #[test]
