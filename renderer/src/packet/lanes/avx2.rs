@@ -255,6 +255,11 @@ impl FloatLanes for Avx2 {
         // SAFETY: module invariant.
         Avx2Ints(unsafe { _mm256_castps_si256(self.0) })
     }
+    #[inline(always)]
+    fn trunc_to_ints(self) -> Avx2Ints {
+        // SAFETY: module invariant.
+        Avx2Ints(unsafe { _mm256_cvttps_epi32(self.0) })
+    }
 }
 
 /// Each 4-bit value with its bits in reverse order.
@@ -339,6 +344,16 @@ impl IntLanes for Avx2Ints {
                 _mm256_shuffle_epi8(reversed_high, low),
                 _mm256_shuffle_epi8(reversed_low, high),
             )
+        })
+    }
+    #[inline(always)]
+    fn gather<const N: usize>(table: &[i32; N], index: Self) -> Self {
+        let mask = const { super::gather_mask::<N>() };
+        // SAFETY: module invariant; every index is masked into 0..N, so
+        // each lane reads one of the table's N `i32`s.
+        Self(unsafe {
+            let index = _mm256_and_si256(index.0, _mm256_set1_epi32(mask));
+            _mm256_i32gather_epi32::<4>(table.as_ptr(), index)
         })
     }
 }

@@ -111,6 +111,9 @@ pub trait FloatLanes:
     fn is_sign_negative(self) -> Self;
     /// The same bits read as `i32`s.
     fn bits(self) -> Self::Ints;
+    /// Converted to `i32`, rounded toward zero (`cvttps`: `i32::MIN` in
+    /// lanes that are NaN or out of `i32`'s range).
+    fn trunc_to_ints(self) -> Self::Ints;
 }
 
 /// Eight `i32`s, one per lane (object ids, counters, and as `u32` bits the
@@ -152,6 +155,16 @@ pub trait IntLanes:
     fn bits_to_floats(self) -> Self::Floats;
     /// Each lane's bits in reverse order (`u32::reverse_bits`).
     fn reverse_bits(self) -> Self;
+    /// Lane k is `table[index_k mod N]`: the index's low bits, so that any
+    /// index reads inside the table (`N` a power of two).
+    fn gather<const N: usize>(table: &[i32; N], index: Self) -> Self;
+}
+
+/// `N − 1`, the mask [`IntLanes::gather`] keeps an index in `table[N]` with;
+/// a compile-time error unless `N` is a power of two that `i32` holds.
+pub(crate) const fn gather_mask<const N: usize>() -> i32 {
+    assert!(N.is_power_of_two() && N <= i32::MAX as usize);
+    (N - 1) as i32
 }
 
 /// A computation over lanes of any [`FloatLanes`] type, run by

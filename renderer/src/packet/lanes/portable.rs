@@ -114,6 +114,10 @@ impl FloatLanes for f32x8 {
     fn bits(self) -> i32x8 {
         wide::bytemuck::cast(self)
     }
+    #[inline(always)]
+    fn trunc_to_ints(self) -> i32x8 {
+        f32x8::fast_trunc_int(self)
+    }
 }
 
 impl IntLanes for i32x8 {
@@ -163,6 +167,15 @@ impl IntLanes for i32x8 {
         let mut lanes = self.to_array();
         for lane in &mut lanes {
             *lane = lane.reverse_bits();
+        }
+        i32x8::from(lanes)
+    }
+    #[inline(always)]
+    fn gather<const N: usize>(table: &[i32; N], index: Self) -> Self {
+        let mask = const { super::gather_mask::<N>() };
+        let mut lanes = i32x8::to_array(index);
+        for lane in &mut lanes {
+            *lane = table[(*lane & mask) as usize];
         }
         i32x8::from(lanes)
     }

@@ -87,6 +87,9 @@ impl WithLanes for Results {
                     F::NEG_INFINITY.to_array(),
                     int_select.to_array().map(|i| i as f32),
                     int_gt.to_array(),
+                    x.trunc_to_ints()
+                        .to_array()
+                        .map(|i| f32::from_bits(i as u32)),
                 ]);
             }
         }
@@ -110,7 +113,7 @@ fn arithmetic_is_scalar_f32_lane_by_lane() {
     for shift in 0..VALUES.len() {
         let a: [f32; WIDTH] = std::array::from_fn(|k| VALUES[k]);
         let b: [f32; WIDTH] = std::array::from_fn(|k| VALUES[(k + shift) % VALUES.len()]);
-        let first = &lanes[shift * 90..];
+        let first = &lanes[shift * 93..];
         let scalar: [[f32; WIDTH]; 4] = [
             std::array::from_fn(|k| a[k] + b[k]),
             std::array::from_fn(|k| a[k] - b[k]),
@@ -132,6 +135,16 @@ fn arithmetic_is_scalar_f32_lane_by_lane() {
         assert!(by_value(first[14], max), "max, shift {shift}");
         assert!(by_value(first[15], min), "min, shift {shift}");
         assert!(same(first[19], sqrt), "sqrt, shift {shift}");
+        // cvttps: toward zero, i32::MIN where NaN or out of range.
+        let truncated: [f32; WIDTH] = std::array::from_fn(|k| {
+            let t = if a[k].abs() < 2_147_483_648.0 {
+                a[k] as i32
+            } else {
+                i32::MIN
+            };
+            f32::from_bits(t as u32)
+        });
+        assert!(same(first[30], truncated), "trunc_to_ints, shift {shift}");
     }
 }
 
@@ -180,4 +193,29 @@ impl WithLanes for Reverse {
 fn reverse_bits_on_lanes_is_u32_reverse_bits() {
     run_portable(Reverse);
     dispatch(Reverse);
+}
+
+/// Table reads on lanes: lane k reads `table[index_k mod N]`, any index
+/// (negative ones too) landing inside the table.
+#[derive(Clone)]
+struct Gather;
+
+impl WithLanes for Gather {
+    type Output = ();
+    #[inline(always)]
+    fn run<F: FloatLanes>(self) {
+        let table: [i32; 64] = std::array::from_fn(|i| (i as i32 * 7919) ^ 0x5a5a);
+        for start in [-70i32, -9, 0, 5, 57, 1 << 20, i32::MAX - 8] {
+            let index: [i32; WIDTH] = std::array::from_fn(|k| start.wrapping_add(3 * k as i32));
+            let read = <F::Ints as IntLanes>::gather(&table, IntLanes::from_array(index));
+            let want = index.map(|i| table[(i & 63) as usize]);
+            assert_eq!(read.to_array(), want, "indices from {start}");
+        }
+    }
+}
+
+#[test]
+fn gather_reads_the_table_at_each_lanes_index_mod_its_length() {
+    run_portable(Gather);
+    dispatch(Gather);
 }
