@@ -24,6 +24,7 @@ pub mod packet;
 pub mod progressive;
 pub mod shading;
 pub mod shapes;
+pub mod simd;
 pub mod world;
 
 pub use camera::Camera;

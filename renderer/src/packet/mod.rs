@@ -4,17 +4,16 @@
 //! A packet keeps each quantity as a structure of arrays (`Vec3s` is three
 //! lanes of coordinates, not eight `Vec3`s), so that one instruction works
 //! on all eight. The code is written over a lane type `F: FloatLanes`
-//! ([`lanes`]) and runs with the widest this CPU has ([`lanes::dispatch`]).
+//! ([`crate::simd`]) and runs with the widest this CPU has ([`crate::simd::dispatch`]).
 //! Lanes never mix: every operation is lane by lane and uses no fused
 //! multiply–add, so a lane's result is the same bit for bit whatever its
 //! neighbours hold and whichever instruction set runs it.
 
-pub mod lanes;
 mod rays;
 mod shapes;
 mod vec3s;
 
-pub use lanes::{
+pub use crate::simd::{
     FloatLanes, IntLanes, Portable, WIDTH, WithLanes, dispatch, first_lanes, lane_set, mask_from,
 };
 pub use rays::Rays;

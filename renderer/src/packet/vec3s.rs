@@ -177,7 +177,7 @@ impl<F: FloatLanes> Mul<F> for Vec3s<F> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::packet::lanes::{WithLanes, first_lanes, on_every_lane_type};
+    use crate::simd::{WithLanes, first_lanes, on_every_lane_type};
 
     fn sample_vectors(shift: f32) -> [Vec3; WIDTH] {
         std::array::from_fn(|k| {

@@ -6,7 +6,7 @@
 //! in `f64` through generic vector code, one octave after another: its
 //! octaves were 31–39% of a full Whitted pass of `seed.xml`.
 
-use crate::packet::lanes::{FloatLanes, IntLanes, WIDTH, WithLanes, dispatch};
+use crate::simd::{FloatLanes, IntLanes, WIDTH, WithLanes, dispatch};
 use std::sync::LazyLock;
 
 /// Octaves summed, the crate's default six.
@@ -235,7 +235,7 @@ fn quintic<F: FloatLanes>(t: F) -> F {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::packet::lanes::run_portable;
+    use crate::simd::run_portable;
     use noise::{Fbm, NoiseFn, Perlin};
 
     /// Points spread over a few units around the origin, negative ones and

@@ -216,7 +216,7 @@ fn owen_sobol<F: FloatLanes, const N: usize>(
 mod tests {
     use super::*;
     use crate::integrator::sampler::Sampling;
-    use crate::packet::lanes::{WithLanes, on_every_lane_type};
+    use crate::simd::{WithLanes, on_every_lane_type};
 
     /// Every draw 0..40 of 64 pixel samples (both samplings, indices past
     /// the Sobol length among them), from the lanes and from the scalar

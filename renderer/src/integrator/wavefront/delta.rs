@@ -95,9 +95,9 @@ mod tests {
     use super::*;
     use crate::integrator::sampler::Sampler;
     use crate::packet::WIDTH;
-    use crate::packet::lanes::{WithLanes, on_every_lane_type};
     use crate::shading::bsdf::{Bsdf, dielectric::SmoothDielectric};
     use crate::shading::optics;
+    use crate::simd::{WithLanes, on_every_lane_type};
 
     /// Local directions worth testing: random ones over the sphere, and
     /// grazing, normal and exactly tangent ones.

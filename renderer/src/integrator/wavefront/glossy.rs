@@ -139,9 +139,9 @@ pub(super) fn sample_visible<F: FloatLanes>(
 mod tests {
     use super::*;
     use crate::integrator::sampler::Sampler;
-    use crate::packet::lanes::{WithLanes, on_every_lane_type};
     use crate::shading::bsdf::ggx::Ggx;
     use crate::shading::bsdf::rough_conductor::RoughConductor;
+    use crate::simd::{WithLanes, on_every_lane_type};
     use glam::Vec2;
 
     /// Eight random local directions per packet, some below the surface,

@@ -73,8 +73,8 @@ mod tests {
     use crate::geometry::offset::offset_ray_origin;
     use crate::integrator::path::power_heuristic;
     use crate::packet::WIDTH;
-    use crate::packet::lanes::{WithLanes, on_every_lane_type};
     use crate::shading::bsdf::ShadingFrame;
+    use crate::simd::{WithLanes, on_every_lane_type};
     use glam::Vec3;
 
     /// Unit vectors in every octant, at the poles and near them.

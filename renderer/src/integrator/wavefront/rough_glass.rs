@@ -129,10 +129,10 @@ impl<F: FloatLanes> RoughDielectrics<F> {
 mod tests {
     use super::*;
     use crate::integrator::sampler::Sampler;
-    use crate::packet::lanes::{WithLanes, on_every_lane_type};
     use crate::packet::{WIDTH, mask_from};
     use crate::shading::bsdf::ggx::Ggx;
     use crate::shading::bsdf::rough_dielectric::RoughDielectric;
+    use crate::simd::{WithLanes, on_every_lane_type};
     use glam::{Vec2, Vec3};
 
     /// Lanes `F` against `RoughDielectric` for random directions (wo above,

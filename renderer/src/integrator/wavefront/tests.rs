@@ -53,7 +53,7 @@ fn assert_wavefront_equals_scalar(world: &World, options: &RenderOptions, sample
     let scene = WavefrontScene::new(world, options.method);
     let mut results = vec![SampleResult::default(); samples.len()];
     // The portable lanes first, then the widest this CPU has.
-    crate::packet::lanes::run_portable(Trace {
+    crate::simd::run_portable(Trace {
         world,
         scene: &scene,
         options,

@@ -233,7 +233,7 @@ mod tests {
     use super::*;
     use crate::geometry::ray::Ray;
     use crate::integrator::sampler::Sampler;
-    use crate::packet::lanes::{WithLanes, on_every_lane_type};
+    use crate::simd::{WithLanes, on_every_lane_type};
 
     /// Each lane's α against one box equals `Cuboid::intersect`'s, and its
     /// surface `Cuboid::surface`'s, bit for bit, in lanes `F`.

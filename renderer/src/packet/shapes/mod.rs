@@ -480,8 +480,8 @@ pub(super) mod testing {
     use crate::geometry::ray::Ray;
     use crate::integrator::sampler::Sampler;
     use crate::packet::lane_set;
-    use crate::packet::lanes::{WithLanes, on_every_lane_type};
     use crate::shapes::Method;
+    use crate::simd::{WithLanes, on_every_lane_type};
     use crate::world::Hit;
     use glam::Vec3;
 
@@ -842,7 +842,7 @@ mod tests {
     use super::testing::*;
     use super::*;
     use crate::geometry::ray::Ray;
-    use crate::packet::lanes::{WithLanes, on_every_lane_type};
+    use crate::simd::{WithLanes, on_every_lane_type};
     use glam::Vec3;
 
     #[test]

@@ -167,8 +167,8 @@ mod tests {
     use super::*;
     use crate::geometry::ray::Ray;
     use crate::integrator::sampler::Sampler;
-    use crate::packet::lanes::{WithLanes, on_every_lane_type};
     use crate::shapes::Method;
+    use crate::simd::{WithLanes, on_every_lane_type};
 
     /// Each lane's α against one sphere equals `Sphere::intersect`'s with
     /// [`Method::Robust`], and its surface `Sphere::surface`'s, bit for bit,

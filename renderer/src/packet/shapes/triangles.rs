@@ -431,8 +431,8 @@ mod tests {
     use super::*;
     use crate::geometry::ray::Ray;
     use crate::integrator::sampler::Sampler;
-    use crate::packet::lanes::{WithLanes, on_every_lane_type};
     use crate::shapes::Method;
+    use crate::simd::{WithLanes, on_every_lane_type};
 
     /// Each lane's α and hit against one triangle equal `Triangle::hit`'s
     /// with [`Method::Robust`], and its surface `Triangle::surface`'s, in
