@@ -17,10 +17,11 @@ use crate::display::image::{Source, display_image};
 use crate::display::{Display, Legend};
 use crate::film::Film;
 use crate::film::aov::{Aov, render_aov_unless};
-use crate::film::preview::PreviewSamples;
+use crate::film::preview::{PreviewSamples, expand_blocks};
 use crate::integrator::RenderOptions;
 use crate::world::World;
 use glam::Vec3;
+use std::borrow::Cow;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard, PoisonError};
@@ -104,8 +105,11 @@ pub struct RenderedFrame {
     pub width: u32,
     /// Height in pixels.
     pub height: u32,
-    /// Linear radiance, row by row from the top (the colour, whatever the
-    /// display mode).
+    /// Linear radiance (the colour, whatever the display mode), row by row
+    /// from the top: every pixel after a pass; a preview's one value per
+    /// block (⌈width/stride⌉ × ⌈height/stride⌉), so that showing a preview
+    /// costs no full-resolution image besides `srgba8`. Read pixels with
+    /// [`RenderedFrame::linear_at`] or [`RenderedFrame::linear_image`].
     pub pixels: Vec<Vec3>,
     /// The picture of the display mode as 8-bit sRGB RGBA (opaque),
     /// converted on the render thread so that showing a frame costs the UI
@@ -124,6 +128,38 @@ pub struct RenderedFrame {
     pub rays_per_second: f64,
     /// Samples left out because they were NaN or infinite.
     pub discarded: u64,
+}
+
+impl RenderedFrame {
+    /// The side of the block of pixels each of `pixels` covers.
+    fn block(&self) -> u32 {
+        match self.step {
+            Step::Preview { stride } => stride.max(1),
+            Step::Passes { .. } => 1,
+        }
+    }
+
+    /// The linear colour shown at pixel (i, j), if the image has it.
+    pub fn linear_at(&self, i: u32, j: u32) -> Option<Vec3> {
+        let block = self.block();
+        let columns = self.width.div_ceil(block) as usize;
+        (i < self.width && j < self.height)
+            .then(|| {
+                self.pixels
+                    .get((j / block) as usize * columns + (i / block) as usize)
+            })
+            .flatten()
+            .copied()
+    }
+
+    /// The linear colour of every pixel, row by row from the top (a
+    /// preview's values repeated over their blocks).
+    pub fn linear_image(&self) -> Cow<'_, [Vec3]> {
+        match self.block() {
+            1 => Cow::Borrowed(&self.pixels),
+            block => Cow::Owned(expand_blocks(&self.pixels, self.width, self.height, block)),
+        }
+    }
 }
 
 /// The worker's inbox.
@@ -251,7 +287,10 @@ struct Current {
     generation: u64,
     job: Job,
     submitted: Instant,
-    film: Film,
+    /// The passes so far: made at the first pass, so that an edit's
+    /// previews do not wait for 30 MB of a 1280×720 film to be allocated
+    /// and zeroed (it took 2–15 ms, memory reused from the last film).
+    film: Option<Film>,
     /// The next preview's stride; `None` once the previews are done.
     next_stride: Option<u32>,
     /// The latest preview's samples, until the first pass has taken them.
@@ -267,12 +306,10 @@ struct Current {
 
 impl Current {
     fn done(&self) -> bool {
+        let passes = self.film.as_ref().map_or(0, Film::passes);
         self.next_stride.is_none()
-            && (self.film.converged()
-                || self
-                    .job
-                    .target_spp
-                    .is_some_and(|target| self.film.passes() >= target))
+            && (self.film.as_ref().is_some_and(Film::converged)
+                || self.job.target_spp.is_some_and(|target| passes >= target))
     }
 }
 
@@ -316,7 +353,7 @@ fn work(shared: &Shared) {
                         generation,
                         job,
                         submitted,
-                        film: Film::new(w, h),
+                        film: None,
                         next_stride: (first > 1).then_some(first),
                         preview_samples: None,
                         reused: 0,
@@ -371,28 +408,28 @@ fn step(shared: &Shared, c: &mut Current, display: Display) -> Option<(Duration,
         c.preview_samples = Some(samples);
         c.shown = Some((Step::Preview { stride }, 0.0, 0.0));
     } else {
-        let samples_before = c.film.samples();
+        let film = c
+            .film
+            .get_or_insert_with(|| Film::new(world.camera.w, world.camera.h));
+        let samples_before = film.samples();
         let reused_before = c.reused;
         let completed = match c.preview_samples.take() {
             Some(known) => {
                 c.reused += known.len() as u64;
-                c.film
-                    .add_pass_reusing(&world, &c.job.options, &known, &stale)
+                film.add_pass_reusing(&world, &c.job.options, &known, &stale)
             }
-            None => c.film.add_pass_unless(&world, &c.job.options, &stale),
+            None => film.add_pass_unless(&world, &c.job.options, &stale),
         };
         if !completed {
             return None;
         }
         traced =
-            (c.film.samples() - samples_before).saturating_sub(c.reused - reused_before) as usize;
+            (film.samples() - samples_before).saturating_sub(c.reused - reused_before) as usize;
         c.pass_time += started.elapsed();
-        let samples = c.film.samples() as f64 - c.reused as f64;
+        let samples = film.samples() as f64 - c.reused as f64;
         let seconds = c.pass_time.as_secs_f64().max(1e-9);
-        let step = Step::Passes {
-            spp: c.film.passes(),
-        };
-        c.shown = Some((step, samples / seconds, c.film.rays() as f64 / seconds));
+        let step = Step::Passes { spp: film.passes() };
+        c.shown = Some((step, samples / seconds, film.rays() as f64 / seconds));
     }
     let took = started.elapsed();
     let publishing = Instant::now();
@@ -421,9 +458,13 @@ fn publish(shared: &Shared, c: &mut Current, display: Display) {
         };
         c.aovs.insert(aov, values);
     }
-    let (pixels, source) = match (step, &c.preview_samples) {
-        (Step::Preview { .. }, Some(samples)) => (samples.image(), Source::Preview(samples)),
-        _ => (c.film.linear(), Source::Film(&c.film)),
+    let (pixels, source) = match (step, &c.preview_samples, &c.film) {
+        (Step::Preview { .. }, Some(samples), _) => {
+            (samples.finite_values(), Source::Preview(samples))
+        }
+        (Step::Passes { .. }, _, Some(film)) => (film.linear(), Source::Film(film)),
+        // Neither can happen: a preview is shown with its samples, a pass with its film.
+        _ => return,
     };
     let aov = display
         .aov()
@@ -432,8 +473,8 @@ fn publish(shared: &Shared, c: &mut Current, display: Display) {
     let DisplayImage { srgba8, legend } = display_image(display, source, &pixels, aov);
     let frame = RenderedFrame {
         generation: c.generation,
-        width: c.film.width(),
-        height: c.film.height(),
+        width: c.job.world.camera.w,
+        height: c.job.world.camera.h,
         srgba8,
         legend,
         pixels,
@@ -441,7 +482,7 @@ fn publish(shared: &Shared, c: &mut Current, display: Display) {
         since_submit: c.submitted.elapsed(),
         samples_per_second,
         rays_per_second,
-        discarded: c.film.discarded(),
+        discarded: c.film.as_ref().map_or(0, Film::discarded),
     };
     {
         let mut slot = lock(&shared.slot);

@@ -4,6 +4,8 @@
 
 mod session;
 
+use renderer::display::srgb::linear_to_srgb8;
+use renderer::film::preview::preview;
 use renderer::progressive::{COARSEST_STRIDE, Job, ProgressiveRenderer, Step};
 use renderer::{Film, RenderOptions};
 use session::{frames_until, world};
@@ -35,6 +37,29 @@ fn previews_come_first_and_passes_add_up_to_the_offline_render() {
         "{:?}",
         frames.iter().map(|f| f.step).collect::<Vec<_>>()
     );
+    // A preview frame holds one value per block; read as pixels, it is the
+    // preview image, and its picture is that image in sRGB.
+    for f in &frames {
+        let Step::Preview { stride } = f.step else {
+            unreachable!()
+        };
+        let image = preview(&world, &options, stride);
+        assert_eq!(*f.linear_image(), image, "stride {stride}");
+        assert_eq!(
+            f.pixels.len(),
+            (48usize.div_ceil(stride as usize)) * 32usize.div_ceil(stride as usize)
+        );
+        assert_eq!(f.linear_at(47, 31), Some(image[48 * 32 - 1]));
+        assert_eq!(f.linear_at(48, 0), None);
+        let srgb: Vec<[u8; 4]> = image
+            .iter()
+            .map(|&c| {
+                let [r, g, b] = linear_to_srgb8(c);
+                [r, g, b, 255]
+            })
+            .collect();
+        assert_eq!(f.srgba8, srgb, "stride {stride}");
+    }
     session.set_target_spp(Some(3));
     frames.extend(frames_until(&session, |f| {
         f.step == Step::Passes { spp: 3 }

@@ -27,18 +27,35 @@ pub enum Source<'a> {
     Film(&'a Film),
 }
 
+impl Source<'_> {
+    /// The pixels of the image.
+    fn pixel_count(self) -> usize {
+        let (w, h) = match self {
+            Source::Preview(p) => p.size(),
+            Source::Film(f) => (f.width(), f.height()),
+        };
+        w as usize * h as usize
+    }
+}
+
 /// The picture of `display` from `source`: `color` is its linear colour
-/// image, `aov` the mode's AOV (computed by the caller for the AOV modes).
+/// at the source's resolution (a preview's one value per block, in the
+/// order of [`PreviewSamples::finite_values`]; a film's every pixel), `aov`
+/// the mode's AOV at full resolution (computed by the caller for the AOV modes).
 pub fn display_image(
     display: Display,
     source: Source,
     color: &[Vec3],
     aov: Option<&[f32]>,
 ) -> DisplayImage {
-    let len = color.len();
+    let len = source.pixel_count();
     match (display, display.aov(), aov) {
         (Display::Color, ..) => DisplayImage {
-            srgba8: srgba8_of_linear(color),
+            srgba8: match source {
+                // Each sample converted once, then repeated over its block.
+                Source::Preview(p) => p.blocks(&srgba8_of_linear(color)),
+                Source::Film(_) => srgba8_of_linear(color),
+            },
             legend: Legend {
                 display,
                 range: None,

@@ -8,8 +8,8 @@
 /// shown relative to a just-visible grey).
 pub const LUMINANCE_FLOOR: f32 = 1.0e-3;
 
-/// One pixel's running statistics.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+/// One pixel's running statistics (all zero: no samples).
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Zeroable)]
 pub struct PixelStats {
     /// Mean luminance of the samples so far.
     mean: f32,

@@ -123,6 +123,11 @@ impl PreviewSamples {
         self.stride
     }
 
+    /// The image's width and height in pixels.
+    pub fn size(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+
     /// True when these are samples of a `width` × `height` image.
     pub fn is_for(&self, width: u32, height: u32) -> bool {
         (self.width, self.height) == (width, height)
@@ -167,41 +172,56 @@ impl PreviewSamples {
     /// the top (the cost heatmap of a preview).
     pub fn tests_image(&self) -> Vec<f32> {
         let costs: Vec<f32> = self.tests.iter().map(|&t| t as f32).collect();
-        self.blocks(&costs, |&c| c)
+        self.blocks(&costs)
     }
 
     /// The preview image, row by row from the top: each block shows the
     /// sample of its top-left pixel (black where that sample is not finite).
     pub fn image(&self) -> Vec<Vec3> {
-        self.blocks(
-            &self.values,
-            |&v| if v.is_finite() { v } else { Vec3::ZERO },
-        )
+        self.blocks(&self.finite_values())
     }
 
-    /// An image where each block holds `f` of its sample in `per_sample`
-    /// (one entry per sample, in the order of `values`).
-    fn blocks<T: Copy + Send + Sync, U: Copy + Default + Send + Sync>(
-        &self,
-        per_sample: &[T],
-        f: impl Fn(&T) -> U + Sync,
-    ) -> Vec<U> {
-        let (w, stride) = (self.width as usize, self.stride as usize);
-        let mut pixels = vec![U::default(); w * self.height as usize];
-        pixels
-            .par_chunks_mut(w * stride)
-            .zip(per_sample.par_chunks(self.columns))
-            .for_each(|(rows, samples)| {
-                for (block, sample) in rows[..w].chunks_mut(stride).zip(samples) {
-                    block.fill(f(sample));
-                }
-                let (first, rest) = rows.split_at_mut(w);
-                for row in rest.chunks_mut(w) {
-                    row.copy_from_slice(first);
-                }
-            });
-        pixels
+    /// The samples, row by row from the top, one per block, black where a
+    /// sample is not finite: the preview image at its own resolution.
+    pub fn finite_values(&self) -> Vec<Vec3> {
+        self.values
+            .iter()
+            .map(|&v| if v.is_finite() { v } else { Vec3::ZERO })
+            .collect()
     }
+
+    /// An image where each block holds its entry of `per_sample` (one per
+    /// sample, in the order of [`PreviewSamples::finite_values`]).
+    pub fn blocks<T: Copy + Default + Send + Sync>(&self, per_sample: &[T]) -> Vec<T> {
+        expand_blocks(per_sample, self.width, self.height, self.stride)
+    }
+}
+
+/// A `width` × `height` image, row by row from the top, from one value per
+/// `stride` × `stride` block (⌈width/stride⌉ per row of blocks): each pixel
+/// holds its block's.
+pub fn expand_blocks<T: Copy + Default + Send + Sync>(
+    per_block: &[T],
+    width: u32,
+    height: u32,
+    stride: u32,
+) -> Vec<T> {
+    let (w, stride) = (width as usize, stride.max(1) as usize);
+    let columns = w.div_ceil(stride);
+    let mut pixels = vec![T::default(); w * height as usize];
+    pixels
+        .par_chunks_mut(w * stride)
+        .zip(per_block.par_chunks(columns))
+        .for_each(|(rows, blocks)| {
+            for (block, &value) in rows[..w].chunks_mut(stride).zip(blocks) {
+                block.fill(value);
+            }
+            let (first, rest) = rows.split_at_mut(w);
+            for row in rest.chunks_mut(w) {
+                row.copy_from_slice(first);
+            }
+        });
+    pixels
 }
 
 /// An image where each `stride` × `stride` block shows sample 0 of its

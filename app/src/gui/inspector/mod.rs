@@ -159,8 +159,8 @@ impl Inspector {
             .frame
             .as_ref()
             .filter(|f| spp > 0 && f.width == camera.w && f.height == camera.h)
-            .and_then(|f| f.pixels.get(j as usize * f.width as usize + i as usize))
-            .map(|&c| (c, spp));
+            .and_then(|f| f.linear_at(i, j))
+            .map(|c| (c, spp));
         let cx = panel::Context {
             camera,
             accumulated,

@@ -198,15 +198,20 @@ fn reopening_a_scene_whose_model_changed_on_disk_shows_the_new_model() {
         .frame
         .as_ref()
         .expect("a frame")
-        .pixels
-        .clone();
+        .linear_image()
+        .into_owned();
     // The same scene file, its model re-exported with the triangle turned over.
     open(
         &mut h,
         [[-1.0, 1.0, 0.0], [1.0, 1.0, 0.0], [0.0, -1.0, 0.0]],
     );
     assert_ne!(
-        h.state().session.frame.as_ref().expect("a frame").pixels,
+        *h.state()
+            .session
+            .frame
+            .as_ref()
+            .expect("a frame")
+            .linear_image(),
         before
     );
 }

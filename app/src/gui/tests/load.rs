@@ -180,7 +180,7 @@ pub(super) fn assert_shows_the_document(h: &Harness<'static, RaylabApp>) {
     let camera = &app.doc.state.scene.camera;
     assert_eq!((frame.width, frame.height), (camera.width, camera.height));
     let differing = frame
-        .pixels
+        .linear_image()
         .iter()
         .zip(&expected)
         .filter(|(a, b)| a != b)

@@ -20,8 +20,8 @@ fn pixels(h: &Harness<'static, RaylabApp>) -> Vec<Vec3> {
         .frame
         .as_ref()
         .expect("a frame")
-        .pixels
-        .clone()
+        .linear_image()
+        .into_owned()
 }
 
 /// Clicks the primary button at `pos` without moving.
@@ -309,7 +309,7 @@ fn saving_the_image_writes_the_tonemapped_accumulation_buffer_and_the_camera() {
     assert_eq!(h.state().files.message, None);
     let frame = h.state().session.frame.as_ref().expect("a frame");
     let expected: Vec<u8> = frame
-        .pixels
+        .linear_image()
         .iter()
         .flat_map(|&c| renderer::display::srgb::linear_to_srgb8(c))
         .collect();
@@ -463,7 +463,7 @@ fn stepping_to_a_sample_re_traces_the_sample_that_went_into_the_image() {
     assert_eq!(inspection.sample, Some(0));
     // With one pass on screen, the image's pixel is exactly sample 0.
     let frame = h.state().session.frame.as_ref().expect("a frame");
-    let shown = frame.pixels[(pixel[1] * frame.width + pixel[0]) as usize];
+    let shown = frame.linear_at(pixel[0], pixel[1]).expect("on the image");
     assert_eq!(
         shown.to_array().map(f32::to_bits),
         inspection.color.to_array().map(f32::to_bits)

@@ -52,7 +52,11 @@ pub fn save(path: &Path, frame: &RenderedFrame, provenance: &Provenance) -> anyh
             output::write_png_srgb8(path, w, h, &bytes, &provenance)
         }
         Format::Exr => {
-            let values: Vec<f32> = frame.pixels.iter().flat_map(|p| p.to_array()).collect();
+            let values: Vec<f32> = frame
+                .linear_image()
+                .iter()
+                .flat_map(|p| p.to_array())
+                .collect();
             output::write_exr(path, w, h, &["R", "G", "B"], &values, provenance)
         }
     }
