@@ -194,6 +194,7 @@ fn interactive(args: &BenchArgs, seed: &Path) -> Result<()> {
         "edit → first full pass on screen",
         &mut report.to_full_pass.clone(),
     );
+    line("  of which the render thread", &mut report.pass_handed_over);
     for kind in bench::EditKind::ALL {
         let of_kind = |times: &[Duration]| -> Vec<Duration> {
             times

@@ -59,6 +59,8 @@ pub struct Report {
     pub to_full_pass: Vec<Duration>,
     /// Edit → the render thread handing over that first preview.
     pub preview_handed_over: Vec<Duration>,
+    /// Edit → the render thread handing over that first full pass.
+    pub pass_handed_over: Vec<Duration>,
     /// CPU time of every UI frame (layout and tessellation) while rendering.
     pub frame_times: Vec<Duration>,
 }
@@ -201,6 +203,7 @@ pub fn interactive(
                         .to_preview
                         .push(preview.unwrap_or_else(|| edited.elapsed()));
                     report.to_full_pass.push(edited.elapsed());
+                    report.pass_handed_over.extend(shown.map(|(_, t)| t));
                     report.kinds.push(made);
                     break;
                 }
