@@ -498,6 +498,51 @@ fn publish(shared: &Shared, c: &mut Current, display: Display) {
 mod tests {
     use super::*;
 
+    /// A frame of a 5 × 3 image whose `pixels` are `values` at `step`.
+    fn frame(step: Step, values: Vec<Vec3>) -> RenderedFrame {
+        RenderedFrame {
+            generation: 1,
+            width: 5,
+            height: 3,
+            pixels: values,
+            srgba8: vec![[0, 0, 0, 255]; 15],
+            legend: Legend {
+                display: Display::Color,
+                range: None,
+                note: String::new(),
+            },
+            step,
+            since_submit: Duration::ZERO,
+            samples_per_second: 0.0,
+            rays_per_second: 0.0,
+            discarded: 0,
+        }
+    }
+
+    /// A preview's values cover blocks, the last ones cut by the image's
+    /// edge (5 × 3 pixels in blocks of 2 × 2: 3 × 2 values); a pass's
+    /// values are the pixels.
+    #[test]
+    fn frames_read_as_pixels_repeat_a_preview_over_its_blocks() {
+        let values: Vec<Vec3> = (0..6).map(|k| Vec3::splat(k as f32)).collect();
+        let preview = frame(Step::Preview { stride: 2 }, values);
+        let block_of = |i: u32, j: u32| Vec3::splat(((j / 2) * 3 + i / 2) as f32);
+        let image = preview.linear_image();
+        assert_eq!(image.len(), 15);
+        for j in 0..3 {
+            for i in 0..5 {
+                assert_eq!(preview.linear_at(i, j), Some(block_of(i, j)), "({i}, {j})");
+                assert_eq!(image[(j * 5 + i) as usize], block_of(i, j), "({i}, {j})");
+            }
+        }
+        assert_eq!(preview.linear_at(5, 0), None);
+        assert_eq!(preview.linear_at(0, 3), None);
+        let pixels: Vec<Vec3> = (0..15).map(|k| Vec3::splat(k as f32)).collect();
+        let pass = frame(Step::Passes { spp: 1 }, pixels.clone());
+        assert_eq!(pass.linear_at(4, 2), Some(pixels[14]));
+        assert_eq!(*pass.linear_image(), pixels);
+    }
+
     /// The time one sample would take for a `stride` preview of a
     /// `width` × `height` image to take exactly the budget.
     fn filling(width: u32, height: u32, stride: u32) -> Duration {
