@@ -71,6 +71,12 @@ impl AliasTable {
         self.bins.is_empty()
     }
 
+    /// Each bin, in order: the probability of keeping its own index and
+    /// the index taken otherwise (what [`AliasTable::sample`] reads).
+    pub fn bins(&self) -> impl Iterator<Item = (f32, u32)> + '_ {
+        self.bins.iter().map(|bin| (bin.keep, bin.alias))
+    }
+
     /// The index drawn with the uniform number `u` in [0, 1).
     #[inline]
     pub fn sample(&self, u: f32) -> usize {

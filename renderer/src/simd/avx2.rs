@@ -260,6 +260,16 @@ impl FloatLanes for Avx2 {
         // SAFETY: module invariant.
         Avx2Ints(unsafe { _mm256_cvttps_epi32(self.0) })
     }
+    #[inline(always)]
+    fn gather_from(table: &[f32], index: Avx2Ints) -> Self {
+        let last = super::last_index(table.len());
+        // SAFETY: module invariant; the unsigned minimum keeps every index
+        // in 0..=last, inside the table.
+        Self(unsafe {
+            let index = _mm256_min_epu32(index.0, _mm256_set1_epi32(last));
+            _mm256_i32gather_ps::<4>(table.as_ptr(), index)
+        })
+    }
 }
 
 /// Each 4-bit value with its bits in reverse order.
@@ -353,6 +363,16 @@ impl IntLanes for Avx2Ints {
         // each lane reads one of the table's N `i32`s.
         Self(unsafe {
             let index = _mm256_and_si256(index.0, _mm256_set1_epi32(mask));
+            _mm256_i32gather_epi32::<4>(table.as_ptr(), index)
+        })
+    }
+    #[inline(always)]
+    fn gather_from(table: &[i32], index: Self) -> Self {
+        let last = super::last_index(table.len());
+        // SAFETY: module invariant; the unsigned minimum keeps every index
+        // in 0..=last, inside the table.
+        Self(unsafe {
+            let index = _mm256_min_epu32(index.0, _mm256_set1_epi32(last));
             _mm256_i32gather_epi32::<4>(table.as_ptr(), index)
         })
     }

@@ -114,6 +114,10 @@ pub trait FloatLanes:
     /// Converted to `i32`, rounded toward zero (`cvttps`: `i32::MIN` in
     /// lanes that are NaN or out of `i32`'s range).
     fn trunc_to_ints(self) -> Self::Ints;
+    /// Lane k is `table[min(index_k, len − 1)]`, the index read as a `u32`
+    /// (so −1 reads the last entry): no index reads outside the table.
+    /// Panics when `table` is empty.
+    fn gather_from(table: &[f32], index: Self::Ints) -> Self;
 }
 
 /// Eight `i32`s, one per lane (object ids, counters, and as `u32` bits the
@@ -158,6 +162,20 @@ pub trait IntLanes:
     /// Lane k is `table[index_k mod N]`: the index's low bits, so that any
     /// index reads inside the table (`N` a power of two).
     fn gather<const N: usize>(table: &[i32; N], index: Self) -> Self;
+    /// Lane k is `table[min(index_k, len − 1)]`, the index read as a `u32`
+    /// (so −1 reads the last entry): no index reads outside the table.
+    /// Panics when `table` is empty.
+    fn gather_from(table: &[i32], index: Self) -> Self;
+}
+
+/// The last index [`FloatLanes::gather_from`] and [`IntLanes::gather_from`]
+/// may read in a table of `len` entries, as the `i32` a gather takes
+/// (tables past `i32::MAX` entries are read in their first 2³¹); panics
+/// when the table is empty.
+#[inline(always)]
+pub(crate) fn last_index(len: usize) -> i32 {
+    assert!(len > 0, "a gather needs a table to read");
+    (len - 1).min(i32::MAX as usize) as i32
 }
 
 /// `N − 1`, the mask [`IntLanes::gather`] keeps an index in `table[N]` with;

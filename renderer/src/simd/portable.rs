@@ -118,6 +118,11 @@ impl FloatLanes for f32x8 {
     fn trunc_to_ints(self) -> i32x8 {
         f32x8::fast_trunc_int(self)
     }
+    #[inline(always)]
+    fn gather_from(table: &[f32], index: i32x8) -> Self {
+        let last = super::last_index(table.len()) as u32;
+        f32x8::from(i32x8::to_array(index).map(|k| table[(k as u32).min(last) as usize]))
+    }
 }
 
 impl IntLanes for i32x8 {
@@ -178,5 +183,10 @@ impl IntLanes for i32x8 {
             *lane = table[(*lane & mask) as usize];
         }
         i32x8::from(lanes)
+    }
+    #[inline(always)]
+    fn gather_from(table: &[i32], index: Self) -> Self {
+        let last = super::last_index(table.len()) as u32;
+        i32x8::from(i32x8::to_array(index).map(|k| table[(k as u32).min(last) as usize]))
     }
 }

@@ -219,3 +219,43 @@ fn gather_reads_the_table_at_each_lanes_index_mod_its_length() {
     run_portable(Gather);
     dispatch(Gather);
 }
+
+/// Reads of tables of any length: lane k reads `table[min(index_k, len − 1)]`
+/// with the index taken as unsigned, so no index (negative, past the end,
+/// `i32::MAX`) reads outside the table; `f32` and `i32` tables alike.
+#[derive(Clone)]
+struct GatherFrom;
+
+impl WithLanes for GatherFrom {
+    type Output = ();
+    #[inline(always)]
+    fn run<F: FloatLanes>(self) {
+        for len in [1usize, 2, 3, 13, 100] {
+            let ints: Vec<i32> = (0..len as i32).map(|i| (i * 7919) ^ 0x5a5a).collect();
+            let floats: Vec<f32> = (0..len).map(|i| i as f32 * 0.37 - 5.0).collect();
+            for start in [-9i32, -1, 0, 1, 5, len as i32 - 2, 97, i32::MAX - 8] {
+                let index: [i32; WIDTH] = std::array::from_fn(|k| start.wrapping_add(k as i32));
+                let at = index.map(|i| (i as u32).min(len as u32 - 1) as usize);
+                let lanes = <F::Ints as IntLanes>::from_array(index);
+                let read = <F::Ints as IntLanes>::gather_from(&ints, lanes);
+                assert_eq!(
+                    read.to_array(),
+                    at.map(|i| ints[i]),
+                    "len {len}, from {start}"
+                );
+                let read = F::gather_from(&floats, lanes);
+                assert_eq!(
+                    read.to_array(),
+                    at.map(|i| floats[i]),
+                    "len {len}, from {start}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn gather_from_reads_inside_a_table_of_any_length() {
+    run_portable(GatherFrom);
+    dispatch(GatherFrom);
+}

@@ -152,6 +152,12 @@ impl Emitters {
         self.choice.is_none()
     }
 
+    /// The distribution [`Emitters::choose`] draws from, and each emitter's
+    /// probability under it; `None` when no emitter can be drawn.
+    pub fn choice(&self) -> Option<(&AliasTable, &[f32])> {
+        Some((self.choice.as_ref()?, &self.pmf))
+    }
+
     /// The emitters, in index order.
     pub fn emitters(&self) -> &[Emitter] {
         &self.emitters

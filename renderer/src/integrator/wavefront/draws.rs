@@ -4,6 +4,7 @@
 //! with the scalar code's `Emitters::choose`) and a cosine-weighted
 //! direction, each with the scalar path tracer's operations.
 
+use super::emitter_table::EmitterTable;
 use crate::geometry::ray::Ray;
 use crate::geometry::warp::{COS_TERMS, SIN_TERMS};
 use crate::integrator::sampler::lanes::StreamLanes;
@@ -39,54 +40,82 @@ fn draw_at<F: FloatLanes>(depth: &[u32; WIDTH], at: BounceDraw, offset: u32) -> 
 
 /// For each lane of `lanes`, its light sample at bounce `depth`: the
 /// bounce's light numbers — which emitter and where (three numbers) — and
-/// the point on it as seen from `point`. Triangles
-/// are drawn on lanes, with `Emitters::sample`'s arithmetic; other shapes
-/// (a sphere's cone of directions) by `Emitters::sample` itself.
+/// the point on it as seen from `point`. The emitter is chosen and a
+/// triangle drawn on lanes, with `Emitters::sample`'s arithmetic
+/// ([`EmitterTable`]); other shapes (a sphere's cone of directions) by
+/// `Emitters::sample` itself.
 #[inline(always)]
 pub(super) fn emitter_draws<F: FloatLanes>(
     world: &World,
+    table: &EmitterTable,
     lanes: F,
     streams: &StreamLanes<F>,
     depth: &[u32; WIDTH],
     point: Vec3s<F>,
 ) -> EmitterDraws<F> {
+    let mut draws = EmitterDraws {
+        found: F::ZERO,
+        to_light: Vec3s::splat(Vec3::X),
+        distance: F::ZERO,
+        radiance: Vec3s::ZERO,
+        pdf: F::ONE,
+    };
+    if table.is_empty() || !lanes.any() {
+        return draws;
+    }
     let u_select = streams.number(draw_at::<F>(depth, BounceDraw::Light, 0));
     let (ux, uy) = streams.numbers(draw_at::<F>(depth, BounceDraw::Light, 1));
-    let (u_select, ux_array, uy_array) = (u_select.as_array(), ux.as_array(), uy.as_array());
-    let emitters = &world.emitters;
-    // Lanes done by `Emitters::sample`, with its results.
-    let mut scalar = [false; WIDTH];
+    let chosen = table.choose(u_select);
+    let other = lanes & chosen.other;
+    if other.any() {
+        draws = other_emitter_draws(world, other, u_select, [ux, uy], point);
+    }
+    let on_triangle = lanes & chosen.triangle;
+    if !on_triangle.any() {
+        return draws;
+    }
+    let triangle = table.triangles(&chosen);
+    // `TriangleSampler::sample`: barycentrics from the square folded along
+    // its diagonal, the point t0 + b v1 + c v2.
+    let fold = (ux + uy).simd_gt(F::ONE);
+    let b = fold.select(F::ONE - ux, ux);
+    let c = fold.select(F::ONE - uy, uy);
+    let on = triangle.corner + triangle.edge1 * b + triangle.edge2 * c;
+    // The rest of `Emitters::sample` for an area sample.
+    let to = on - point;
+    let distance_sq = to.length_squared();
+    let distance = distance_sq.sqrt();
+    let to_light = to.div_lanes(distance);
+    let cos_light = -to_light.dot(triangle.normal);
+    let pdf = triangle.density * distance_sq / cos_light;
+    let drawn = on_triangle & distance_sq.simd_gt(F::ZERO) & cos_light.simd_gt(F::ZERO);
+    draws.found = draws.found | drawn;
+    draws.to_light = Vec3s::select(on_triangle, to_light, draws.to_light);
+    draws.distance = on_triangle.select(distance, draws.distance);
+    draws.radiance = Vec3s::select(on_triangle, triangle.radiance, draws.radiance);
+    draws.pdf = on_triangle.select(pdf, draws.pdf);
+    draws
+}
+
+/// The light samples of the lanes `lanes`, whose emitters are not
+/// triangles, drawn by `Emitters::sample` lane by lane.
+#[inline(always)]
+fn other_emitter_draws<F: FloatLanes>(
+    world: &World,
+    lanes: F,
+    u_select: F,
+    u: [F; 2],
+    point: Vec3s<F>,
+) -> EmitterDraws<F> {
+    let (u_select, ux, uy) = (u_select.as_array(), u[0].as_array(), u[1].as_array());
     let mut found = [false; WIDTH];
     let mut to_light = [Vec3::X; WIDTH];
     let mut distance = [0.0f32; WIDTH];
     let mut radiance = [Vec3::ZERO; WIDTH];
     let mut pdf = [1.0f32; WIDTH];
-    // Lanes that drew a triangle: its corner t0, edges, normal, the
-    // probability of the point (pmf · 1/area) and the two numbers.
-    let mut on_triangle = [false; WIDTH];
-    let mut corner = [Vec3::ZERO; WIDTH];
-    let mut edge1 = [Vec3::ZERO; WIDTH];
-    let mut edge2 = [Vec3::ZERO; WIDTH];
-    let mut normal = [Vec3::Z; WIDTH];
-    let (mut pmf, mut pdf_area) = ([0.0f32; WIDTH], [0.0f32; WIDTH]);
-    for k in 0..WIDTH {
-        if !lane_set(lanes, k) {
-            continue;
-        }
-        let (u_select, u) = (u_select[k], Vec2::new(ux_array[k], uy_array[k]));
-        let Some((index, p)) = emitters.choose(u_select) else {
-            continue;
-        };
-        if let Some((triangle, emitted)) = emitters.triangle(index) {
-            on_triangle[k] = true;
-            [corner[k], edge1[k], edge2[k]] = triangle.corner_and_edges();
-            normal[k] = triangle.normal();
-            (pmf[k], pdf_area[k]) = (p, triangle.pdf_area);
-            radiance[k] = emitted;
-            continue;
-        }
-        scalar[k] = true;
-        if let Some(s) = emitters.sample(point.lane(k), u_select, u) {
+    for k in (0..WIDTH).filter(|&k| lane_set(lanes, k)) {
+        let u = Vec2::new(ux[k], uy[k]);
+        if let Some(s) = world.emitters.sample(point.lane(k), u_select[k], u) {
             found[k] = true;
             to_light[k] = s.to_light;
             distance[k] = s.distance;
@@ -94,39 +123,13 @@ pub(super) fn emitter_draws<F: FloatLanes>(
             pdf[k] = s.pdf;
         }
     }
-    let scalar = mask_from::<F>(|k| scalar[k]);
-    let scalar_found = mask_from::<F>(|k| found[k]);
-    let on_triangle = mask_from::<F>(|k| on_triangle[k]);
-    let mut draws = EmitterDraws {
-        found: scalar_found,
+    EmitterDraws {
+        found: mask_from::<F>(|k| found[k]),
         to_light: Vec3s::from_lanes(&to_light),
         distance: F::from_array(distance),
         radiance: Vec3s::from_lanes(&radiance),
         pdf: F::from_array(pdf),
-    };
-    if !on_triangle.any() {
-        return draws;
     }
-    // `TriangleSampler::sample`: barycentrics from the square folded along
-    // its diagonal, the point t0 + b v1 + c v2.
-    let fold = (ux + uy).simd_gt(F::ONE);
-    let b = fold.select(F::ONE - ux, ux);
-    let c = fold.select(F::ONE - uy, uy);
-    let on =
-        Vec3s::from_lanes(&corner) + Vec3s::from_lanes(&edge1) * b + Vec3s::from_lanes(&edge2) * c;
-    // The rest of `Emitters::sample` for an area sample.
-    let to = on - point;
-    let distance_sq = to.length_squared();
-    let distance = distance_sq.sqrt();
-    let to_light = to.div_lanes(distance);
-    let cos_light = -to_light.dot(Vec3s::from_lanes(&normal));
-    let pdf = F::from_array(pmf) * F::from_array(pdf_area) * distance_sq / cos_light;
-    let drawn = on_triangle & distance_sq.simd_gt(F::ZERO) & cos_light.simd_gt(F::ZERO);
-    draws.found = scalar_found | drawn;
-    draws.to_light = Vec3s::select(scalar, draws.to_light, to_light);
-    draws.distance = scalar.select(draws.distance, distance);
-    draws.pdf = scalar.select(draws.pdf, pdf);
-    draws
 }
 
 /// Each lane's BSDF sample's numbers at bounce `depth`: the lobe's number

@@ -249,7 +249,14 @@ impl<F: FloatLanes> PathGroup<F> {
         };
         // The light sample: a point drawn on the emitters, its BSDF value
         // and MIS weight, and the shadow ray toward it.
-        let light = emitter_draws(world, lit, &self.paths.streams, &self.paths.depth, point);
+        let light = emitter_draws(
+            world,
+            &scene.emitters,
+            lit,
+            &self.paths.streams,
+            &self.paths.depth,
+            point,
+        );
         let toward = light.to_light.dot(n).simd_gt(F::ZERO);
         let (f, bsdf_pdf) = lobes.eval_pdf(wo, frame.to_local(light.to_light));
         let mis = power_heuristics(light.pdf, bsdf_pdf);

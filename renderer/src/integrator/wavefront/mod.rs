@@ -31,6 +31,7 @@
 
 mod delta;
 mod draws;
+mod emitter_table;
 mod glossy;
 mod group;
 mod handover;

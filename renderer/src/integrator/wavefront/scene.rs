@@ -1,5 +1,6 @@
 //! What the wavefront path tracer needs of a world, laid out for lanes.
 
+use super::emitter_table::EmitterTable;
 use crate::packet::PacketShapes;
 use crate::shading::bsdf::PreparedBsdf;
 use crate::shapes::Method;
@@ -115,6 +116,8 @@ pub(crate) struct WavefrontScene {
     pub(crate) shapes: Option<PacketShapes>,
     /// Shading data by object id.
     pub(crate) objects: ObjectTable,
+    /// The emitters, for light samples on lanes.
+    pub(crate) emitters: EmitterTable,
 }
 
 impl WavefrontScene {
@@ -131,6 +134,7 @@ impl WavefrontScene {
         Self {
             shapes: packet_shapes(world, method),
             objects: ObjectTable::new(world),
+            emitters: EmitterTable::new(&world.emitters),
         }
     }
 
@@ -143,6 +147,7 @@ impl WavefrontScene {
         Some(Self {
             shapes: Some(shapes),
             objects: ObjectTable::new(world),
+            emitters: EmitterTable::new(&world.emitters),
         })
     }
 }

@@ -1,0 +1,176 @@
+//! The world's emitters laid out for lanes: the alias table that chooses
+//! one ([`Emitters::choose`]) and, per emitter, what drawing a point on a
+//! triangle needs, read by each lane with gathers.
+
+use crate::packet::{FloatLanes, IntLanes, Vec3s};
+use crate::world::emitters::Emitters;
+
+/// Per emitter, a row of [`ROW`] numbers ([`Column`]), and the alias
+/// table's bins, for lanes.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct EmitterTable {
+    /// Per alias bin, the probability of keeping its own index.
+    keep: Vec<f32>,
+    /// Per alias bin, the index taken otherwise.
+    alias: Vec<i32>,
+    /// The rows, [`ROW`] numbers each.
+    rows: Vec<f32>,
+}
+
+/// The numbers in a row of an [`EmitterTable`].
+const ROW: usize = 17;
+
+/// Where each number sits in a row of an [`EmitterTable`].
+#[derive(Clone, Copy, Debug)]
+enum Column {
+    /// What the emitter is: [`NOT_DRAWN`], [`TRIANGLE`] or [`OTHER`].
+    Kind = 0,
+    /// The probability of choosing it times its triangle's 1/area (pmf ·
+    /// pdf_area, the first product of `Emitters::sample`'s density).
+    Density = 1,
+    /// The triangle's corner t0 (three numbers).
+    Corner = 2,
+    /// t1 − t0 (three numbers).
+    Edge1 = 5,
+    /// t2 − t0 (three numbers).
+    Edge2 = 8,
+    /// The triangle's unit normal (three numbers).
+    Normal = 11,
+    /// The radiance it emits (three numbers).
+    Radiance = 14,
+}
+
+/// [`Column::Kind`] of an emitter never drawn (no probability).
+const NOT_DRAWN: f32 = 0.0;
+/// [`Column::Kind`] of a triangle, drawn on lanes.
+const TRIANGLE: f32 = 1.0;
+/// [`Column::Kind`] of another shape, drawn by `Emitters::sample`.
+const OTHER: f32 = 2.0;
+
+/// Each lane's emitter, as [`EmitterTable::choose`] draws it.
+pub(super) struct Chosen<F: FloatLanes> {
+    /// The emitter's index.
+    index: F::Ints,
+    /// Lanes whose emitter is a triangle.
+    pub(super) triangle: F,
+    /// Lanes whose emitter is another shape.
+    pub(super) other: F,
+}
+
+/// The points drawn on each lane's triangle need these.
+pub(super) struct TriangleLanes<F: FloatLanes> {
+    /// pmf · pdf_area.
+    pub(super) density: F,
+    /// t0.
+    pub(super) corner: Vec3s<F>,
+    /// t1 − t0.
+    pub(super) edge1: Vec3s<F>,
+    /// t2 − t0.
+    pub(super) edge2: Vec3s<F>,
+    /// The unit normal.
+    pub(super) normal: Vec3s<F>,
+    /// The radiance it emits.
+    pub(super) radiance: Vec3s<F>,
+}
+
+impl EmitterTable {
+    /// The table of `emitters`; empty when none can be drawn.
+    pub(crate) fn new(emitters: &Emitters) -> Self {
+        let Some((choice, pmf)) = emitters.choice() else {
+            return Self::default();
+        };
+        let (keep, alias) = choice.bins().map(|(k, a)| (k, a as i32)).unzip();
+        let mut rows = Vec::with_capacity(pmf.len() * ROW);
+        for (index, &p) in pmf.iter().enumerate() {
+            let mut row = [0.0f32; ROW];
+            let kind = match emitters.triangle(index) {
+                _ if !(p > 0.0) => NOT_DRAWN,
+                Some((triangle, radiance)) => {
+                    row[Column::Density as usize] = p * triangle.pdf_area;
+                    let [corner, edge1, edge2] = triangle.corner_and_edges();
+                    for (column, v) in [
+                        (Column::Corner, corner),
+                        (Column::Edge1, edge1),
+                        (Column::Edge2, edge2),
+                        (Column::Normal, triangle.normal()),
+                        (Column::Radiance, radiance),
+                    ] {
+                        let at = column as usize;
+                        row[at..at + 3].copy_from_slice(&v.to_array());
+                    }
+                    TRIANGLE
+                }
+                None => OTHER,
+            };
+            row[Column::Kind as usize] = kind;
+            rows.extend_from_slice(&row);
+        }
+        Self { keep, alias, rows }
+    }
+
+    /// Whether no emitter can be drawn.
+    #[inline(always)]
+    pub(super) fn is_empty(&self) -> bool {
+        self.keep.is_empty()
+    }
+
+    /// Each lane's emitter drawn with `u` ∈ [0, 1): `AliasTable::sample`
+    /// with its operations, lane by lane. The table must not be empty.
+    #[inline(always)]
+    pub(super) fn choose<F: FloatLanes>(&self, u: F) -> Chosen<F> {
+        let n = self.keep.len();
+        let x = u * F::splat(n as f32);
+        // `(x as usize).min(n − 1)`: x is never negative.
+        let last = F::Ints::splat(n as i32 - 1);
+        let i = x.trunc_to_ints();
+        let i = F::Ints::select(i.simd_gt(last), last, i);
+        let keep = F::gather_from(&self.keep, i);
+        let alias = F::Ints::gather_from(&self.alias, i);
+        let index = F::Ints::select((x - i.to_floats()).simd_lt(keep), i, alias);
+        let kind: F = self.column(index, Column::Kind);
+        Chosen {
+            index,
+            triangle: kind.simd_eq(F::splat(TRIANGLE)),
+            other: kind.simd_eq(F::splat(OTHER)),
+        }
+    }
+
+    /// What drawing a point on each lane's chosen triangle needs (anything
+    /// in lanes whose emitter is not a triangle).
+    #[inline(always)]
+    pub(super) fn triangles<F: FloatLanes>(&self, chosen: &Chosen<F>) -> TriangleLanes<F> {
+        let at = chosen.index;
+        TriangleLanes {
+            density: self.column(at, Column::Density),
+            corner: self.vec3s(at, Column::Corner),
+            edge1: self.vec3s(at, Column::Edge1),
+            edge2: self.vec3s(at, Column::Edge2),
+            normal: self.vec3s(at, Column::Normal),
+            radiance: self.vec3s(at, Column::Radiance),
+        }
+    }
+
+    /// Number `column` of each lane's row `index`.
+    #[inline(always)]
+    fn column<F: FloatLanes>(&self, index: F::Ints, column: Column) -> F {
+        self.number(index, column as i32)
+    }
+
+    /// Number `at` of each lane's row `index`.
+    #[inline(always)]
+    fn number<F: FloatLanes>(&self, index: F::Ints, at: i32) -> F {
+        let row = F::Ints::splat(ROW as i32);
+        F::gather_from(&self.rows, index * row + F::Ints::splat(at))
+    }
+
+    /// Numbers `column`, `column + 1` and `column + 2` of each lane's row.
+    #[inline(always)]
+    fn vec3s<F: FloatLanes>(&self, index: F::Ints, column: Column) -> Vec3s<F> {
+        let c = column as i32;
+        Vec3s {
+            x: self.number(index, c),
+            y: self.number(index, c + 1),
+            z: self.number(index, c + 2),
+        }
+    }
+}
