@@ -186,8 +186,16 @@ impl WithLanes for Octaves<'_> {
     }
 }
 
-/// Lane k's first entry in a lane table.
-const LANE_BASE: [i32; WIDTH] = [0, 256, 512, 768, 1024, 1280, 1536, 1792];
+/// Lane k's first entry in a lane table (256 k, for any lane count).
+const LANE_BASE: [i32; WIDTH] = {
+    let mut base = [0; WIDTH];
+    let mut k = 0;
+    while k < WIDTH {
+        base[k] = (k * 256) as i32;
+        k += 1;
+    }
+    base
+};
 
 /// The coordinate `x` at each lane's frequency, clamped to ±[`FAR`].
 #[inline(always)]

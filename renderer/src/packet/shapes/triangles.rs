@@ -384,8 +384,9 @@ impl Triangles {
         let p = rays.at(alpha);
         let p = [p.x.to_array(), p.y.to_array(), p.z.to_array()];
         let mut point = [[0.0f32; WIDTH]; 3];
-        for half in 0..2 {
-            let first = 4 * half;
+        // Four lanes per f64x4, as many of them as the lanes need.
+        for quarter in 0..WIDTH / 4 {
+            let first = 4 * quarter;
             let solve: [&[f64; SOLVE]; 4] =
                 std::array::from_fn(|i| &self.items[index[first + i] as usize].solve);
             let constant = |j: usize| f64x4::from(solve.map(|c| c[j]));
