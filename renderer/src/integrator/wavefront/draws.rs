@@ -1,8 +1,8 @@
 //! A bounce's random numbers, drawn on lanes from each lane's stream
 //! ([`StreamLanes`]: the scalar streams' numbers bit for bit), what they
-//! become: a point on an emitter (the emitter's choice still lane by lane,
-//! with the scalar code's `Emitters::choose`) and a cosine-weighted
-//! direction, each with the scalar path tracer's operations.
+//! become: a point on an emitter (chosen and, on a triangle, drawn on
+//! lanes from the [`EmitterTable`]) and a cosine-weighted direction, each
+//! with the scalar path tracer's operations.
 
 use super::emitter_table::EmitterTable;
 use crate::geometry::ray::Ray;

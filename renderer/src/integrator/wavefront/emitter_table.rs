@@ -174,3 +174,95 @@ impl EmitterTable {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shapes::{Shape, Sphere, Triangle};
+    use crate::simd::{WIDTH, WithLanes, on_every_lane_type};
+    use glam::Vec3;
+
+    /// Forty emitters of very different power — triangles of many sizes
+    /// and brightnesses, a sphere, and a triangle of no area (never drawn) —
+    /// so that the alias table keeps some bins and sends others elsewhere.
+    fn emitters() -> Emitters {
+        let mut shapes = Vec::new();
+        for k in 0..38 {
+            let (x, size) = (k as f32 * 3.0, 0.05 + (k % 7) as f32 * 0.4);
+            let t = Triangle::new(
+                Vec3::new(x, 0.0, 0.0),
+                Vec3::new(x + size, 0.0, 0.0),
+                Vec3::new(x, size * 1.5, 0.3),
+            );
+            shapes.push((Some(Shape::Triangle(t)), Vec3::splat(1.0 + (k % 5) as f32)));
+        }
+        let sphere = Sphere::new(Vec3::new(0.0, 5.0, 0.0), 0.7);
+        shapes.push((Some(Shape::Sphere(sphere)), Vec3::new(3.0, 2.0, 1.0)));
+        let flat = Triangle::new(Vec3::ZERO, Vec3::X, Vec3::X * 2.0);
+        shapes.push((Some(Shape::Triangle(flat)), Vec3::ONE));
+        Emitters::new(&shapes, &[])
+    }
+
+    /// Every lane chooses the emitter `Emitters::choose` chooses for its
+    /// number (thousands of numbers, each bin's edges among them), with
+    /// the kind that says how it is drawn, and reads that triangle's
+    /// corner, edges, normal, radiance and pmf · 1/area.
+    #[derive(Clone)]
+    struct ChoosesAsTheScalarCode<'a>(&'a Emitters);
+
+    impl WithLanes for ChoosesAsTheScalarCode<'_> {
+        type Output = (usize, usize);
+        fn run<F: FloatLanes>(self) -> (usize, usize) {
+            let emitters = self.0;
+            let table = EmitterTable::new(emitters);
+            let n = table.keep.len() as f32;
+            let mut numbers: Vec<f32> = (0..4096).map(|k| k as f32 / 4096.0).collect();
+            for bin in 0..table.keep.len() {
+                let edge = bin as f32 / n;
+                numbers.extend([edge, edge.next_up(), (edge + 1.0 / n).next_down()]);
+            }
+            numbers.extend([0.0, 1.0f32.next_down()]);
+            let (mut triangles, mut others) = (0, 0);
+            for chunk in numbers.chunks(WIDTH) {
+                let mut u = [0.0f32; WIDTH];
+                u[..chunk.len()].copy_from_slice(chunk);
+                let chosen = table.choose(F::from_array(u));
+                let drawn = table.triangles(&chosen);
+                let index = chosen.index.to_array();
+                for (k, &u) in chunk.iter().enumerate() {
+                    let lane = |m: F| m.to_bitmask() & (1 << k) != 0;
+                    match emitters.choose(u) {
+                        None => assert!(!lane(chosen.triangle) && !lane(chosen.other), "u {u}"),
+                        Some((i, pmf)) => {
+                            assert_eq!(index[k] as usize, i, "u {u}");
+                            let Some((t, radiance)) = emitters.triangle(i) else {
+                                assert!(lane(chosen.other) && !lane(chosen.triangle), "u {u}");
+                                others += 1;
+                                continue;
+                            };
+                            assert!(lane(chosen.triangle) && !lane(chosen.other), "u {u}");
+                            let [corner, edge1, edge2] = t.corner_and_edges();
+                            assert_eq!(drawn.corner.lane(k), corner);
+                            assert_eq!(drawn.edge1.lane(k), edge1);
+                            assert_eq!(drawn.edge2.lane(k), edge2);
+                            assert_eq!(drawn.normal.lane(k), t.normal());
+                            assert_eq!(drawn.radiance.lane(k), radiance);
+                            assert_eq!(drawn.density.as_array()[k], pmf * t.pdf_area);
+                            triangles += 1;
+                        }
+                    }
+                }
+            }
+            (triangles, others)
+        }
+    }
+
+    #[test]
+    fn lanes_choose_and_read_the_emitters_the_scalar_code_does() {
+        let emitters = emitters();
+        for (triangles, spheres) in on_every_lane_type(ChoosesAsTheScalarCode(&emitters)) {
+            assert!(triangles > 3000, "too few triangles chosen: {triangles}");
+            assert!(spheres > 10, "too few spheres chosen: {spheres}");
+        }
+    }
+}
