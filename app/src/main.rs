@@ -110,6 +110,10 @@ fn report_written(written: Vec<PathBuf>) {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    // A developer's choice of narrower lanes that cannot be honoured.
+    if let Err(why) = renderer::simd::LaneType::requested() {
+        eprintln!("warning: {why}");
+    }
     match cli.command {
         None => run_window(cli.scene.unwrap_or_else(default_scene), cli.reference),
         Some(Command::Bench(args)) => finish(cli::bench::run(&args, default_scene()), |()| {}),

@@ -35,6 +35,9 @@ pub struct SceneFigures {
     pub height: u32,
     /// Threads in "all".
     pub threads: usize,
+    /// The lane type the packets and paths ran on (`avx512`, `avx2` or
+    /// `portable`; `RAYLAB_LANES` chooses a narrower one).
+    pub lanes: &'static str,
     /// Objects in the scene.
     pub objects: usize,
     /// Triangles drawn (mesh instances).
@@ -142,6 +145,7 @@ pub fn measure(
         width: world.camera.w,
         height: world.camera.h,
         threads,
+        lanes: renderer::simd::LaneType::chosen().name(),
         objects: world.objects.len(),
         triangles: world.triangle_count(),
         mesh_bvh_build_seconds: build_all,
@@ -190,8 +194,8 @@ fn median_seconds(mut f: impl FnMut() -> f64) -> f64 {
 /// The figures as a readable table.
 pub fn print_table(f: &SceneFigures) {
     println!(
-        "{} — {} objects, {} triangles, {}×{}, {} threads",
-        f.scene, f.objects, f.triangles, f.width, f.height, f.threads
+        "{} — {} objects, {} triangles, {}×{}, {} threads, {} lanes",
+        f.scene, f.objects, f.triangles, f.width, f.height, f.threads, f.lanes
     );
     println!(
         "  mesh BVH build            {:>9.3} s on 1 thread, {:>7.3} on {}   top level after an edit {:>8.2} ms",

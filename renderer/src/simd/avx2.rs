@@ -1,5 +1,5 @@
-//! [`FloatLanes`] in one AVX register, for CPUs with AVX2, chosen at run
-//! time by [`super::dispatch`].
+//! [`FloatLanes`] in two AVX registers (eight lanes each), for CPUs with
+//! AVX2, chosen at run time by [`super::dispatch`].
 //!
 //! The operations are `std::arch` intrinsics, which are only sound on a CPU
 //! that has the instructions. Soundness rests on one invariant: **a value
@@ -10,8 +10,8 @@
 //! bit patterns, made without any instruction). Every `unsafe` block below
 //! relies on this.
 //!
-//! Each operation is the AVX form of the one `wide` uses for SSE, so both
-//! types give the same bits.
+//! Each operation is the AVX form of the one `wide` uses for SSE, applied
+//! to each half, so all lane types give the same bits.
 
 #![allow(unsafe_code)]
 
@@ -45,20 +45,51 @@ fn run_avx2<W: WithLanes>(job: W) -> W::Output {
     job.run::<Avx2>()
 }
 
-/// Eight `f32`s in one AVX register.
+/// Sixteen `f32`s in two AVX registers, lanes 0–7 in the first.
 #[derive(Clone, Copy, Debug)]
 #[repr(transparent)]
-pub struct Avx2(__m256);
+pub struct Avx2([__m256; 2]);
 
-/// Eight `i32`s in one AVX register.
+/// Sixteen `i32`s in two AVX registers, lanes 0–7 in the first.
 #[derive(Clone, Copy, Debug)]
 #[repr(transparent)]
-pub struct Avx2Ints(__m256i);
+pub struct Avx2Ints([__m256i; 2]);
+
+/// `$body` once per register: for each half, `$x` (and `$y`) bound to that
+/// half of `$a` (and `$b`); the two results as the halves of an array.
+macro_rules! per_half {
+    ($x:ident = $a:expr; $body:expr) => {{
+        let a = $a;
+        [
+            {
+                let $x = a[0];
+                $body
+            },
+            {
+                let $x = a[1];
+                $body
+            },
+        ]
+    }};
+    ($x:ident = $a:expr, $y:ident = $b:expr; $body:expr) => {{
+        let (a, b) = ($a, $b);
+        [
+            {
+                let ($x, $y) = (a[0], b[0]);
+                $body
+            },
+            {
+                let ($x, $y) = (a[1], b[1]);
+                $body
+            },
+        ]
+    }};
+}
 
 /// A constant's bit pattern as lanes: no instruction runs.
 const fn bits(x: f32) -> Avx2 {
-    // SAFETY: `__m256` is eight `f32`s; any bit pattern is valid.
-    Avx2(unsafe { std::mem::transmute::<[f32; WIDTH], __m256>([x; WIDTH]) })
+    // SAFETY: `[__m256; 2]` is sixteen `f32`s; any bit pattern is valid.
+    Avx2(unsafe { std::mem::transmute::<[f32; WIDTH], [__m256; 2]>([x; WIDTH]) })
 }
 
 impl PartialEq for Avx2 {
@@ -74,25 +105,31 @@ impl PartialEq for Avx2Ints {
 }
 
 macro_rules! binary {
-    ($trait:ident, $method:ident, $intrinsic:ident) => {
-        impl $trait for Avx2 {
+    ($lanes:ident, $trait:ident, $method:ident, $intrinsic:ident) => {
+        impl $trait for $lanes {
             type Output = Self;
             #[inline(always)]
             fn $method(self, o: Self) -> Self {
-                // SAFETY: an `Avx2` exists, so this CPU has AVX2 (module invariant).
-                Self(unsafe { $intrinsic(self.0, o.0) })
+                // SAFETY: the lanes exist, so this CPU has AVX2 (module invariant).
+                Self(per_half!(x = self.0, y = o.0; unsafe { $intrinsic(x, y) }))
             }
         }
     };
 }
 
-binary!(Add, add, _mm256_add_ps);
-binary!(Sub, sub, _mm256_sub_ps);
-binary!(Mul, mul, _mm256_mul_ps);
-binary!(Div, div, _mm256_div_ps);
-binary!(BitAnd, bitand, _mm256_and_ps);
-binary!(BitOr, bitor, _mm256_or_ps);
-binary!(BitXor, bitxor, _mm256_xor_ps);
+binary!(Avx2, Add, add, _mm256_add_ps);
+binary!(Avx2, Sub, sub, _mm256_sub_ps);
+binary!(Avx2, Mul, mul, _mm256_mul_ps);
+binary!(Avx2, Div, div, _mm256_div_ps);
+binary!(Avx2, BitAnd, bitand, _mm256_and_ps);
+binary!(Avx2, BitOr, bitor, _mm256_or_ps);
+binary!(Avx2, BitXor, bitxor, _mm256_xor_ps);
+binary!(Avx2Ints, Add, add, _mm256_add_epi32);
+// The low 32 bits of each product (wrapping).
+binary!(Avx2Ints, Mul, mul, _mm256_mullo_epi32);
+binary!(Avx2Ints, BitAnd, bitand, _mm256_and_si256);
+binary!(Avx2Ints, BitOr, bitor, _mm256_or_si256);
+binary!(Avx2Ints, BitXor, bitxor, _mm256_xor_si256);
 
 impl Neg for Avx2 {
     type Output = Self;
@@ -110,21 +147,12 @@ impl Not for Avx2 {
     }
 }
 
-impl Add for Avx2Ints {
-    type Output = Self;
-    #[inline(always)]
-    fn add(self, o: Self) -> Self {
-        // SAFETY: module invariant.
-        Self(unsafe { _mm256_add_epi32(self.0, o.0) })
-    }
-}
-
 impl Avx2 {
     /// The comparison `P` (a `_CMP_*` predicate) lane by lane.
     #[inline(always)]
     fn compare<const P: i32>(self, o: Self) -> Self {
         // SAFETY: module invariant.
-        Self(unsafe { _mm256_cmp_ps::<P>(self.0, o.0) })
+        Self(per_half!(x = self.0, y = o.0; unsafe { _mm256_cmp_ps::<P>(x, y) }))
     }
 
     /// Mask of the NaN lanes.
@@ -144,12 +172,18 @@ impl FloatLanes for Avx2 {
     #[inline(always)]
     fn splat(x: f32) -> Self {
         // SAFETY: module invariant.
-        Self(unsafe { _mm256_set1_ps(x) })
+        let half = unsafe { _mm256_set1_ps(x) };
+        Self([half, half])
     }
     #[inline(always)]
     fn from_array(lanes: [f32; WIDTH]) -> Self {
-        // SAFETY: module invariant; the load reads the eight `f32`s of `lanes`.
-        Self(unsafe { _mm256_loadu_ps(lanes.as_ptr()) })
+        // SAFETY: module invariant; the loads read lanes 0–7 and 8–15 of `lanes`.
+        Self(unsafe {
+            [
+                _mm256_loadu_ps(lanes.as_ptr()),
+                _mm256_loadu_ps(lanes.as_ptr().add(8)),
+            ]
+        })
     }
     #[inline(always)]
     fn to_array(self) -> [f32; WIDTH] {
@@ -157,8 +191,8 @@ impl FloatLanes for Avx2 {
     }
     #[inline(always)]
     fn as_array(&self) -> &[f32; WIDTH] {
-        // SAFETY: `Avx2` is a transparent `__m256`, eight `f32`s, and the
-        // array's alignment (4) is less than the register's (32).
+        // SAFETY: `Avx2` is a transparent `[__m256; 2]`, sixteen `f32`s in
+        // lane order, and the array's alignment (4) is less than its (32).
         unsafe { &*(self as *const Self).cast::<[f32; WIDTH]>() }
     }
     #[inline(always)]
@@ -192,21 +226,31 @@ impl FloatLanes for Avx2 {
     }
     #[inline(always)]
     fn select(self, if_true: Self, if_false: Self) -> Self {
+        let (t, f) = (if_true.0, if_false.0);
         // SAFETY: module invariant.
-        Self(unsafe { _mm256_blendv_ps(if_false.0, if_true.0, self.0) })
+        Self(unsafe {
+            [
+                _mm256_blendv_ps(f[0], t[0], self.0[0]),
+                _mm256_blendv_ps(f[1], t[1], self.0[1]),
+            ]
+        })
     }
     #[inline(always)]
     fn to_bitmask(self) -> u32 {
         // SAFETY: module invariant.
-        unsafe { _mm256_movemask_ps(self.0) as u32 }
+        let [low, high] = per_half!(x = self.0; unsafe { _mm256_movemask_ps(x) as u32 });
+        low | high << 8
     }
     #[inline(always)]
     fn any(self) -> bool {
-        self.to_bitmask() != 0
+        // A sign bit set in either half: one movemask of their union.
+        // SAFETY: module invariant.
+        unsafe { _mm256_movemask_ps(_mm256_or_ps(self.0[0], self.0[1])) != 0 }
     }
     #[inline(always)]
     fn all(self) -> bool {
-        self.to_bitmask() == 0xff
+        // SAFETY: module invariant.
+        unsafe { _mm256_movemask_ps(_mm256_and_ps(self.0[0], self.0[1])) == 0xff }
     }
     #[inline(always)]
     fn max(self, o: Self) -> Self {
@@ -219,12 +263,12 @@ impl FloatLanes for Avx2 {
     #[inline(always)]
     fn fast_max(self, o: Self) -> Self {
         // SAFETY: module invariant.
-        Self(unsafe { _mm256_max_ps(self.0, o.0) })
+        Self(per_half!(x = self.0, y = o.0; unsafe { _mm256_max_ps(x, y) }))
     }
     #[inline(always)]
     fn fast_min(self, o: Self) -> Self {
         // SAFETY: module invariant.
-        Self(unsafe { _mm256_min_ps(self.0, o.0) })
+        Self(per_half!(x = self.0, y = o.0; unsafe { _mm256_min_ps(x, y) }))
     }
     #[inline(always)]
     fn abs(self) -> Self {
@@ -233,12 +277,14 @@ impl FloatLanes for Avx2 {
     #[inline(always)]
     fn sqrt(self) -> Self {
         // SAFETY: module invariant.
-        Self(unsafe { _mm256_sqrt_ps(self.0) })
+        Self(per_half!(x = self.0; unsafe { _mm256_sqrt_ps(x) }))
     }
     #[inline(always)]
     fn floor(self) -> Self {
         // SAFETY: module invariant.
-        Self(unsafe { _mm256_round_ps::<{ _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC }>(self.0) })
+        Self(per_half!(x = self.0; unsafe {
+            _mm256_round_ps::<{ _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC }>(x)
+        }))
     }
     #[inline(always)]
     fn is_finite(self) -> Self {
@@ -248,27 +294,29 @@ impl FloatLanes for Avx2 {
     #[inline(always)]
     fn is_sign_negative(self) -> Self {
         // SAFETY: module invariant; an arithmetic shift copies the sign bit over the lane.
-        Self(unsafe { _mm256_castsi256_ps(_mm256_srai_epi32::<31>(_mm256_castps_si256(self.0))) })
+        Self(per_half!(x = self.0; unsafe {
+            _mm256_castsi256_ps(_mm256_srai_epi32::<31>(_mm256_castps_si256(x)))
+        }))
     }
     #[inline(always)]
     fn bits(self) -> Avx2Ints {
         // SAFETY: module invariant.
-        Avx2Ints(unsafe { _mm256_castps_si256(self.0) })
+        Avx2Ints(per_half!(x = self.0; unsafe { _mm256_castps_si256(x) }))
     }
     #[inline(always)]
     fn trunc_to_ints(self) -> Avx2Ints {
         // SAFETY: module invariant.
-        Avx2Ints(unsafe { _mm256_cvttps_epi32(self.0) })
+        Avx2Ints(per_half!(x = self.0; unsafe { _mm256_cvttps_epi32(x) }))
     }
     #[inline(always)]
     fn gather_from(table: &[f32], index: Avx2Ints) -> Self {
         let last = super::last_index(table.len());
         // SAFETY: module invariant; the unsigned minimum keeps every index
         // in 0..=last, inside the table.
-        Self(unsafe {
-            let index = _mm256_min_epu32(index.0, _mm256_set1_epi32(last));
-            _mm256_i32gather_ps::<4>(table.as_ptr(), index)
-        })
+        Self(per_half!(i = index.0; unsafe {
+            let i = _mm256_min_epu32(i, _mm256_set1_epi32(last));
+            _mm256_i32gather_ps::<4>(table.as_ptr(), i)
+        }))
     }
 }
 
@@ -283,53 +331,53 @@ impl IntLanes for Avx2Ints {
     #[inline(always)]
     fn splat(x: i32) -> Self {
         // SAFETY: module invariant.
-        Self(unsafe { _mm256_set1_epi32(x) })
+        let half = unsafe { _mm256_set1_epi32(x) };
+        Self([half, half])
     }
     #[inline(always)]
     fn from_array(lanes: [i32; WIDTH]) -> Self {
-        // SAFETY: module invariant; the load reads the eight `i32`s of `lanes`.
-        Self(unsafe { _mm256_loadu_si256(lanes.as_ptr().cast()) })
+        // SAFETY: module invariant; the loads read lanes 0–7 and 8–15 of `lanes`.
+        Self(unsafe {
+            [
+                _mm256_loadu_si256(lanes.as_ptr().cast()),
+                _mm256_loadu_si256(lanes.as_ptr().add(8).cast()),
+            ]
+        })
     }
     #[inline(always)]
     fn to_array(self) -> [i32; WIDTH] {
-        // SAFETY: `__m256i` is 32 bytes; any bit pattern is a valid `[i32; 8]`.
-        unsafe { std::mem::transmute::<__m256i, [i32; WIDTH]>(self.0) }
+        // SAFETY: `[__m256i; 2]` is 64 bytes; any bit pattern is a valid `[i32; 16]`.
+        unsafe { std::mem::transmute::<[__m256i; 2], [i32; WIDTH]>(self.0) }
     }
     #[inline(always)]
     fn select(mask: Avx2, if_true: Self, if_false: Self) -> Self {
-        // SAFETY: module invariant.
-        Self(unsafe {
-            _mm256_castps_si256(_mm256_blendv_ps(
-                _mm256_castsi256_ps(if_false.0),
-                _mm256_castsi256_ps(if_true.0),
-                mask.0,
-            ))
-        })
+        Avx2Ints::from_floats(mask.select(if_true.floats(), if_false.floats()))
     }
     #[inline(always)]
     fn simd_gt(self, o: Self) -> Avx2 {
         // SAFETY: module invariant.
-        Avx2(unsafe { _mm256_castsi256_ps(_mm256_cmpgt_epi32(self.0, o.0)) })
+        Avx2(per_half!(x = self.0, y = o.0; unsafe {
+            _mm256_castsi256_ps(_mm256_cmpgt_epi32(x, y))
+        }))
     }
     #[inline(always)]
     fn shr<const N: i32>(self) -> Self {
         // SAFETY: module invariant.
-        Self(unsafe { _mm256_srli_epi32::<N>(self.0) })
+        Self(per_half!(x = self.0; unsafe { _mm256_srli_epi32::<N>(x) }))
     }
     #[inline(always)]
     fn shl<const N: i32>(self) -> Self {
         // SAFETY: module invariant.
-        Self(unsafe { _mm256_slli_epi32::<N>(self.0) })
+        Self(per_half!(x = self.0; unsafe { _mm256_slli_epi32::<N>(x) }))
     }
     #[inline(always)]
     fn to_floats(self) -> Avx2 {
         // SAFETY: module invariant.
-        Avx2(unsafe { _mm256_cvtepi32_ps(self.0) })
+        Avx2(per_half!(x = self.0; unsafe { _mm256_cvtepi32_ps(x) }))
     }
     #[inline(always)]
     fn bits_to_floats(self) -> Avx2 {
-        // SAFETY: module invariant.
-        Avx2(unsafe { _mm256_castsi256_ps(self.0) })
+        self.floats()
     }
     /// By byte shuffles: the lane's bytes in reverse order, then each
     /// byte's two nibbles reversed by table and swapped.
@@ -347,13 +395,15 @@ impl IntLanes for Avx2Ints {
                 _mm256_broadcastsi128_si256(_mm_loadu_si128(NIBBLE_REVERSED.as_ptr().cast()));
             let reversed_high = _mm256_slli_epi16::<4>(reversed_low);
             let nibble = _mm256_set1_epi8(0x0f);
-            let bytes = _mm256_shuffle_epi8(self.0, byte_order);
-            let low = _mm256_and_si256(bytes, nibble);
-            let high = _mm256_and_si256(_mm256_srli_epi16::<4>(bytes), nibble);
-            _mm256_or_si256(
-                _mm256_shuffle_epi8(reversed_high, low),
-                _mm256_shuffle_epi8(reversed_low, high),
-            )
+            per_half!(x = self.0; {
+                let bytes = _mm256_shuffle_epi8(x, byte_order);
+                let low = _mm256_and_si256(bytes, nibble);
+                let high = _mm256_and_si256(_mm256_srli_epi16::<4>(bytes), nibble);
+                _mm256_or_si256(
+                    _mm256_shuffle_epi8(reversed_high, low),
+                    _mm256_shuffle_epi8(reversed_low, high),
+                )
+            })
         })
     }
     #[inline(always)]
@@ -361,56 +411,35 @@ impl IntLanes for Avx2Ints {
         let mask = const { super::gather_mask::<N>() };
         // SAFETY: module invariant; every index is masked into 0..N, so
         // each lane reads one of the table's N `i32`s.
-        Self(unsafe {
-            let index = _mm256_and_si256(index.0, _mm256_set1_epi32(mask));
-            _mm256_i32gather_epi32::<4>(table.as_ptr(), index)
-        })
+        Self(per_half!(i = index.0; unsafe {
+            let i = _mm256_and_si256(i, _mm256_set1_epi32(mask));
+            _mm256_i32gather_epi32::<4>(table.as_ptr(), i)
+        }))
     }
     #[inline(always)]
     fn gather_from(table: &[i32], index: Self) -> Self {
         let last = super::last_index(table.len());
         // SAFETY: module invariant; the unsigned minimum keeps every index
         // in 0..=last, inside the table.
-        Self(unsafe {
-            let index = _mm256_min_epu32(index.0, _mm256_set1_epi32(last));
-            _mm256_i32gather_epi32::<4>(table.as_ptr(), index)
-        })
+        Self(per_half!(i = index.0; unsafe {
+            let i = _mm256_min_epu32(i, _mm256_set1_epi32(last));
+            _mm256_i32gather_epi32::<4>(table.as_ptr(), i)
+        }))
     }
 }
 
-impl Mul for Avx2Ints {
-    type Output = Self;
-    /// The low 32 bits of each product (wrapping).
+impl Avx2Ints {
+    /// The same bits as `f32` lanes.
     #[inline(always)]
-    fn mul(self, o: Self) -> Self {
+    fn floats(self) -> Avx2 {
         // SAFETY: module invariant.
-        Self(unsafe { _mm256_mullo_epi32(self.0, o.0) })
+        Avx2(per_half!(x = self.0; unsafe { _mm256_castsi256_ps(x) }))
     }
-}
 
-impl BitAnd for Avx2Ints {
-    type Output = Self;
+    /// The same bits as `i32` lanes.
     #[inline(always)]
-    fn bitand(self, o: Self) -> Self {
+    fn from_floats(lanes: Avx2) -> Self {
         // SAFETY: module invariant.
-        Self(unsafe { _mm256_and_si256(self.0, o.0) })
-    }
-}
-
-impl BitOr for Avx2Ints {
-    type Output = Self;
-    #[inline(always)]
-    fn bitor(self, o: Self) -> Self {
-        // SAFETY: module invariant.
-        Self(unsafe { _mm256_or_si256(self.0, o.0) })
-    }
-}
-
-impl BitXor for Avx2Ints {
-    type Output = Self;
-    #[inline(always)]
-    fn bitxor(self, o: Self) -> Self {
-        // SAFETY: module invariant.
-        Self(unsafe { _mm256_xor_si256(self.0, o.0) })
+        Self(per_half!(x = lanes.0; unsafe { _mm256_castps_si256(x) }))
     }
 }

@@ -1,21 +1,32 @@
-//! The eight-lane number types the packet code is written over, and the
+//! The sixteen-lane number types the packet code is written over, and the
 //! choice among them at run time.
 //!
-//! [`FloatLanes`] is what the packet code needs of eight `f32`s: arithmetic,
-//! comparisons giving masks (all bits set in a lane where they hold) and
-//! selection by mask. Two types implement it: [`Portable`], `wide`'s
-//! `f32x8`, which compiles for whatever the build targets (two SSE halves
-//! on baseline x86-64), and, on x86-64, [`avx2::Avx2`], one AVX register,
-//! usable only on a CPU that has AVX2. [`dispatch`] runs a computation with
-//! the widest one this CPU has.
+//! [`FloatLanes`] is what the packet code needs of [`WIDTH`] `f32`s:
+//! arithmetic, comparisons giving masks (all bits set in a lane where they
+//! hold) and selection by mask. Three types implement it:
 //!
-//! Both implement every operation as the same IEEE operation lane by lane
-//! (no fused multiply–add), so the two give the same bits, and a test holds
-//! them to it.
+//! - [`Portable`], `wide`'s `f32x16`, which compiles for whatever the build
+//!   targets (four SSE registers on baseline x86-64);
+//! - on x86-64, [`avx2::Avx2`], two AVX registers, usable only on a CPU
+//!   that has AVX2;
+//! - on x86-64, [`avx512::Avx512`], one AVX-512 register, usable only on a
+//!   CPU that has AVX-512 F, BW and DQ.
+//!
+//! [`dispatch`] runs a computation with the widest one this CPU has (or a
+//! narrower one named by `RAYLAB_LANES`, see [`LaneType::chosen`]).
+//!
+//! All implement every operation as the same IEEE operation lane by lane
+//! (no fused multiply–add), so they give the same bits, and a test holds
+//! them to it: an image does not depend on the CPU it was rendered on.
 
 #[cfg(target_arch = "x86_64")]
 pub mod avx2;
+#[cfg(target_arch = "x86_64")]
+pub mod avx512;
+mod lane_type;
 mod portable;
+
+pub use lane_type::LaneType;
 
 pub use portable::Portable;
 
@@ -23,9 +34,9 @@ use std::fmt::Debug;
 use std::ops::{Add, BitAnd, BitOr, BitXor, Div, Mul, Neg, Not, Sub};
 
 /// Lanes in a packet.
-pub const WIDTH: usize = 8;
+pub const WIDTH: usize = 16;
 
-/// Eight `f32`s, one per lane; as a mask, all bits set where a condition
+/// [`WIDTH`] `f32`s, one per lane; as a mask, all bits set where a condition
 /// holds and zero where it does not.
 pub trait FloatLanes:
     Copy
@@ -44,7 +55,7 @@ pub trait FloatLanes:
     + BitXor<Output = Self>
     + Not<Output = Self>
 {
-    /// Eight `i32`s of the same instruction set.
+    /// [`WIDTH`] `i32`s of the same instruction set.
     type Ints: IntLanes<Floats = Self>;
 
     /// Zero in every lane.
@@ -120,7 +131,7 @@ pub trait FloatLanes:
     fn gather_from(table: &[f32], index: Self::Ints) -> Self;
 }
 
-/// Eight `i32`s, one per lane (object ids, counters, and as `u32` bits the
+/// [`WIDTH`] `i32`s, one per lane (object ids, counters, and as `u32` bits the
 /// hashes of the random streams: `+`, `*` and the shifts wrap and treat
 /// the lanes as unsigned).
 pub trait IntLanes:
@@ -191,19 +202,17 @@ pub trait WithLanes {
     /// What it returns.
     type Output;
     /// Runs it with lanes `F`. Written `#[inline(always)]`, with everything
-    /// it calls, so that it is compiled inside [`dispatch`]'s AVX2 function.
+    /// it calls, so that it is compiled inside [`dispatch`]'s AVX2 or
+    /// AVX-512 function.
     fn run<F: FloatLanes>(self) -> Self::Output;
 }
 
-/// Runs `job` with [`avx2::Avx2`] lanes when this CPU has AVX2, else
-/// with [`Portable`] ones. Both give the same results bit for bit.
+/// Runs `job` with the lanes of [`LaneType::chosen`]: the widest this CPU
+/// has, unless `RAYLAB_LANES` names a narrower one. All give the same
+/// results bit for bit.
 #[inline]
 pub fn dispatch<W: WithLanes>(job: W) -> W::Output {
-    #[cfg(target_arch = "x86_64")]
-    if let Some(token) = avx2::Avx2Token::detect() {
-        return token.run(job);
-    }
-    job.run::<Portable>()
+    LaneType::chosen().run(job)
 }
 
 /// Runs `job` with [`Portable`] lanes whatever the CPU (for tests and
@@ -212,11 +221,13 @@ pub fn run_portable<W: WithLanes>(job: W) -> W::Output {
     job.run::<Portable>()
 }
 
-/// `job` run with every lane type this CPU has: the portable one, then
-/// the widest (the same one again on a CPU without AVX2).
+/// `job` run with every lane type this CPU has, narrowest first.
 #[cfg(test)]
 pub(crate) fn on_every_lane_type<W: WithLanes + Clone>(job: W) -> Vec<W::Output> {
-    vec![run_portable(job.clone()), dispatch(job)]
+    LaneType::available()
+        .into_iter()
+        .map(|lanes| lanes.run(job.clone()))
+        .collect()
 }
 
 /// The mask set in the lanes `k` where `f(k)` holds.

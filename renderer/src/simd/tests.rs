@@ -5,7 +5,7 @@ use super::*;
 
 /// Awkward values: zeros of both signs, subnormals, infinities, NaN,
 /// extremes and ordinary numbers.
-const VALUES: [f32; 16] = [
+const VALUES: [f32; 2 * WIDTH] = [
     0.0,
     -0.0,
     1.0e-40,
@@ -22,6 +22,22 @@ const VALUES: [f32; 16] = [
     -1.0e30,
     2.5e-20,
     -0.1,
+    -0.0,
+    0.0,
+    f32::NAN,
+    -f32::MAX,
+    -f32::MIN_POSITIVE,
+    2.5,
+    -2.5,
+    3.0e9,
+    -3.0e9,
+    1.0e-45,
+    0.5,
+    -7.75,
+    f32::INFINITY,
+    1.0e20,
+    -0.3,
+    4.0,
 ];
 
 /// NaN lanes compare equal to NaN lanes (payloads may differ), all others by bits.
@@ -31,6 +47,9 @@ fn same(a: [f32; WIDTH], b: [f32; WIDTH]) -> bool {
         .all(|(x, y)| (x.is_nan() && y.is_nan()) || x.to_bits() == y.to_bits())
 }
 
+/// How many arrays [`Results`] gives for each pair of operands.
+const RESULTS_PER_PAIR: usize = 38;
+
 /// Every operation of `F` on every pair of chunks of [`VALUES`], as arrays.
 struct Results;
 
@@ -39,12 +58,14 @@ impl WithLanes for Results {
 
     fn run<F: FloatLanes>(self) -> Vec<[f32; WIDTH]> {
         let mut out = Vec::new();
+        let mut pairs = 0;
         for shift in 0..VALUES.len() {
             let a: [f32; WIDTH] = std::array::from_fn(|k| VALUES[k]);
             let b: [f32; WIDTH] = std::array::from_fn(|k| VALUES[(k + shift) % VALUES.len()]);
             let c: [f32; WIDTH] = std::array::from_fn(|k| VALUES[WIDTH + k]);
             for (a, b) in [(a, b), (c, b), (b, c)] {
                 let (x, y) = (F::from_array(a), F::from_array(b));
+                pairs += 1;
                 let mask = x.simd_lt(y);
                 let bitmask = f32::from_bits(
                     mask.to_bitmask() | u32::from(mask.any()) << 8 | u32::from(mask.all()) << 9,
@@ -91,8 +112,20 @@ impl WithLanes for Results {
                         .to_array()
                         .map(|i| f32::from_bits(i as u32)),
                 ]);
+                let (xi, yi) = (x.bits(), y.bits());
+                let as_floats = |i: F::Ints| i.bits_to_floats().to_array();
+                out.extend([
+                    as_floats(xi + yi),
+                    as_floats(xi * yi),
+                    as_floats(xi.shr::<7>()),
+                    as_floats(xi.shl::<9>()),
+                    as_floats(xi & yi | xi ^ yi),
+                    xi.shr::<9>().to_floats().to_array(),
+                    (xi.simd_gt(yi) & x).to_array(),
+                ]);
             }
         }
+        assert_eq!(out.len(), pairs * RESULTS_PER_PAIR);
         out
     }
 }
@@ -100,10 +133,17 @@ impl WithLanes for Results {
 #[test]
 fn the_lane_types_give_the_same_bits_for_every_operation() {
     let portable = run_portable(Results);
-    let widest = dispatch(Results);
-    assert_eq!(portable.len(), widest.len());
-    for (k, (p, w)) in portable.iter().zip(&widest).enumerate() {
-        assert!(same(*p, *w), "result {k}: portable {p:?} vs widest {w:?}");
+    for lanes in LaneType::available() {
+        let other = lanes.run(Results);
+        assert_eq!(portable.len(), other.len());
+        for (k, (p, o)) in portable.iter().zip(&other).enumerate() {
+            // Bit for bit, NaN payloads included: the same instructions run.
+            assert_eq!(
+                p.map(f32::to_bits),
+                o.map(f32::to_bits),
+                "result {k}: portable {p:?} vs {lanes:?} {o:?}"
+            );
+        }
     }
 }
 
@@ -113,7 +153,7 @@ fn arithmetic_is_scalar_f32_lane_by_lane() {
     for shift in 0..VALUES.len() {
         let a: [f32; WIDTH] = std::array::from_fn(|k| VALUES[k]);
         let b: [f32; WIDTH] = std::array::from_fn(|k| VALUES[(k + shift) % VALUES.len()]);
-        let first = &lanes[shift * 93..];
+        let first = &lanes[shift * 3 * RESULTS_PER_PAIR..];
         let scalar: [[f32; WIDTH]; 4] = [
             std::array::from_fn(|k| a[k] + b[k]),
             std::array::from_fn(|k| a[k] - b[k]),
@@ -145,18 +185,35 @@ fn arithmetic_is_scalar_f32_lane_by_lane() {
             f32::from_bits(t as u32)
         });
         assert!(same(first[30], truncated), "trunc_to_ints, shift {shift}");
+        // Integer lanes wrap and shift as u32, bit for bit.
+        let int_ops: [fn(u32, u32) -> u32; 5] = [
+            u32::wrapping_add,
+            u32::wrapping_mul,
+            |x, _| x >> 7,
+            |x, _| x << 9,
+            |x, y| x & y | x ^ y,
+        ];
+        for (op, scalar) in int_ops.iter().enumerate() {
+            let got = first[31 + op];
+            for k in 0..WIDTH {
+                let want = scalar(a[k].to_bits(), b[k].to_bits());
+                assert_eq!(
+                    got[k].to_bits(),
+                    want,
+                    "int op {op}, lane {k}, shift {shift}"
+                );
+            }
+        }
     }
 }
 
 #[test]
-fn this_machine_runs_the_widest_lanes_it_has() {
-    #[cfg(target_arch = "x86_64")]
-    if is_x86_feature_detected!("avx2") {
-        assert!(avx2::Avx2Token::detect().is_some());
-    }
+fn first_lanes_and_lane_set_read_the_lanes_in_order() {
     let mask: Portable = first_lanes(3);
     assert_eq!(mask.to_bitmask(), 0b111);
     assert!(lane_set(mask, 2) && !lane_set(mask, 3));
+    let last: Portable = mask_from(|k| k == WIDTH - 1);
+    assert_eq!(last.to_bitmask(), 1 << (WIDTH - 1));
 }
 
 /// Integer bit reversal on lanes, against `u32::reverse_bits`.
@@ -191,8 +248,7 @@ impl WithLanes for Reverse {
 
 #[test]
 fn reverse_bits_on_lanes_is_u32_reverse_bits() {
-    run_portable(Reverse);
-    dispatch(Reverse);
+    on_every_lane_type(Reverse);
 }
 
 /// Table reads on lanes: lane k reads `table[index_k mod N]`, any index
@@ -216,8 +272,7 @@ impl WithLanes for Gather {
 
 #[test]
 fn gather_reads_the_table_at_each_lanes_index_mod_its_length() {
-    run_portable(Gather);
-    dispatch(Gather);
+    on_every_lane_type(Gather);
 }
 
 /// Reads of tables of any length: lane k reads `table[min(index_k, len − 1)]`
@@ -256,6 +311,5 @@ impl WithLanes for GatherFrom {
 
 #[test]
 fn gather_from_reads_inside_a_table_of_any_length() {
-    run_portable(GatherFrom);
-    dispatch(GatherFrom);
+    on_every_lane_type(GatherFrom);
 }

@@ -130,7 +130,7 @@ mod tests {
             let tint = Vec3::new(0.9, 0.7, 0.4);
             let mut refracted = 0;
             for (c, chunk) in self.0.chunks_exact(WIDTH).enumerate() {
-                let wo = Vec3s::<F>::from_lanes(chunk.try_into().expect("eight"));
+                let wo = Vec3s::<F>::from_lanes(chunk.try_into().expect("WIDTH lanes"));
                 for &eta in &self.1 {
                     let u: [f32; WIDTH] =
                         std::array::from_fn(|k| ((c * 7 + k * 3) % 10) as f32 / 10.0);

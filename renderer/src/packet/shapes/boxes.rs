@@ -334,7 +334,7 @@ mod tests {
     fn hand_made_box_cases_equal_the_scalar_test() {
         let unit = Cuboid::new(Vec3::ZERO, Vec3::splat(2.0), Vec3::ZERO);
         let tiny = f32::from_bits(1);
-        let lanes = [
+        let cases = [
             // From inside: the exit face.
             Ray::new(Vec3::new(0.0, 0.5, 0.0), Vec3::Y),
             // From inside with t_max before the exit: no hit.
@@ -350,7 +350,9 @@ mod tests {
             Ray::new(Vec3::new(0.0, 0.0, 5.0), -Vec3::Z).with_t_max(4.0),
             Ray::new(Vec3::new(0.0, 0.0, 5.0), -Vec3::Z).with_t_max(4.0000005),
         ];
-        assert_eq!(check_against_one(&unit, &lanes), 5);
+        // The cases repeated over the packet's lanes.
+        let lanes: [Ray; WIDTH] = std::array::from_fn(|k| cases[k % cases.len()]);
+        assert_eq!(check_against_one(&unit, &lanes), 5 * WIDTH / cases.len());
     }
 
     #[test]

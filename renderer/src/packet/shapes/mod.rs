@@ -943,7 +943,7 @@ mod tests {
         fn run<F: FloatLanes>(self) -> Vec<i32> {
             let mut all = Vec::new();
             for chunk in self.1.chunks_exact(WIDTH) {
-                let rays = Rays::<F>::from_lanes(chunk.try_into().expect("eight"));
+                let rays = Rays::<F>::from_lanes(chunk.try_into().expect("WIDTH lanes"));
                 let mut tests = F::Ints::splat(0);
                 self.0.closest(&rays, &mut tests);
                 all.extend(tests.to_array());
@@ -1003,19 +1003,22 @@ mod tests {
                 .map(|k| answer(&packet(&[rays[k]], &[k % WIDTH]), k % WIDTH))
                 .collect();
             let mut runs = vec![alone];
-            for offset in [1, 3, 5] {
-                let mut among = vec![(0, 0); rays.len()];
-                for start in (0..rays.len()).step_by(WIDTH) {
-                    let ids: Vec<usize> = (0..WIDTH)
-                        .map(|j| (start + j * offset) % rays.len())
-                        .collect();
+            // Every ray in packets of others: the rays in the order
+            // i·step mod n (a permutation, `step` prime to n), WIDTH at a time.
+            let n = rays.len();
+            for step in [1, 3, 7] {
+                let order: Vec<usize> = (0..n).map(|i| i * step % n).collect();
+                let mut among = vec![None; n];
+                for start in (0..n).step_by(WIDTH) {
+                    let ids: Vec<usize> = (0..WIDTH).map(|j| order[(start + j) % n]).collect();
                     let group: Vec<Ray> = ids.iter().map(|&i| rays[i]).collect();
                     let lanes = packet(&group, &(0..WIDTH).collect::<Vec<_>>());
                     for (j, &i) in ids.iter().enumerate() {
-                        among[i] = answer(&lanes, j);
+                        among[i] = Some(answer(&lanes, j));
                     }
                 }
-                runs.push(among);
+                let among: Option<Vec<_>> = among.into_iter().collect();
+                runs.push(among.expect("every ray answered among others"));
             }
             runs
         }
