@@ -189,6 +189,38 @@ impl Camera {
         self.window_offset(i, j, offset).normalize().as_vec3()
     }
 
+    /// The directions v_ij of `N` samples at once, per coordinate: lane k
+    /// is [`Camera::direction`]`(i[k], j[k], (x[k], y[k]))` bit for bit (the
+    /// same f64 operations in the same order), written over arrays so that
+    /// the compiler vectorises it.
+    #[inline(always)]
+    pub fn directions<const N: usize>(
+        &self,
+        i: &[u32; N],
+        j: &[u32; N],
+        x: &[f32; N],
+        y: &[f32; N],
+    ) -> [[f32; N]; 3] {
+        let (c, r, u) = (self.corner_offset, self.pixel_right, self.pixel_up);
+        let mut v = [[0.0f32; N]; 3];
+        for k in 0..N {
+            // `window_offset`: (C00 − P0) + s r' − t u'.
+            let s = f64::from(i[k]) + f64::from(x[k]);
+            let t = f64::from(j[k]) + f64::from(y[k]);
+            let w = [
+                c.x + s * r.x - t * u.x,
+                c.y + s * r.y - t * u.y,
+                c.z + s * r.z - t * u.z,
+            ];
+            // `DVec3::normalize`: w · (1 / ‖w‖), the dot summed x, y, z.
+            let recip = 1.0 / (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
+            for axis in 0..3 {
+                v[axis][k] = (w[axis] * recip) as f32;
+            }
+        }
+        v
+    }
+
     /// R_ij = (P0, v_ij): the primary ray through pixel (i, j) at `offset`.
     pub fn ray(&self, i: u32, j: u32, offset: Vec2) -> Ray {
         Ray::new(self.p0, self.direction(i, j, offset))
@@ -204,6 +236,32 @@ impl Camera {
 mod tests {
     use super::*;
     use proptest::prelude::*;
+
+    proptest! {
+        /// Many directions at once are each sample's direction alone, bit for bit.
+        #[test]
+        fn directions_at_once_are_each_direction_alone(
+            i in proptest::array::uniform8(0u32..4),
+            j in proptest::array::uniform8(0u32..3),
+            x in proptest::array::uniform8(0.0f32..1.0),
+            y in proptest::array::uniform8(0.0f32..1.0),
+            eye in proptest::array::uniform3(-1e3f32..1e3),
+            theta in 1.0f32..89.0,
+        ) {
+            let camera = Camera::new(&ResolvedCamera {
+                eye: Vec3::from_array(eye),
+                theta_deg: theta,
+                ..input()
+            })
+            .expect("a valid camera");
+            let v = camera.directions(&i, &j, &x, &y);
+            for k in 0..8 {
+                let alone = camera.direction(i[k], j[k], Vec2::new(x[k], y[k]));
+                let at_once = Vec3::new(v[0][k], v[1][k], v[2][k]);
+                prop_assert_eq!(at_once.to_array().map(f32::to_bits), alone.to_array().map(f32::to_bits));
+            }
+        }
+    }
 
     fn input() -> ResolvedCamera {
         ResolvedCamera {

@@ -4,7 +4,7 @@ use super::{FloatLanes, WIDTH};
 use glam::Vec3;
 use std::ops::{Add, Mul, Neg, Sub};
 
-/// Eight vectors, one per lane: their x, y and z coordinates.
+/// [`WIDTH`](crate::simd::WIDTH) vectors, one per lane: their x, y and z coordinates.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Vec3s<F> {
     /// The lanes' x coordinates.

@@ -18,7 +18,7 @@ use crate::integrator::{RenderOptions, path::power_heuristic};
 use crate::packet::{FloatLanes, IntLanes, Rays, Vec3s, WIDTH, lane_set, mask_from};
 use crate::world::World;
 use crate::world::light::Light;
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 use std::f32::consts::FRAC_1_PI;
 
 /// Eight paths: each lane's radiance so far, throughput and next ray, as
@@ -76,17 +76,17 @@ impl<F: FloatLanes> PathGroup<F> {
             return;
         }
         let (x, y) = self.paths.streams.numbers(F::Ints::splat(0));
-        let (x, y) = (x.as_array(), y.as_array());
-        for lane in 0..WIDTH {
-            if self.unaimed & (1 << lane) == 0 {
-                continue;
-            }
-            let (i, j) = self.pixel[lane];
-            let ray = world.camera.ray(i, j, Vec2::new(x[lane], y[lane]));
-            self.paths.rays.origin.set_lane(lane, ray.origin);
-            self.paths.rays.dir.set_lane(lane, ray.dir);
-            self.paths.rays.t_max.as_mut_array()[lane] = ray.t_max;
-        }
+        let i = self.pixel.map(|(i, _)| i);
+        let j = self.pixel.map(|(_, j)| j);
+        // Every lane's v_ij at once (the scalar camera's bits); kept where unaimed.
+        let [dx, dy, dz] = world.camera.directions(&i, &j, x.as_array(), y.as_array());
+        let unaimed = self.unaimed;
+        let aim: F = mask_from(|lane| unaimed & (1 << lane) != 0);
+        let rays = &mut self.paths.rays;
+        let dir = Vec3s::new(F::from_array(dx), F::from_array(dy), F::from_array(dz));
+        rays.dir = Vec3s::select(aim, dir, rays.dir);
+        rays.origin = Vec3s::select(aim, Vec3s::splat(world.camera.p0), rays.origin);
+        rays.t_max = aim.select(F::INFINITY, rays.t_max);
         self.unaimed = 0;
     }
 

@@ -52,17 +52,20 @@ fn all_samples(width: u32, height: u32, spp: u32) -> Vec<SampleRef> {
 fn assert_wavefront_equals_scalar(world: &World, options: &RenderOptions, samples: &[SampleRef]) {
     let scene = WavefrontScene::new(world, options.method);
     let mut results = vec![SampleResult::default(); samples.len()];
-    // The portable lanes first, then the widest this CPU has.
-    crate::simd::run_portable(Trace {
-        world,
-        scene: &scene,
-        options,
-        samples,
-        results: &mut results,
-    });
-    let portable = results.clone();
+    // The widest lanes this CPU has, as a render runs them, then every
+    // narrower lane type: all give the same samples.
     trace_wavefront(world, &scene, options, samples, &mut results);
-    assert_eq!(portable, results, "the portable and the widest lanes agree");
+    for lanes in crate::simd::LaneType::available() {
+        let mut narrower = vec![SampleResult::default(); samples.len()];
+        lanes.run(Trace {
+            world,
+            scene: &scene,
+            options,
+            samples,
+            results: &mut narrower,
+        });
+        assert_eq!(narrower, results, "{lanes:?} lanes and the widest agree");
+    }
     let mut nonzero = 0;
     for (s, result) in samples.iter().zip(&results) {
         let scalar = sample_pixel(world, options, s.i, s.j, s.sample);
