@@ -15,6 +15,9 @@
 
 #![allow(unsafe_code)]
 
+use super::x86_methods::{
+    x86_abs, x86_comparisons, x86_is_finite, x86_is_nan, x86_max_min, x86_neg_not,
+};
 use super::{FloatLanes, IntLanes, WIDTH, WithLanes};
 use std::arch::x86_64::*;
 use std::ops::{Add, BitAnd, BitOr, BitXor, Div, Mul, Neg, Not, Sub};
@@ -131,21 +134,7 @@ binary!(Avx2Ints, BitAnd, bitand, _mm256_and_si256);
 binary!(Avx2Ints, BitOr, bitor, _mm256_or_si256);
 binary!(Avx2Ints, BitXor, bitxor, _mm256_xor_si256);
 
-impl Neg for Avx2 {
-    type Output = Self;
-    #[inline(always)]
-    fn neg(self) -> Self {
-        self ^ bits(-0.0)
-    }
-}
-
-impl Not for Avx2 {
-    type Output = Self;
-    #[inline(always)]
-    fn not(self) -> Self {
-        self ^ bits(f32::from_bits(u32::MAX))
-    }
-}
+x86_neg_not!(Avx2);
 
 impl Avx2 {
     /// The comparison `P` (a `_CMP_*` predicate) lane by lane.
@@ -155,11 +144,7 @@ impl Avx2 {
         Self(per_half!(x = self.0, y = o.0; unsafe { _mm256_cmp_ps::<P>(x, y) }))
     }
 
-    /// Mask of the NaN lanes.
-    #[inline(always)]
-    fn is_nan(self) -> Self {
-        self.compare::<_CMP_UNORD_Q>(self)
-    }
+    x86_is_nan!();
 }
 
 impl FloatLanes for Avx2 {
@@ -200,30 +185,7 @@ impl FloatLanes for Avx2 {
         // SAFETY: as `as_array`; every bit pattern is a valid `f32`.
         unsafe { &mut *(self as *mut Self).cast::<[f32; WIDTH]>() }
     }
-    #[inline(always)]
-    fn simd_lt(self, o: Self) -> Self {
-        self.compare::<_CMP_LT_OQ>(o)
-    }
-    #[inline(always)]
-    fn simd_le(self, o: Self) -> Self {
-        self.compare::<_CMP_LE_OQ>(o)
-    }
-    #[inline(always)]
-    fn simd_gt(self, o: Self) -> Self {
-        self.compare::<_CMP_GT_OQ>(o)
-    }
-    #[inline(always)]
-    fn simd_ge(self, o: Self) -> Self {
-        self.compare::<_CMP_GE_OQ>(o)
-    }
-    #[inline(always)]
-    fn simd_eq(self, o: Self) -> Self {
-        self.compare::<_CMP_EQ_OQ>(o)
-    }
-    #[inline(always)]
-    fn simd_ne(self, o: Self) -> Self {
-        self.compare::<_CMP_NEQ_UQ>(o)
-    }
+    x86_comparisons!();
     #[inline(always)]
     fn select(self, if_true: Self, if_false: Self) -> Self {
         let (t, f) = (if_true.0, if_false.0);
@@ -252,14 +214,7 @@ impl FloatLanes for Avx2 {
         // SAFETY: module invariant.
         unsafe { _mm256_movemask_ps(_mm256_and_ps(self.0[0], self.0[1])) == 0xff }
     }
-    #[inline(always)]
-    fn max(self, o: Self) -> Self {
-        o.is_nan().select(self, self.fast_max(o))
-    }
-    #[inline(always)]
-    fn min(self, o: Self) -> Self {
-        o.is_nan().select(self, self.fast_min(o))
-    }
+    x86_max_min!();
     #[inline(always)]
     fn fast_max(self, o: Self) -> Self {
         // SAFETY: module invariant.
@@ -270,10 +225,7 @@ impl FloatLanes for Avx2 {
         // SAFETY: module invariant.
         Self(per_half!(x = self.0, y = o.0; unsafe { _mm256_min_ps(x, y) }))
     }
-    #[inline(always)]
-    fn abs(self) -> Self {
-        self & bits(f32::from_bits(i32::MAX as u32))
-    }
+    x86_abs!();
     #[inline(always)]
     fn sqrt(self) -> Self {
         // SAFETY: module invariant.
@@ -286,11 +238,7 @@ impl FloatLanes for Avx2 {
             _mm256_round_ps::<{ _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC }>(x)
         }))
     }
-    #[inline(always)]
-    fn is_finite(self) -> Self {
-        // |x| < ∞ is false for infinities and NaN alone.
-        self.abs().simd_lt(Self::INFINITY)
-    }
+    x86_is_finite!();
     #[inline(always)]
     fn is_sign_negative(self) -> Self {
         // SAFETY: module invariant; an arithmetic shift copies the sign bit over the lane.

@@ -21,6 +21,9 @@
 
 #![allow(unsafe_code)]
 
+use super::x86_methods::{
+    x86_abs, x86_comparisons, x86_is_finite, x86_is_nan, x86_max_min, x86_neg_not,
+};
 use super::{FloatLanes, IntLanes, WIDTH, WithLanes};
 use std::arch::x86_64::*;
 use std::ops::{Add, BitAnd, BitOr, BitXor, Div, Mul, Neg, Not, Sub};
@@ -118,21 +121,7 @@ binary!(BitAnd, bitand, _mm512_and_ps);
 binary!(BitOr, bitor, _mm512_or_ps);
 binary!(BitXor, bitxor, _mm512_xor_ps);
 
-impl Neg for Avx512 {
-    type Output = Self;
-    #[inline(always)]
-    fn neg(self) -> Self {
-        self ^ bits(-0.0)
-    }
-}
-
-impl Not for Avx512 {
-    type Output = Self;
-    #[inline(always)]
-    fn not(self) -> Self {
-        self ^ bits(f32::from_bits(u32::MAX))
-    }
-}
+x86_neg_not!(Avx512);
 
 impl Avx512 {
     /// The comparison `P` (a `_CMP_*` predicate) lane by lane, as a mask.
@@ -142,11 +131,7 @@ impl Avx512 {
         widen(unsafe { _mm512_cmp_ps_mask::<P>(self.0, o.0) })
     }
 
-    /// Mask of the NaN lanes.
-    #[inline(always)]
-    fn is_nan(self) -> Self {
-        self.compare::<_CMP_UNORD_Q>(self)
-    }
+    x86_is_nan!();
 }
 
 impl FloatLanes for Avx512 {
@@ -181,30 +166,7 @@ impl FloatLanes for Avx512 {
         // SAFETY: as `as_array`; every bit pattern is a valid `f32`.
         unsafe { &mut *(self as *mut Self).cast::<[f32; WIDTH]>() }
     }
-    #[inline(always)]
-    fn simd_lt(self, o: Self) -> Self {
-        self.compare::<_CMP_LT_OQ>(o)
-    }
-    #[inline(always)]
-    fn simd_le(self, o: Self) -> Self {
-        self.compare::<_CMP_LE_OQ>(o)
-    }
-    #[inline(always)]
-    fn simd_gt(self, o: Self) -> Self {
-        self.compare::<_CMP_GT_OQ>(o)
-    }
-    #[inline(always)]
-    fn simd_ge(self, o: Self) -> Self {
-        self.compare::<_CMP_GE_OQ>(o)
-    }
-    #[inline(always)]
-    fn simd_eq(self, o: Self) -> Self {
-        self.compare::<_CMP_EQ_OQ>(o)
-    }
-    #[inline(always)]
-    fn simd_ne(self, o: Self) -> Self {
-        self.compare::<_CMP_NEQ_UQ>(o)
-    }
+    x86_comparisons!();
     #[inline(always)]
     fn select(self, if_true: Self, if_false: Self) -> Self {
         // SAFETY: module invariant.
@@ -222,14 +184,7 @@ impl FloatLanes for Avx512 {
     fn all(self) -> bool {
         self.to_bitmask() == 0xffff
     }
-    #[inline(always)]
-    fn max(self, o: Self) -> Self {
-        o.is_nan().select(self, self.fast_max(o))
-    }
-    #[inline(always)]
-    fn min(self, o: Self) -> Self {
-        o.is_nan().select(self, self.fast_min(o))
-    }
+    x86_max_min!();
     #[inline(always)]
     fn fast_max(self, o: Self) -> Self {
         // SAFETY: module invariant.
@@ -240,10 +195,7 @@ impl FloatLanes for Avx512 {
         // SAFETY: module invariant.
         Self(unsafe { _mm512_min_ps(self.0, o.0) })
     }
-    #[inline(always)]
-    fn abs(self) -> Self {
-        self & bits(f32::from_bits(i32::MAX as u32))
-    }
+    x86_abs!();
     #[inline(always)]
     fn sqrt(self) -> Self {
         // SAFETY: module invariant.
@@ -256,11 +208,7 @@ impl FloatLanes for Avx512 {
             _mm512_roundscale_ps::<{ _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC }>(self.0)
         })
     }
-    #[inline(always)]
-    fn is_finite(self) -> Self {
-        // |x| < ∞ is false for infinities and NaN alone.
-        self.abs().simd_lt(Self::INFINITY)
-    }
+    x86_is_finite!();
     #[inline(always)]
     fn is_sign_negative(self) -> Self {
         // SAFETY: module invariant; an arithmetic shift copies the sign bit over the lane.

@@ -25,6 +25,8 @@ pub mod avx2;
 pub mod avx512;
 mod lane_type;
 mod portable;
+#[cfg(target_arch = "x86_64")]
+mod x86_methods;
 
 pub use lane_type::LaneType;
 
