@@ -13,8 +13,10 @@
 //! A mask is a vector, as in the other lane types: all bits set in a lane
 //! where a condition holds. AVX-512 compares into a mask register, so a
 //! comparison widens its bits into lanes (`vpmovm2d`) and a selection
-//! reads each lane's sign bit back (`vpmovd2m`), as `blendvps` does; the
-//! compiler folds the pair away when one feeds the other.
+//! reads each lane's sign bit back (`vpmovd2m`), as `blendvps` does. The
+//! compiler folds some of these round trips away, not all: the path
+//! tracer's AVX-512 function still holds 69 `vpmovd2m` (2026-11-27); masks
+//! as `__mmask16` would need a mask type in [`FloatLanes`].
 //!
 //! Each operation is the AVX-512 form of the one [`super::avx2`] uses, so
 //! all lane types give the same bits.

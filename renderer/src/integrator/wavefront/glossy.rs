@@ -144,7 +144,7 @@ mod tests {
     use crate::simd::{WithLanes, on_every_lane_type};
     use glam::Vec2;
 
-    /// Eight random local directions per packet, some below the surface,
+    /// Random local directions, a packet's worth at a time, some below the surface,
     /// some grazing, and numbers u.
     fn cases(count: usize) -> Vec<(Vec3, Vec3, Vec2)> {
         let mut rng = Sampler::for_sample(23, 0, 0, 0);

@@ -1,4 +1,4 @@
-//! Eight paths in flight, one per lane, and one bounce of all of them.
+//! Sixteen paths in flight, one per lane, and one bounce of all of them.
 
 use super::delta::{dielectric_samples, fresnel_schlick, mirrored};
 use super::draws::{cosine_warps, dead_ray, emitter_draws, roulette_draws, scatter_draws};
@@ -21,7 +21,7 @@ use crate::world::light::Light;
 use glam::Vec3;
 use std::f32::consts::FRAC_1_PI;
 
-/// Eight paths: each lane's radiance so far, throughput and next ray, as
+/// Sixteen paths: each lane's radiance so far, throughput and next ray, as
 /// `PathLane` keeps them for one path.
 pub(super) struct PathGroup<F: FloatLanes> {
     /// Per lane, the index of its sample in the caller's list; `None` for a
@@ -42,7 +42,7 @@ pub(super) struct PathGroup<F: FloatLanes> {
 }
 
 impl<F: FloatLanes> PathGroup<F> {
-    /// Eight dead lanes.
+    /// Sixteen dead lanes.
     #[inline(always)]
     pub(super) fn new() -> Self {
         let dead = dead_ray();
@@ -392,7 +392,7 @@ impl<F: FloatLanes> PathGroup<F> {
     }
 }
 
-/// The non-delta lobes of eight hits: a layered BSDF's Lambertian lobe,
+/// The non-delta lobes of sixteen hits: a layered BSDF's Lambertian lobe,
 /// a rough conductor's or rough glass's GGX lobes, per lane.
 struct Lobes<F: FloatLanes> {
     /// The Lambertian albedo.

@@ -4,7 +4,7 @@
 
 use crate::packet::{FloatLanes, Vec3s};
 
-/// Eight shading frames around unit normals (local +z), as
+/// Sixteen shading frames around unit normals (local +z), as
 /// `ShadingFrame::new` builds each (Duff et al. 2017, glam's
 /// `any_orthonormal_pair`).
 #[derive(Clone, Copy, Debug)]

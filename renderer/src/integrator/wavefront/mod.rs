@@ -1,7 +1,7 @@
-//! The wavefront path tracer: eight paths at once, one per SIMD lane, every
+//! The wavefront path tracer: sixteen paths at once, one per SIMD lane, every
 //! stage of a bounce — the closest hit, the surface, emission, the light
 //! sample and its shadow ray, the BSDF sample, roulette — done for the
-//! eight together on structures of arrays ([`crate::packet`]). A finished
+//! sixteen together on structures of arrays ([`crate::packet`]). A finished
 //! lane takes the next sample at once, so the lanes stay full.
 //!
 //! It computes exactly what the scalar path tracer ([`super::path`], a

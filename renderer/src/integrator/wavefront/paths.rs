@@ -1,10 +1,10 @@
-//! The state of eight paths between bounces, lane by lane: what `PathLane`
+//! The state of sixteen paths between bounces, lane by lane: what `PathLane`
 //! carries from one bounce to the next, as structures of arrays.
 
 use crate::integrator::sampler::lanes::StreamLanes;
 use crate::packet::{FloatLanes, Rays, Vec3s, WIDTH};
 
-/// Eight paths' state, one per lane.
+/// Sixteen paths' state, one per lane.
 pub(super) struct Paths<F: FloatLanes> {
     /// Per lane, its random stream.
     pub(super) streams: StreamLanes<F>,

@@ -1,10 +1,10 @@
-//! Boxes against eight rays: [`Cuboid::intersect`]'s slab test in object
+//! Boxes against sixteen rays: [`Cuboid::intersect`]'s slab test in object
 //! space and [`Cuboid::surface`]'s snapped point, lane by lane.
 //!
 //! `Cuboid::intersect` first asks a loose world-space bounding sphere
 //! (`shapes/bound.rs`) whether the ray may hit; that test only turns away
 //! rays the exact test misses too (its own tests check it), so it is left
-//! out here: the slab test alone gives the same answer, and for eight
+//! out here: the slab test alone gives the same answer, and for sixteen
 //! incoherent rays it rarely could skip a box anyway.
 
 use super::{FloatLanes, Nearest, Rays, Vec3s, WIDTH, coordinate, gather3};
@@ -41,7 +41,7 @@ fn transform<F: FloatLanes>(columns: &[Vec3s<F>; 3], v: Vec3s<F>) -> Vec3s<F> {
     columns[0] * v.x + columns[1] * v.y + columns[2] * v.z
 }
 
-/// `Placement::ray_to_object` for eight rays: origins and directions in
+/// `Placement::ray_to_object` for sixteen rays: origins and directions in
 /// object space.
 #[inline(always)]
 fn to_object<F: FloatLanes>(

@@ -1,4 +1,4 @@
-//! Packet intersection for worlds of lone primitives: eight rays (one per
+//! Packet intersection for worlds of lone primitives: sixteen rays (one per
 //! lane) tested against the triangles, boxes and spheres of a world made
 //! only of them, with exactly the [`Method::Robust`] formulas of the scalar
 //! code (`shapes/triangle.rs`, `shapes/cuboid.rs`, `shapes/sphere.rs`): the
@@ -6,7 +6,7 @@
 //! so each lane's α, hit point and normal are bit for bit what
 //! [`World::intersect`] and [`World::surface`] give for its ray.
 //!
-//! Each primitive's constants are splatted against the eight rays in turn.
+//! Each primitive's constants are splatted against the sixteen rays in turn.
 //! A few primitives ([`PacketShapes::BRUTE_FORCE_MAX`]) are all tested;
 //! more are walked through a binary BVH by the whole packet (`tree.rs`),
 //! up to [`PacketShapes::MAX_PRIMITIVES`]. What depends on the rays only
@@ -446,7 +446,7 @@ fn count<F: FloatLanes>(lanes: F, n: usize) -> F::Ints {
     F::Ints::select(lanes, F::Ints::splat(n as i32), F::Ints::splat(0))
 }
 
-/// Eight lanes' values of a primitive kind's data, each lane's from the
+/// Sixteen lanes' values of a primitive kind's data, each lane's from the
 /// primitive `index[lane]`.
 #[inline(always)]
 fn gather<F: FloatLanes>(index: &[u32; WIDTH], value: impl Fn(usize) -> f32) -> F {
@@ -455,14 +455,14 @@ fn gather<F: FloatLanes>(index: &[u32; WIDTH], value: impl Fn(usize) -> f32) -> 
     }))
 }
 
-/// Eight lanes' vectors of a primitive kind's data, each lane's from the
+/// Sixteen lanes' vectors of a primitive kind's data, each lane's from the
 /// primitive `index[lane]`.
 #[inline(always)]
 fn gather3<F: FloatLanes>(index: &[u32; WIDTH], value: impl Fn(usize) -> glam::Vec3) -> Vec3s<F> {
     Vec3s::from_lanes(&std::array::from_fn(|lane| value(index[lane] as usize)))
 }
 
-/// Coordinate `axis` (0, 1, 2: x, y, z) of eight vectors.
+/// Coordinate `axis` (0, 1, 2: x, y, z) of sixteen vectors.
 #[inline(always)]
 fn coordinate<F: FloatLanes>(v: &Vec3s<F>, axis: usize) -> F {
     match axis {
@@ -783,7 +783,7 @@ pub(super) mod testing {
         first
     }
 
-    /// Checks `rays` in packets of eight (in lanes `F`), then each of them
+    /// Checks `rays` in packets of sixteen (in lanes `F`), then each of them
     /// again in lane `k % 8` among dead lanes and among other rays in
     /// other orders (a lane's answer must not depend on its neighbours).
     /// Returns how many lanes hit in the first pass.
@@ -982,8 +982,8 @@ mod tests {
         check_rays(&world, &rays_for(&world, 5, 800));
     }
 
-    /// Each ray's (α bits, object) in lane `k % 8` alone, then in packets
-    /// of eight consecutive rays of the list rotated by each offset, in lanes `F`.
+    /// Each ray's (α bits, object) in lane `k % WIDTH` alone, then in
+    /// packets of `WIDTH` rays taken in the orders i·step mod n, in lanes `F`.
     #[derive(Clone)]
     struct AloneAndAmongOthers<'a>(&'a PacketShapes, &'a [Ray]);
 
@@ -1073,7 +1073,7 @@ mod tests {
         assert!(found > 1500, "too few hits to mean anything: {found}");
     }
 
-    /// An empty world's answers to eight rays, in lanes `F`.
+    /// An empty world's answers to sixteen rays, in lanes `F`.
     #[derive(Clone)]
     struct EmptyWorld<'a>(&'a PacketShapes);
 

@@ -1,4 +1,4 @@
-//! Spheres against eight rays: the robust quadratic of [`Sphere::intersect`]
+//! Spheres against sixteen rays: the robust quadratic of [`Sphere::intersect`]
 //! (Ray Tracing Gems ch. 7) and [`Sphere::surface`], lane by lane.
 
 use super::{FloatLanes, Nearest, Rays, Vec3s, WIDTH, gather, gather3};
@@ -26,7 +26,7 @@ pub(super) struct Spheres {
     items: Vec<PackedSphere>,
 }
 
-/// Eight rays prepared for the sphere test: what depends on the rays only.
+/// Sixteen rays prepared for the sphere test: what depends on the rays only.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct SphereRays<F> {
     /// P0.

@@ -1,4 +1,4 @@
-//! Lone triangles against eight rays: the watertight test of Woop, Benthin
+//! Lone triangles against sixteen rays: the watertight test of Woop, Benthin
 //! and Wald (2013) exactly as [`WatertightRay`] computes it, each lane with
 //! its own axis permutation and shear, both set up once per packet
 //! ([`ShearedRays`]).
@@ -36,7 +36,7 @@ pub(super) struct Triangles {
     items: Vec<PackedTriangle>,
 }
 
-/// Which world axis feeds each axis of the sheared frame, for the eight
+/// Which world axis feeds each axis of the sheared frame, for the sixteen
 /// lanes together.
 #[derive(Clone, Copy, Debug)]
 enum Frame<F> {
@@ -116,7 +116,7 @@ fn shear<F: FloatLanes>(r: &ShearedRays<F>, [px, py, pz]: [F; 3]) -> (F, F, F) {
     )
 }
 
-/// The per-ray half of the watertight test for eight rays: what
+/// The per-ray half of the watertight test for sixteen rays: what
 /// [`WatertightRay::new`](crate::shapes::WatertightRay::new) computes, lane by lane.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct ShearedRays<F> {
