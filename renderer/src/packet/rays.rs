@@ -6,7 +6,7 @@ use crate::geometry::ray::Ray;
 /// Eight rays R = (P0, v) over (0, t_max), one per lane. Dead lanes hold a
 /// harmless ray (any origin, a unit direction, t_max = 0: it hits nothing).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Rays<F> {
+pub struct Rays<F: FloatLanes> {
     /// P0, the origins.
     pub origin: Vec3s<F>,
     /// v, the directions.

@@ -1,6 +1,6 @@
-//! Eight 3D vectors as three lanes of coordinates.
+//! Sixteen 3D vectors as three lanes of coordinates.
 
-use super::{FloatLanes, WIDTH};
+use super::{FloatLanes, MaskLanes, WIDTH};
 use glam::Vec3;
 use std::ops::{Add, Mul, Neg, Sub};
 
@@ -120,7 +120,7 @@ impl<F: FloatLanes> Vec3s<F> {
     /// The lanes whose vector is not zero (any coordinate ≠ 0, NaN
     /// included, as `Vec3 != Vec3::ZERO`).
     #[inline(always)]
-    pub fn nonzero(self) -> F {
+    pub fn nonzero(self) -> F::Mask {
         self.x.simd_ne(F::ZERO) | self.y.simd_ne(F::ZERO) | self.z.simd_ne(F::ZERO)
     }
 
@@ -132,7 +132,7 @@ impl<F: FloatLanes> Vec3s<F> {
 
     /// Lane by lane, `self` where `mask` is set, `other` elsewhere.
     #[inline(always)]
-    pub fn select(mask: F, a: Self, b: Self) -> Self {
+    pub fn select(mask: F::Mask, a: Self, b: Self) -> Self {
         Self::new(
             mask.select(a.x, b.x),
             mask.select(a.y, b.y),

@@ -6,7 +6,7 @@
 //! in `f64` through generic vector code, one octave after another: its
 //! octaves were 31–39% of a full Whitted pass of `seed.xml`.
 
-use crate::simd::{FloatLanes, IntLanes, WIDTH, WithLanes, dispatch};
+use crate::simd::{FloatLanes, IntLanes, MaskLanes, WIDTH, WithLanes, dispatch};
 use std::sync::LazyLock;
 
 /// Octaves summed, the crate's default six.
@@ -221,10 +221,15 @@ fn corner<F: FloatLanes>(gradients: &[i32; LANE_TABLE], index: F::Ints, x: F, y:
     let g = F::Ints::gather(gradients, index);
     let sign = F::Ints::splat(i32::MIN);
     let zero = F::Ints::splat(0);
-    // Each component ±1 or 0: the offset with its sign flipped, or nothing.
-    let gx = (g & F::Ints::splat(1)).simd_gt(zero) & (x ^ (g.shl::<30>() & sign).bits_to_floats());
-    let gy = (g & F::Ints::splat(4)).simd_gt(zero) & (y ^ (g.shl::<28>() & sign).bits_to_floats());
-    let gz = (g & F::Ints::splat(16)).simd_gt(zero) & (z ^ (g.shl::<26>() & sign).bits_to_floats());
+    // Each component ±1 or 0: the offset with its sign flipped, or +0.
+    let component = |bit: i32, flipped: F| {
+        (g & F::Ints::splat(bit))
+            .simd_gt(zero)
+            .select(flipped, F::ZERO)
+    };
+    let gx = component(1, x ^ (g.shl::<30>() & sign).bits_to_floats());
+    let gy = component(4, y ^ (g.shl::<28>() & sign).bits_to_floats());
+    let gz = component(16, z ^ (g.shl::<26>() & sign).bits_to_floats());
     gx + gy + gz
 }
 

@@ -18,7 +18,7 @@
 use super::x86_methods::{
     x86_abs, x86_comparisons, x86_is_finite, x86_is_nan, x86_max_min, x86_neg_not,
 };
-use super::{FloatLanes, IntLanes, WIDTH, WithLanes};
+use super::{FloatLanes, IntLanes, MaskLanes, WIDTH, WithLanes};
 use std::arch::x86_64::*;
 use std::ops::{Add, BitAnd, BitOr, BitXor, Div, Mul, Neg, Not, Sub};
 
@@ -147,8 +147,46 @@ impl Avx2 {
     x86_is_nan!();
 }
 
+/// A mask of [`Avx2`] lanes is the vector itself: all bits set in a lane
+/// that is set (what `blendvps` and `movemask` read).
+impl MaskLanes for Avx2 {
+    const NONE: Self = bits(0.0);
+    #[inline(always)]
+    fn from_bitmask(bits: u32) -> Self {
+        // Lane k keeps bit k of the splatted bits and compares it with itself.
+        // SAFETY: module invariant.
+        Self(unsafe {
+            let splat = _mm256_set1_epi32(bits as i32);
+            let low = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+            let high = _mm256_slli_epi32::<8>(low);
+            let lane = |bit: __m256i| {
+                _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_and_si256(splat, bit), bit))
+            };
+            [lane(low), lane(high)]
+        })
+    }
+    #[inline(always)]
+    fn to_bitmask(self) -> u32 {
+        // SAFETY: module invariant.
+        let [low, high] = per_half!(x = self.0; unsafe { _mm256_movemask_ps(x) as u32 });
+        low | high << 8
+    }
+    #[inline(always)]
+    fn any(self) -> bool {
+        // A sign bit set in either half: one movemask of their union.
+        // SAFETY: module invariant.
+        unsafe { _mm256_movemask_ps(_mm256_or_ps(self.0[0], self.0[1])) != 0 }
+    }
+    #[inline(always)]
+    fn all(self) -> bool {
+        // SAFETY: module invariant.
+        unsafe { _mm256_movemask_ps(_mm256_and_ps(self.0[0], self.0[1])) == 0xff }
+    }
+}
+
 impl FloatLanes for Avx2 {
     type Ints = Avx2Ints;
+    type Mask = Avx2;
     const ZERO: Self = bits(0.0);
     const ONE: Self = bits(1.0);
     const INFINITY: Self = bits(f32::INFINITY);
@@ -187,32 +225,15 @@ impl FloatLanes for Avx2 {
     }
     x86_comparisons!();
     #[inline(always)]
-    fn select(self, if_true: Self, if_false: Self) -> Self {
+    fn blend(mask: Self, if_true: Self, if_false: Self) -> Self {
         let (t, f) = (if_true.0, if_false.0);
         // SAFETY: module invariant.
         Self(unsafe {
             [
-                _mm256_blendv_ps(f[0], t[0], self.0[0]),
-                _mm256_blendv_ps(f[1], t[1], self.0[1]),
+                _mm256_blendv_ps(f[0], t[0], mask.0[0]),
+                _mm256_blendv_ps(f[1], t[1], mask.0[1]),
             ]
         })
-    }
-    #[inline(always)]
-    fn to_bitmask(self) -> u32 {
-        // SAFETY: module invariant.
-        let [low, high] = per_half!(x = self.0; unsafe { _mm256_movemask_ps(x) as u32 });
-        low | high << 8
-    }
-    #[inline(always)]
-    fn any(self) -> bool {
-        // A sign bit set in either half: one movemask of their union.
-        // SAFETY: module invariant.
-        unsafe { _mm256_movemask_ps(_mm256_or_ps(self.0[0], self.0[1])) != 0 }
-    }
-    #[inline(always)]
-    fn all(self) -> bool {
-        // SAFETY: module invariant.
-        unsafe { _mm256_movemask_ps(_mm256_and_ps(self.0[0], self.0[1])) == 0xff }
     }
     x86_max_min!();
     #[inline(always)]
@@ -299,7 +320,7 @@ impl IntLanes for Avx2Ints {
     }
     #[inline(always)]
     fn select(mask: Avx2, if_true: Self, if_false: Self) -> Self {
-        Avx2Ints::from_floats(mask.select(if_true.floats(), if_false.floats()))
+        Avx2Ints::from_floats(Avx2::blend(mask, if_true.floats(), if_false.floats()))
     }
     #[inline(always)]
     fn simd_gt(self, o: Self) -> Avx2 {

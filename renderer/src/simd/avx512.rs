@@ -10,13 +10,11 @@
 //! constants are plain bit patterns, made without any instruction). Every
 //! `unsafe` block below relies on this.
 //!
-//! A mask is a vector, as in the other lane types: all bits set in a lane
-//! where a condition holds. AVX-512 compares into a mask register, so a
-//! comparison widens its bits into lanes (`vpmovm2d`) and a selection
-//! reads each lane's sign bit back (`vpmovd2m`), as `blendvps` does. The
-//! compiler folds some of these round trips away, not all: the path
-//! tracer's AVX-512 function still holds 69 `vpmovd2m` (2026-11-27); masks
-//! as `__mmask16` would need a mask type in [`FloatLanes`].
+//! A mask is a mask register ([`Avx512Mask`], `__mmask16`): comparisons
+//! write one and selections read one, with no conversion, and masks do not
+//! take the vector registers the lanes' numbers need. (Until 2026-11-27
+//! masks were vectors here too, widened by `vpmovm2d` and read back by
+//! `vpmovd2m`; the path tracer's AVX-512 function held 69 of the latter.)
 //!
 //! Each operation is the AVX-512 form of the one [`super::avx2`] uses, so
 //! all lane types give the same bits.
@@ -26,7 +24,7 @@
 use super::x86_methods::{
     x86_abs, x86_comparisons, x86_is_finite, x86_is_nan, x86_max_min, x86_neg_not,
 };
-use super::{FloatLanes, IntLanes, WIDTH, WithLanes};
+use super::{FloatLanes, IntLanes, MaskLanes, WIDTH, WithLanes};
 use std::arch::x86_64::*;
 use std::ops::{Add, BitAnd, BitOr, BitXor, Div, Mul, Neg, Not, Sub};
 
@@ -88,18 +86,55 @@ impl PartialEq for Avx512Ints {
     }
 }
 
-/// A mask register widened into lanes: all bits set where its bit is.
-#[inline(always)]
-fn widen(mask: __mmask16) -> Avx512 {
-    // SAFETY: module invariant (AVX-512 DQ).
-    Avx512(unsafe { _mm512_castsi512_ps(_mm512_movm_epi32(mask)) })
+/// Sixteen lane flags in a mask register: bit k for lane k. Plain bits (no
+/// instruction is needed to make one), so any value is sound anywhere;
+/// only the lane types' operations that take one need AVX-512.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(transparent)]
+pub struct Avx512Mask(__mmask16);
+
+macro_rules! mask_binary {
+    ($trait:ident, $method:ident, $op:tt) => {
+        impl $trait for Avx512Mask {
+            type Output = Self;
+            #[inline(always)]
+            fn $method(self, o: Self) -> Self {
+                Self(self.0 $op o.0)
+            }
+        }
+    };
 }
 
-/// Each lane's sign bit as a mask register (what `blendvps` reads).
-#[inline(always)]
-fn sign_bits(lanes: __m512) -> __mmask16 {
-    // SAFETY: module invariant (AVX-512 DQ).
-    unsafe { _mm512_movepi32_mask(_mm512_castps_si512(lanes)) }
+mask_binary!(BitAnd, bitand, &);
+mask_binary!(BitOr, bitor, |);
+mask_binary!(BitXor, bitxor, ^);
+
+impl Not for Avx512Mask {
+    type Output = Self;
+    #[inline(always)]
+    fn not(self) -> Self {
+        Self(!self.0)
+    }
+}
+
+impl MaskLanes for Avx512Mask {
+    const NONE: Self = Self(0);
+    #[inline(always)]
+    fn from_bitmask(bits: u32) -> Self {
+        Self(bits as __mmask16)
+    }
+    #[inline(always)]
+    fn to_bitmask(self) -> u32 {
+        u32::from(self.0)
+    }
+    #[inline(always)]
+    fn any(self) -> bool {
+        self.0 != 0
+    }
+    #[inline(always)]
+    fn all(self) -> bool {
+        self.0 == 0xffff
+    }
 }
 
 macro_rules! binary {
@@ -128,9 +163,9 @@ x86_neg_not!(Avx512);
 impl Avx512 {
     /// The comparison `P` (a `_CMP_*` predicate) lane by lane, as a mask.
     #[inline(always)]
-    fn compare<const P: i32>(self, o: Self) -> Self {
+    fn compare<const P: i32>(self, o: Self) -> Avx512Mask {
         // SAFETY: module invariant.
-        widen(unsafe { _mm512_cmp_ps_mask::<P>(self.0, o.0) })
+        Avx512Mask(unsafe { _mm512_cmp_ps_mask::<P>(self.0, o.0) })
     }
 
     x86_is_nan!();
@@ -138,6 +173,7 @@ impl Avx512 {
 
 impl FloatLanes for Avx512 {
     type Ints = Avx512Ints;
+    type Mask = Avx512Mask;
     const ZERO: Self = bits(0.0);
     const ONE: Self = bits(1.0);
     const INFINITY: Self = bits(f32::INFINITY);
@@ -170,21 +206,9 @@ impl FloatLanes for Avx512 {
     }
     x86_comparisons!();
     #[inline(always)]
-    fn select(self, if_true: Self, if_false: Self) -> Self {
+    fn blend(mask: Avx512Mask, if_true: Self, if_false: Self) -> Self {
         // SAFETY: module invariant.
-        Self(unsafe { _mm512_mask_blend_ps(sign_bits(self.0), if_false.0, if_true.0) })
-    }
-    #[inline(always)]
-    fn to_bitmask(self) -> u32 {
-        u32::from(sign_bits(self.0))
-    }
-    #[inline(always)]
-    fn any(self) -> bool {
-        self.to_bitmask() != 0
-    }
-    #[inline(always)]
-    fn all(self) -> bool {
-        self.to_bitmask() == 0xffff
+        Self(unsafe { _mm512_mask_blend_ps(mask.0, if_false.0, if_true.0) })
     }
     x86_max_min!();
     #[inline(always)]
@@ -212,9 +236,9 @@ impl FloatLanes for Avx512 {
     }
     x86_is_finite!();
     #[inline(always)]
-    fn is_sign_negative(self) -> Self {
-        // SAFETY: module invariant; an arithmetic shift copies the sign bit over the lane.
-        Self(unsafe { _mm512_castsi512_ps(_mm512_srai_epi32::<31>(_mm512_castps_si512(self.0))) })
+    fn is_sign_negative(self) -> Avx512Mask {
+        // SAFETY: module invariant (AVX-512 DQ): each lane's sign bit.
+        Avx512Mask(unsafe { _mm512_movepi32_mask(_mm512_castps_si512(self.0)) })
     }
     #[inline(always)]
     fn bits(self) -> Avx512Ints {
@@ -265,14 +289,14 @@ impl IntLanes for Avx512Ints {
         unsafe { std::mem::transmute::<__m512i, [i32; WIDTH]>(self.0) }
     }
     #[inline(always)]
-    fn select(mask: Avx512, if_true: Self, if_false: Self) -> Self {
+    fn select(mask: Avx512Mask, if_true: Self, if_false: Self) -> Self {
         // SAFETY: module invariant.
-        Self(unsafe { _mm512_mask_blend_epi32(sign_bits(mask.0), if_false.0, if_true.0) })
+        Self(unsafe { _mm512_mask_blend_epi32(mask.0, if_false.0, if_true.0) })
     }
     #[inline(always)]
-    fn simd_gt(self, o: Self) -> Avx512 {
+    fn simd_gt(self, o: Self) -> Avx512Mask {
         // SAFETY: module invariant.
-        widen(unsafe { _mm512_cmpgt_epi32_mask(self.0, o.0) })
+        Avx512Mask(unsafe { _mm512_cmpgt_epi32_mask(self.0, o.0) })
     }
     #[inline(always)]
     fn shr<const N: i32>(self) -> Self {

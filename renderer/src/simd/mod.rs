@@ -2,8 +2,8 @@
 //! choice among them at run time.
 //!
 //! [`FloatLanes`] is what the packet code needs of [`WIDTH`] `f32`s:
-//! arithmetic, comparisons giving masks (all bits set in a lane where they
-//! hold) and selection by mask. Three types implement it:
+//! arithmetic, comparisons giving masks ([`MaskLanes`]: one flag per lane)
+//! and selection by mask. Three types implement it:
 //!
 //! - [`Portable`], `wide`'s `f32x16`, which compiles for whatever the build
 //!   targets (four SSE registers on baseline x86-64);
@@ -38,8 +38,45 @@ use std::ops::{Add, BitAnd, BitOr, BitXor, Div, Mul, Neg, Not, Sub};
 /// Lanes in a packet.
 pub const WIDTH: usize = 16;
 
-/// [`WIDTH`] `f32`s, one per lane; as a mask, all bits set where a condition
-/// holds and zero where it does not.
+/// [`WIDTH`] flags, one per lane: where a comparison held. Each lane type
+/// keeps them its own way: the portable and AVX2 types as vectors (all
+/// bits set in a lane that is set), AVX-512 in a mask register
+/// (`__mmask16`), so that its comparisons and selections need no
+/// conversion and masks do not take vector registers.
+pub trait MaskLanes:
+    Copy
+    + Debug
+    + Send
+    + Sync
+    + 'static
+    + BitAnd<Output = Self>
+    + BitOr<Output = Self>
+    + BitXor<Output = Self>
+    + Not<Output = Self>
+{
+    /// No lane set.
+    const NONE: Self;
+    /// The mask with lane k set where bit k of `bits` is.
+    fn from_bitmask(bits: u32) -> Self;
+    /// Bit k set where lane k is.
+    fn to_bitmask(self) -> u32;
+    /// Whether any lane is set.
+    fn any(self) -> bool;
+    /// Whether every lane is set.
+    fn all(self) -> bool;
+    /// The mask `if_true` in the lanes set, `if_false` elsewhere.
+    #[inline(always)]
+    fn select_mask(self, if_true: Self, if_false: Self) -> Self {
+        (self & if_true) | (!self & if_false)
+    }
+    /// `if_true` in the lanes set, `if_false` elsewhere.
+    #[inline(always)]
+    fn select<F: FloatLanes<Mask = Self>>(self, if_true: F, if_false: F) -> F {
+        F::blend(self, if_true, if_false)
+    }
+}
+
+/// [`WIDTH`] `f32`s, one per lane.
 pub trait FloatLanes:
     Copy
     + Debug
@@ -59,6 +96,8 @@ pub trait FloatLanes:
 {
     /// [`WIDTH`] `i32`s of the same instruction set.
     type Ints: IntLanes<Floats = Self>;
+    /// The masks that this type's comparisons give and its selections take.
+    type Mask: MaskLanes;
 
     /// Zero in every lane.
     const ZERO: Self;
@@ -81,26 +120,21 @@ pub trait FloatLanes:
     fn as_mut_array(&mut self) -> &mut [f32; WIDTH];
 
     /// Mask of `self < o`.
-    fn simd_lt(self, o: Self) -> Self;
+    fn simd_lt(self, o: Self) -> Self::Mask;
     /// Mask of `self <= o`.
-    fn simd_le(self, o: Self) -> Self;
+    fn simd_le(self, o: Self) -> Self::Mask;
     /// Mask of `self > o`.
-    fn simd_gt(self, o: Self) -> Self;
+    fn simd_gt(self, o: Self) -> Self::Mask;
     /// Mask of `self >= o`.
-    fn simd_ge(self, o: Self) -> Self;
+    fn simd_ge(self, o: Self) -> Self::Mask;
     /// Mask of `self == o`.
-    fn simd_eq(self, o: Self) -> Self;
+    fn simd_eq(self, o: Self) -> Self::Mask;
     /// Mask of `self != o` (true where either is NaN).
-    fn simd_ne(self, o: Self) -> Self;
+    fn simd_ne(self, o: Self) -> Self::Mask;
 
-    /// With `self` a mask: `if_true` where it is set, `if_false` elsewhere.
-    fn select(self, if_true: Self, if_false: Self) -> Self;
-    /// With `self` a mask: bit k set where lane k is.
-    fn to_bitmask(self) -> u32;
-    /// With `self` a mask: whether any lane is set.
-    fn any(self) -> bool;
-    /// With `self` a mask: whether every lane is set.
-    fn all(self) -> bool;
+    /// `if_true` in the lanes of `mask`, `if_false` elsewhere (what
+    /// [`MaskLanes::select`] calls).
+    fn blend(mask: Self::Mask, if_true: Self, if_false: Self) -> Self;
 
     /// The larger of each pair, a NaN ignored (as `f32::max`; of +0 and
     /// −0, either may come back).
@@ -119,9 +153,9 @@ pub trait FloatLanes:
     /// Rounded down to integers.
     fn floor(self) -> Self;
     /// Mask of the finite lanes.
-    fn is_finite(self) -> Self;
+    fn is_finite(self) -> Self::Mask;
     /// Mask of the lanes whose sign bit is set (−0 included).
-    fn is_sign_negative(self) -> Self;
+    fn is_sign_negative(self) -> Self::Mask;
     /// The same bits read as `i32`s.
     fn bits(self) -> Self::Ints;
     /// Converted to `i32`, rounded toward zero (`cvttps`: `i32::MIN` in
@@ -159,9 +193,9 @@ pub trait IntLanes:
     /// The lanes as an array.
     fn to_array(self) -> [i32; WIDTH];
     /// `if_true` where `mask` is set, `if_false` elsewhere.
-    fn select(mask: Self::Floats, if_true: Self, if_false: Self) -> Self;
+    fn select(mask: Mask<Self::Floats>, if_true: Self, if_false: Self) -> Self;
     /// Mask of `self > o`.
-    fn simd_gt(self, o: Self) -> Self::Floats;
+    fn simd_gt(self, o: Self) -> Mask<Self::Floats>;
     /// Shifted right by `N` bits, zeros shifted in (as `u32 >> N`).
     fn shr<const N: i32>(self) -> Self;
     /// Shifted left by `N` bits.
@@ -232,22 +266,25 @@ pub(crate) fn on_every_lane_type<W: WithLanes + Clone>(job: W) -> Vec<W::Output>
         .collect()
 }
 
+/// The masks of lanes `F`.
+pub type Mask<F> = <F as FloatLanes>::Mask;
+
 /// The mask set in the lanes `k` where `f(k)` holds.
 #[inline(always)]
-pub fn mask_from<F: FloatLanes>(f: impl Fn(usize) -> bool) -> F {
-    let lanes: [f32; WIDTH] = std::array::from_fn(|k| if f(k) { 1.0 } else { 0.0 });
-    F::from_array(lanes).simd_gt(F::ZERO)
+pub fn mask_from<F: FloatLanes>(f: impl Fn(usize) -> bool) -> F::Mask {
+    let bits = (0..WIDTH).fold(0u32, |bits, k| bits | (u32::from(f(k)) << k));
+    F::Mask::from_bitmask(bits)
 }
 
 /// True in the lanes `0..n`: the live lanes of a packet holding `n` items.
 #[inline(always)]
-pub fn first_lanes<F: FloatLanes>(n: usize) -> F {
-    mask_from(|k| k < n)
+pub fn first_lanes<F: FloatLanes>(n: usize) -> F::Mask {
+    mask_from::<F>(|k| k < n)
 }
 
 /// Whether lane `k` of `mask` is set.
 #[inline(always)]
-pub fn lane_set<F: FloatLanes>(mask: F, k: usize) -> bool {
+pub fn lane_set<M: MaskLanes>(mask: M, k: usize) -> bool {
     mask.to_bitmask() & (1 << k) != 0
 }
 

@@ -1,6 +1,6 @@
 //! [`FloatLanes`] by `wide`: whatever instructions the build targets.
 
-use super::{FloatLanes, IntLanes, WIDTH};
+use super::{FloatLanes, IntLanes, MaskLanes, WIDTH};
 use wide::{f32x16, i32x16, u32x16};
 
 /// Sixteen `f32`s as `wide::f32x16`: four SSE registers on baseline x86-64,
@@ -8,8 +8,33 @@ use wide::{f32x16, i32x16, u32x16};
 /// elsewhere.
 pub type Portable = f32x16;
 
+/// A mask of [`Portable`] lanes is the vector itself: all bits set in a
+/// lane that is set.
+impl MaskLanes for f32x16 {
+    const NONE: Self = f32x16::ZERO;
+    #[inline(always)]
+    fn from_bitmask(bits: u32) -> Self {
+        f32x16::from(std::array::from_fn::<f32, WIDTH, _>(|k| {
+            f32::from_bits(if bits & (1 << k) != 0 { u32::MAX } else { 0 })
+        }))
+    }
+    #[inline(always)]
+    fn to_bitmask(self) -> u32 {
+        f32x16::to_bitmask(self)
+    }
+    #[inline(always)]
+    fn any(self) -> bool {
+        f32x16::any(self)
+    }
+    #[inline(always)]
+    fn all(self) -> bool {
+        f32x16::all(self)
+    }
+}
+
 impl FloatLanes for f32x16 {
     type Ints = i32x16;
+    type Mask = f32x16;
     const ZERO: Self = f32x16::ZERO;
     const ONE: Self = f32x16::ONE;
     const INFINITY: Self = f32x16::INFINITY;
@@ -60,20 +85,8 @@ impl FloatLanes for f32x16 {
         f32x16::simd_ne(self, o)
     }
     #[inline(always)]
-    fn select(self, if_true: Self, if_false: Self) -> Self {
-        f32x16::select(self, if_true, if_false)
-    }
-    #[inline(always)]
-    fn to_bitmask(self) -> u32 {
-        f32x16::to_bitmask(self)
-    }
-    #[inline(always)]
-    fn any(self) -> bool {
-        f32x16::any(self)
-    }
-    #[inline(always)]
-    fn all(self) -> bool {
-        f32x16::all(self)
+    fn blend(mask: Self, if_true: Self, if_false: Self) -> Self {
+        f32x16::select(mask, if_true, if_false)
     }
     #[inline(always)]
     fn max(self, o: Self) -> Self {

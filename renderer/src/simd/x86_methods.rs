@@ -1,7 +1,7 @@
 //! [`super::FloatLanes`] methods (and `Neg`, `Not`) that the x86 lane types ([`super::avx2`],
 //! [`super::avx512`]) write the same way from their own `compare::<P>` (a
 //! `_CMP_*` predicate giving a mask), `is_nan`, `fast_max`, `fast_min`,
-//! `select` and the constant `bits(x)`: one text, so the two cannot drift.
+//! `blend` and the constant `bits(x)`: one text, so the two cannot drift.
 //! Invoked inside each type's `impl FloatLanes`, where those names resolve.
 
 /// The six comparisons, as masks: ordered and quiet, but `!=`, which is
@@ -9,27 +9,27 @@
 macro_rules! x86_comparisons {
     () => {
         #[inline(always)]
-        fn simd_lt(self, o: Self) -> Self {
+        fn simd_lt(self, o: Self) -> Self::Mask {
             self.compare::<_CMP_LT_OQ>(o)
         }
         #[inline(always)]
-        fn simd_le(self, o: Self) -> Self {
+        fn simd_le(self, o: Self) -> Self::Mask {
             self.compare::<_CMP_LE_OQ>(o)
         }
         #[inline(always)]
-        fn simd_gt(self, o: Self) -> Self {
+        fn simd_gt(self, o: Self) -> Self::Mask {
             self.compare::<_CMP_GT_OQ>(o)
         }
         #[inline(always)]
-        fn simd_ge(self, o: Self) -> Self {
+        fn simd_ge(self, o: Self) -> Self::Mask {
             self.compare::<_CMP_GE_OQ>(o)
         }
         #[inline(always)]
-        fn simd_eq(self, o: Self) -> Self {
+        fn simd_eq(self, o: Self) -> Self::Mask {
             self.compare::<_CMP_EQ_OQ>(o)
         }
         #[inline(always)]
-        fn simd_ne(self, o: Self) -> Self {
+        fn simd_ne(self, o: Self) -> Self::Mask {
             self.compare::<_CMP_NEQ_UQ>(o)
         }
     };
@@ -64,7 +64,7 @@ macro_rules! x86_abs {
 macro_rules! x86_is_finite {
     () => {
         #[inline(always)]
-        fn is_finite(self) -> Self {
+        fn is_finite(self) -> Self::Mask {
             self.abs().simd_lt(Self::INFINITY)
         }
     };
@@ -76,7 +76,7 @@ macro_rules! x86_is_nan {
     () => {
         /// Mask of the NaN lanes.
         #[inline(always)]
-        fn is_nan(self) -> Self {
+        fn is_nan(self) -> <Self as FloatLanes>::Mask {
             self.compare::<_CMP_UNORD_Q>(self)
         }
     };

@@ -11,7 +11,7 @@ use super::{
     DIMENSION_KEYS, DIMENSION_SEED_FACTOR, GOLDEN, PASCAL_STEPS, PixelStream, SHUFFLE_KEY,
     SOBOL_DRAWS, SOBOL_LENGTH,
 };
-use crate::packet::{FloatLanes, IntLanes, WIDTH};
+use crate::packet::{FloatLanes, IntLanes, MaskLanes, WIDTH};
 use std::marker::PhantomData;
 
 /// Eight pixel streams, one per lane: what their numbers are computed from,

@@ -6,11 +6,11 @@
 //! `optics::fresnel_schlick`), so a lane's direction and weight are the
 //! scalar sample's bit for bit.
 
-use crate::packet::{FloatLanes, Vec3s};
+use crate::packet::{FloatLanes, MaskLanes, Vec3s};
 use glam::Vec3;
 
 /// Directions drawn from delta lobes, in local shading coordinates.
-pub(super) struct DeltaSamples<F> {
+pub(super) struct DeltaSamples<F: FloatLanes> {
     /// wi.
     pub(super) wi: Vec3s<F>,
     /// The throughput's factor.
@@ -59,7 +59,7 @@ pub(super) fn fresnel_dielectric<F: FloatLanes>(cos_i: F, eta: F) -> F {
 /// reflection (where the scalar code gives `None`), and the refracted
 /// direction elsewhere.
 #[inline(always)]
-pub(super) fn refract<F: FloatLanes>(dir: Vec3s<F>, n: Vec3s<F>, eta: F) -> (F, Vec3s<F>) {
+pub(super) fn refract<F: FloatLanes>(dir: Vec3s<F>, n: Vec3s<F>, eta: F) -> (F::Mask, Vec3s<F>) {
     let cos_i = -dir.dot(n);
     let sin2_t = eta * eta * (F::ONE - cos_i * cos_i).max(F::ZERO);
     let cos_t = (F::ONE - sin2_t).sqrt();

@@ -9,15 +9,15 @@ use crate::geometry::ray::Ray;
 use crate::geometry::warp::{COS_TERMS, SIN_TERMS};
 use crate::integrator::sampler::lanes::StreamLanes;
 use crate::integrator::sampler::{BounceDraw, bounce_draw};
-use crate::packet::{FloatLanes, IntLanes, Vec3s, WIDTH, lane_set, mask_from};
+use crate::packet::{FloatLanes, IntLanes, MaskLanes, Vec3s, WIDTH, lane_set, mask_from};
 use crate::world::World;
 use glam::{Vec2, Vec3};
 use std::f32::consts::FRAC_PI_4;
 
 /// Each lane's point drawn on an emitter, as seen from its shading point.
-pub(super) struct EmitterDraws<F> {
+pub(super) struct EmitterDraws<F: FloatLanes> {
     /// Lanes that drew a point (`Emitters::sample` gave one).
-    pub(super) found: F,
+    pub(super) found: F::Mask,
     /// Unit directions toward the points.
     pub(super) to_light: Vec3s<F>,
     /// Distances to the points.
@@ -48,13 +48,13 @@ fn draw_at<F: FloatLanes>(depth: &[u32; WIDTH], at: BounceDraw, offset: u32) -> 
 pub(super) fn emitter_draws<F: FloatLanes>(
     world: &World,
     table: &EmitterTable,
-    lanes: F,
+    lanes: F::Mask,
     streams: &StreamLanes<F>,
     depth: &[u32; WIDTH],
     point: Vec3s<F>,
 ) -> EmitterDraws<F> {
     let mut draws = EmitterDraws {
-        found: F::ZERO,
+        found: F::Mask::NONE,
         to_light: Vec3s::splat(Vec3::X),
         distance: F::ZERO,
         radiance: Vec3s::ZERO,
@@ -102,7 +102,7 @@ pub(super) fn emitter_draws<F: FloatLanes>(
 #[inline(always)]
 fn other_emitter_draws<F: FloatLanes>(
     world: &World,
-    lanes: F,
+    lanes: F::Mask,
     u_select: F,
     u: [F; 2],
     point: Vec3s<F>,
@@ -186,7 +186,7 @@ fn sin_cos_quarter<F: FloatLanes>(a: F) -> (F, F) {
 /// after the BSDF sample's), when any lane of `lanes` plays it.
 #[inline(always)]
 pub(super) fn roulette_draws<F: FloatLanes>(
-    lanes: F,
+    lanes: F::Mask,
     streams: &StreamLanes<F>,
     depth: &[u32; WIDTH],
 ) -> F {

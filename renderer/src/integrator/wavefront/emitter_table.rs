@@ -52,9 +52,9 @@ pub(super) struct Chosen<F: FloatLanes> {
     /// The emitter's index.
     index: F::Ints,
     /// Lanes whose emitter is a triangle.
-    pub(super) triangle: F,
+    pub(super) triangle: F::Mask,
     /// Lanes whose emitter is another shape.
-    pub(super) other: F,
+    pub(super) other: F::Mask,
 }
 
 /// The points drawn on each lane's triangle need these.
@@ -179,7 +179,7 @@ impl EmitterTable {
 mod tests {
     use super::*;
     use crate::shapes::{Shape, Sphere, Triangle};
-    use crate::simd::{WIDTH, WithLanes, on_every_lane_type};
+    use crate::simd::{MaskLanes, WIDTH, WithLanes, on_every_lane_type};
     use glam::Vec3;
 
     /// Forty emitters of very different power — triangles of many sizes
@@ -230,7 +230,7 @@ mod tests {
                 let drawn = table.triangles(&chosen);
                 let index = chosen.index.to_array();
                 for (k, &u) in chunk.iter().enumerate() {
-                    let lane = |m: F| m.to_bitmask() & (1 << k) != 0;
+                    let lane = |m: F::Mask| m.to_bitmask() & (1 << k) != 0;
                     match emitters.choose(u) {
                         None => assert!(!lane(chosen.triangle) && !lane(chosen.other), "u {u}"),
                         Some((i, pmf)) => {

@@ -6,20 +6,20 @@
 //! are libm's, lane by lane.
 
 use super::delta::fresnel_schlick;
-use crate::packet::{FloatLanes, Vec3s, WIDTH, lane_set};
+use crate::packet::{FloatLanes, MaskLanes, Vec3s, WIDTH, lane_set};
 use glam::Vec3;
 use std::f32::consts::PI;
 
 /// Rough conductors, one per lane: GGX's α, the reflectance f0 and whether
 /// it follows Schlick's approximation.
 #[derive(Clone, Copy)]
-pub(super) struct RoughConductors<F> {
+pub(super) struct RoughConductors<F: FloatLanes> {
     /// α per lane.
     pub(super) alpha: F,
     /// f0 per lane.
     pub(super) f0: Vec3s<F>,
     /// Lanes whose reflectance rises toward white at grazing angles (metal).
-    pub(super) schlick: F,
+    pub(super) schlick: F::Mask,
 }
 
 impl<F: FloatLanes> RoughConductors<F> {
@@ -38,7 +38,7 @@ impl<F: FloatLanes> RoughConductors<F> {
     /// `Ggx::reflection_half(wo, wi)`: the half vector where both lie above
     /// the surface and it is not zero (its mask, and the vector).
     #[inline(always)]
-    fn half(wo: Vec3s<F>, wi: Vec3s<F>) -> (F, Vec3s<F>) {
+    fn half(wo: Vec3s<F>, wi: Vec3s<F>) -> (F::Mask, Vec3s<F>) {
         let sum = wo + wi;
         // glam's normalize_or_zero: 1/‖sum‖ must be finite and positive.
         let rcp = F::ONE / sum.length_squared().sqrt();
@@ -71,7 +71,12 @@ impl<F: FloatLanes> RoughConductors<F> {
     /// about a visible micronormal, with f · cos θ_i and the density (a lane
     /// whose density is not positive carries nothing).
     #[inline(always)]
-    pub(super) fn sample(&self, lanes: F, wo: Vec3s<F>, u: [F; 2]) -> (Vec3s<F>, Vec3s<F>, F) {
+    pub(super) fn sample(
+        &self,
+        lanes: F::Mask,
+        wo: Vec3s<F>,
+        u: [F; 2],
+    ) -> (Vec3s<F>, Vec3s<F>, F) {
         let h = sample_visible(self.alpha, lanes, wo, u);
         // optics::reflect(−wo, h) = d − 2 (d · h) h.
         let d = -wo;
@@ -105,7 +110,7 @@ pub(super) fn ggx_g1<F: FloatLanes>(alpha: F, v: Vec3s<F>) -> F {
 #[inline(always)]
 pub(super) fn sample_visible<F: FloatLanes>(
     alpha: F,
-    lanes: F,
+    lanes: F::Mask,
     wo: Vec3s<F>,
     [ux, uy]: [F; 2],
 ) -> Vec3s<F> {
@@ -180,7 +185,7 @@ mod tests {
                 let lanes = RoughConductors {
                     alpha: F::from_array(alphas),
                     f0: Vec3s::splat(f0),
-                    schlick: crate::packet::mask_from(|k| schlick[k]),
+                    schlick: crate::packet::mask_from::<F>(|k| schlick[k]),
                 };
                 let wo = Vec3s::<F>::from_lanes(&std::array::from_fn(|k| chunk[k].0));
                 let wi = Vec3s::<F>::from_lanes(&std::array::from_fn(|k| chunk[k].1));

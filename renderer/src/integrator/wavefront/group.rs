@@ -15,7 +15,7 @@ use crate::integrator::path::{RR_DEPTH, SHADOW_SHORTENING};
 use crate::integrator::sampler::PixelStream;
 use crate::integrator::sampler::lanes::StreamLanes;
 use crate::integrator::{RenderOptions, path::power_heuristic};
-use crate::packet::{FloatLanes, IntLanes, Rays, Vec3s, WIDTH, lane_set, mask_from};
+use crate::packet::{FloatLanes, IntLanes, MaskLanes, Rays, Vec3s, WIDTH, lane_set, mask_from};
 use crate::world::World;
 use crate::world::light::Light;
 use glam::Vec3;
@@ -32,7 +32,7 @@ pub(super) struct PathGroup<F: FloatLanes> {
     /// The lanes a bounce hands to the scalar code (kept for its buffers).
     handover: Handover,
     /// Per light, the lanes whose shadow ray toward it is blocked (scratch).
-    blocked_toward_lights: Vec<F>,
+    blocked_toward_lights: Vec<F::Mask>,
     /// Shape tests each lane's rays cost so far.
     shape_tests: [u64; WIDTH],
     /// Each lane's pixel (i, j).
@@ -55,7 +55,7 @@ impl<F: FloatLanes> PathGroup<F> {
                 throughput: Vec3s::ZERO,
                 previous_point: Vec3s::ZERO,
                 previous_pdf: F::ZERO,
-                has_previous: F::ZERO,
+                has_previous: F::Mask::NONE,
                 eta_scale: F::ONE,
                 depth: [0; WIDTH],
             },
@@ -81,7 +81,7 @@ impl<F: FloatLanes> PathGroup<F> {
         // Every lane's v_ij at once (the scalar camera's bits); kept where unaimed.
         let [dx, dy, dz] = world.camera.directions(&i, &j, x.as_array(), y.as_array());
         let unaimed = self.unaimed;
-        let aim: F = mask_from(|lane| unaimed & (1 << lane) != 0);
+        let aim = F::Mask::from_bitmask(unaimed);
         let rays = &mut self.paths.rays;
         let dir = Vec3s::new(F::from_array(dx), F::from_array(dy), F::from_array(dz));
         rays.dir = Vec3s::select(aim, dir, rays.dir);
@@ -113,7 +113,7 @@ impl<F: FloatLanes> PathGroup<F> {
         self.unaimed |= 1 << lane;
         self.paths.radiance.set_lane(lane, Vec3::ZERO);
         self.paths.throughput.set_lane(lane, Vec3::ONE);
-        self.paths.has_previous.as_mut_array()[lane] = 0.0;
+        self.paths.has_previous = self.paths.has_previous & !F::Mask::from_bitmask(1 << lane);
         self.paths.eta_scale.as_mut_array()[lane] = 1.0;
         self.paths.depth[lane] = 0;
         self.shape_tests[lane] = 0;
@@ -136,8 +136,8 @@ impl<F: FloatLanes> PathGroup<F> {
 
     /// The live lanes.
     #[inline(always)]
-    fn live(&self) -> F {
-        mask_from(|k| self.sample[k].is_some())
+    fn live(&self) -> F::Mask {
+        mask_from::<F>(|k| self.sample[k].is_some())
     }
 
     /// One bounce of every live lane: the closest hits of their rays,
@@ -174,7 +174,7 @@ impl<F: FloatLanes> PathGroup<F> {
             return finished;
         }
 
-        let at = Surfaces::gather(&scene.objects, hit, hits.object);
+        let at = Surfaces::<F>::gather(&scene.objects, hit, hits.object);
         // Hits on materials the lanes do not shade, and on mesh triangles
         // (interpolated normals, textures), go to the scalar code.
         let on_lanes = at.on_lanes & !closest.mesh;
@@ -214,7 +214,7 @@ impl<F: FloatLanes> PathGroup<F> {
 
         // The depth limit ends a path at its hit.
         let depth = self.paths.depth;
-        let last = hit & mask_from(|k| depth[k] + 1 >= options.max_depth);
+        let last = hit & mask_from::<F>(|k| depth[k] + 1 >= options.max_depth);
         finished |= last.to_bitmask();
         let go = hit & !last;
 
@@ -319,7 +319,7 @@ impl<F: FloatLanes> PathGroup<F> {
         let origin = offset_origins(point, side, at.magnitude);
 
         // Russian roulette from the RR_DEPTH-th scattering event on.
-        let roulette = moving & mask_from(|k| depth[k] + 1 >= RR_DEPTH);
+        let roulette = moving & mask_from::<F>(|k| depth[k] + 1 >= RR_DEPTH);
         let u_roulette = roulette_draws(roulette, &self.paths.streams, &self.paths.depth);
         let keep = (throughput.max_element() / self.paths.eta_scale).min(F::splat(0.95));
         let killed = roulette & !u_roulette.simd_lt(keep);
@@ -358,7 +358,7 @@ impl<F: FloatLanes> PathGroup<F> {
             };
             let target = Target::Light(index);
             let rays = self.handover.add_shadow_rays(target, rays);
-            let traced = shadowed | self.handover.shadowed(target);
+            let traced = shadowed | self.handover.shadowed::<F>(target);
             let blocked =
                 tracing::occluded(world, scene, method, &rays, traced, &mut self.shape_tests);
             sum = sum + Vec3s::select(shadowed & !blocked, f.mul_lanes(s.irradiance), Vec3s::ZERO);
@@ -370,7 +370,7 @@ impl<F: FloatLanes> PathGroup<F> {
             t_max: shadowed.select(light.distance * F::splat(1.0 - SHADOW_SHORTENING), F::ZERO),
         };
         let shadows = self.handover.add_shadow_rays(Target::Emitter, shadows);
-        let traced = shadowed | self.handover.shadowed(Target::Emitter);
+        let traced = shadowed | self.handover.shadowed::<F>(Target::Emitter);
         let blocked = tracing::occluded(
             world,
             scene,
@@ -400,11 +400,11 @@ struct Lobes<F: FloatLanes> {
     /// The Lambertian lobe's weight (0 where there is none).
     diffuse: F,
     /// Lanes with a rough conductor.
-    rough: F,
+    rough: F::Mask,
     /// The rough conductors.
     microfacets: RoughConductors<F>,
     /// Lanes with rough glass.
-    rough_glass: F,
+    rough_glass: F::Mask,
     /// The rough glass.
     frosted: RoughDielectrics<F>,
 }
@@ -437,9 +437,9 @@ impl<F: FloatLanes> Lobes<F> {
 
 /// Each lane's sample of one point or directional light (`Light::sample`
 /// lane by lane).
-struct LightSamples<F> {
+struct LightSamples<F: FloatLanes> {
     /// Lanes with a sample (a point light not at the point itself).
-    found: F,
+    found: F::Mask,
     /// Unit directions toward the light.
     to_light: Vec3s<F>,
     /// Distances to it (+∞ for a directional light).
@@ -470,14 +470,14 @@ fn light_samples<F: FloatLanes>(light: &Light, point: Vec3s<F>) -> LightSamples<
             to_light,
             irradiance,
         } => LightSamples {
-            found: F::splat(f32::from_bits(u32::MAX)),
+            found: !F::Mask::NONE,
             to_light: Vec3s::splat(to_light),
             distance: F::INFINITY,
             irradiance: Vec3s::splat(irradiance),
         },
         // Ambient light is folded into `World::ambient`, never listed.
         Light::Ambient { .. } => LightSamples {
-            found: F::ZERO,
+            found: F::Mask::NONE,
             to_light: Vec3s::splat(glam::Vec3::Y),
             distance: F::ZERO,
             irradiance: Vec3s::ZERO,

@@ -12,7 +12,7 @@ use crate::integrator::lanes::{Lane, Next, ShadowRay, ShadowTarget};
 use crate::integrator::path::{PathLane, PathState};
 use crate::integrator::recorder::NoRecorder;
 use crate::integrator::sampler::Sampler;
-use crate::packet::{FloatLanes, Rays, WIDTH, lane_set, mask_from};
+use crate::packet::{FloatLanes, MaskLanes, Rays, WIDTH, lane_set, mask_from};
 use crate::world::World;
 
 /// A handed-over lane between its shading and its shadow rays' answers.
@@ -73,7 +73,7 @@ impl Handover {
         group: &mut Paths<F>,
         world: &World,
         options: &RenderOptions,
-        lanes: F,
+        lanes: F::Mask,
         closest: &Closest<F>,
     ) {
         if !lanes.any() {
@@ -113,8 +113,8 @@ impl Handover {
 
     /// The handed-over lanes with a shadow ray for packet `target`.
     #[inline(always)]
-    pub(super) fn shadowed<F: FloatLanes>(&self, target: Target) -> F {
-        mask_from(|k| self.shadow(k, target).is_some())
+    pub(super) fn shadowed<F: FloatLanes>(&self, target: Target) -> F::Mask {
+        mask_from::<F>(|k| self.shadow(k, target).is_some())
     }
 
     /// Lane `k`'s shadow ray for packet `target`, if it has one.
@@ -149,8 +149,8 @@ impl Handover {
     pub(super) fn finish<F: FloatLanes>(
         &mut self,
         group: &mut Paths<F>,
-        toward_lights: &[F],
-        toward_emitter: F,
+        toward_lights: &[F::Mask],
+        toward_emitter: F::Mask,
     ) -> u32 {
         let mut finished = 0;
         for k in 0..WIDTH {
@@ -177,11 +177,12 @@ impl Handover {
             let (point, pdf) = state.previous.unwrap_or_default();
             group.previous_point.set_lane(k, point);
             group.previous_pdf.as_mut_array()[k] = pdf;
-            group.has_previous.as_mut_array()[k] = f32::from_bits(if state.previous.is_some() {
-                u32::MAX
+            let lane_k = F::Mask::from_bitmask(1 << k);
+            group.has_previous = if state.previous.is_some() {
+                group.has_previous | lane_k
             } else {
-                0
-            });
+                group.has_previous & !lane_k
+            };
             group.eta_scale.as_mut_array()[k] = state.eta_scale;
             group.depth[k] = state.depth;
             if next == Next::Done {

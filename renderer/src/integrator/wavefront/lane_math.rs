@@ -2,13 +2,13 @@
 //! the shading frame, the ray origin's offset off a surface and the power
 //! heuristic.
 
-use crate::packet::{FloatLanes, Vec3s};
+use crate::packet::{FloatLanes, MaskLanes, Vec3s};
 
 /// Sixteen shading frames around unit normals (local +z), as
 /// `ShadingFrame::new` builds each (Duff et al. 2017, glam's
 /// `any_orthonormal_pair`).
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Frame<F> {
+pub(super) struct Frame<F: FloatLanes> {
     /// First tangents.
     pub(super) s: Vec3s<F>,
     /// Second tangents.

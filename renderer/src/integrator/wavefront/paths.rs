@@ -20,7 +20,7 @@ pub(super) struct Paths<F: FloatLanes> {
     /// The density of the previous BSDF sample.
     pub(super) previous_pdf: F,
     /// Lanes whose ray was drawn from a BSDF (MIS applies to what it hits).
-    pub(super) has_previous: F,
+    pub(super) has_previous: F::Mask,
     /// Product of refraction's radiance scaling, divided out for roulette.
     pub(super) eta_scale: F,
     /// Scattering events so far.

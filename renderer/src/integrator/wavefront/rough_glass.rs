@@ -5,11 +5,11 @@
 
 use super::delta::{fresnel_dielectric, refract};
 use super::glossy::{ggx_d, ggx_g1, sample_visible};
-use crate::packet::{FloatLanes, Vec3s};
+use crate::packet::{FloatLanes, MaskLanes, Vec3s};
 
 /// Rough glass, one per lane.
 #[derive(Clone, Copy)]
-pub(super) struct RoughDielectrics<F> {
+pub(super) struct RoughDielectrics<F: FloatLanes> {
     /// GGX α per lane.
     pub(super) alpha: F,
     /// η = η_incident / η_transmitted on the side the ray came from.
@@ -19,15 +19,15 @@ pub(super) struct RoughDielectrics<F> {
 }
 
 /// What `RoughDielectric::lobe` finds for each lane.
-struct Lobes<F> {
+struct Lobes<F: FloatLanes> {
     /// Lanes where a microfacet connects wo and wi (`Some`).
-    found: F,
+    found: F::Mask,
     /// The microfacet normal h (z ≥ 0).
     h: Vec3s<F>,
     /// F(wo·h).
     fresnel: F,
     /// Lanes where wi is on wo's side.
-    reflect: F,
+    reflect: F::Mask,
 }
 
 impl<F: FloatLanes> RoughDielectrics<F> {
@@ -105,7 +105,7 @@ impl<F: FloatLanes> RoughDielectrics<F> {
     #[inline(always)]
     pub(super) fn sample(
         &self,
-        lanes: F,
+        lanes: F::Mask,
         wo: Vec3s<F>,
         u_lobe: F,
         u: [F; 2],

@@ -8,22 +8,22 @@ use crate::packet::{FloatLanes, IntLanes, Vec3s, WIDTH, lane_set};
 /// values in lanes that hit nothing).
 pub(super) struct Surfaces<F: FloatLanes> {
     /// Lanes whose BSDF the lanes evaluate.
-    pub(super) on_lanes: F,
+    pub(super) on_lanes: F::Mask,
     /// Lanes with a layered BSDF (Lambertian and mirror lobes).
-    pub(super) layered: F,
+    pub(super) layered: F::Mask,
     /// Lanes with a smooth conductor.
-    pub(super) conductor: F,
+    pub(super) conductor: F::Mask,
     /// Lanes whose conductor, smooth or rough, follows Schlick's
     /// approximation (metal).
-    pub(super) schlick: F,
+    pub(super) schlick: F::Mask,
     /// Lanes with a rough conductor.
-    pub(super) rough: F,
+    pub(super) rough: F::Mask,
     /// Lanes with rough glass.
-    pub(super) rough_glass: F,
+    pub(super) rough_glass: F::Mask,
     /// The rough conductor's or glass's GGX α.
     pub(super) alpha: F,
     /// Lanes with smooth glass.
-    pub(super) dielectric: F,
+    pub(super) dielectric: F::Mask,
     /// The material's colour.
     pub(super) color: Vec3s<F>,
     /// The Lambertian lobe's weight.
@@ -43,7 +43,7 @@ pub(super) struct Surfaces<F: FloatLanes> {
 impl<F: FloatLanes> Surfaces<F> {
     /// The table's rows of the objects `object` in the lanes of `hit`.
     #[inline(always)]
-    pub(super) fn gather(table: &ObjectTable, hit: F, object: F::Ints) -> Self {
+    pub(super) fn gather(table: &ObjectTable, hit: F::Mask, object: F::Ints) -> Self {
         let ids = object.to_array();
         let mut rows = [table.row(table.miss()); WIDTH];
         for (k, row) in rows.iter_mut().enumerate() {
@@ -56,14 +56,14 @@ impl<F: FloatLanes> Surfaces<F> {
             .bits()
             .to_array();
         Self {
-            on_lanes: has(flags, LaneBsdf::ON_LANES),
-            layered: has(flags, LaneBsdf::LAYERED),
-            conductor: has(flags, LaneBsdf::CONDUCTOR),
-            schlick: has(flags, LaneBsdf::SCHLICK),
-            rough: has(flags, LaneBsdf::ROUGH),
-            rough_glass: has(flags, LaneBsdf::ROUGH_GLASS),
+            on_lanes: has::<F>(flags, LaneBsdf::ON_LANES),
+            layered: has::<F>(flags, LaneBsdf::LAYERED),
+            conductor: has::<F>(flags, LaneBsdf::CONDUCTOR),
+            schlick: has::<F>(flags, LaneBsdf::SCHLICK),
+            rough: has::<F>(flags, LaneBsdf::ROUGH),
+            rough_glass: has::<F>(flags, LaneBsdf::ROUGH_GLASS),
             alpha: column(&rows, Column::Alpha as usize),
-            dielectric: has(flags, LaneBsdf::DIELECTRIC),
+            dielectric: has::<F>(flags, LaneBsdf::DIELECTRIC),
             color: vec3s(&rows, Column::Color as usize),
             diffuse: column(&rows, Column::Diffuse as usize),
             mirror: column(&rows, Column::Mirror as usize),
@@ -100,6 +100,6 @@ fn vec3s<F: FloatLanes>(rows: &[&[f32; ROW]; WIDTH], c: usize) -> Vec3s<F> {
 
 /// The lanes whose flags include `flag` (one bit).
 #[inline(always)]
-fn has<F: FloatLanes>(flags: F::Ints, flag: i32) -> F {
+fn has<F: FloatLanes>(flags: F::Ints, flag: i32) -> F::Mask {
     (flags & F::Ints::splat(flag)).simd_gt(F::Ints::splat(0))
 }

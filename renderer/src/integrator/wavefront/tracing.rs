@@ -6,7 +6,9 @@
 
 use super::scene::WavefrontScene;
 use crate::geometry::counters::{count_ray, count_shape_tests, shape_tests_on_this_thread};
-use crate::packet::{FloatLanes, IntLanes, PacketHits, Rays, Vec3s, WIDTH, lane_set, mask_from};
+use crate::packet::{
+    FloatLanes, IntLanes, MaskLanes, PacketHits, Rays, Vec3s, WIDTH, lane_set, mask_from,
+};
 use crate::shapes::Method;
 use crate::world::{Hit, World};
 use glam::Vec3;
@@ -20,7 +22,7 @@ pub(super) struct Closest<F: FloatLanes> {
     /// hits are analytic shapes (`PacketHits` says all).
     pub(super) hits: Option<[Option<Hit>; WIDTH]>,
     /// Lanes that hit a mesh triangle.
-    pub(super) mesh: F,
+    pub(super) mesh: F::Mask,
 }
 
 impl<F: FloatLanes> Closest<F> {
@@ -47,17 +49,17 @@ pub(super) fn closest<F: FloatLanes>(
     scene: &WavefrontScene,
     method: Method,
     rays: &Rays<F>,
-    live: F,
+    live: F::Mask,
     tests: &mut [u64; WIDTH],
 ) -> Closest<F> {
     if let Some(shapes) = &scene.shapes {
         let mut tested = F::Ints::splat(0);
         let packet = shapes.closest(rays, &mut tested);
-        count(live, tested, tests);
+        count::<F>(live, tested, tests);
         return Closest {
             packet,
             hits: None,
-            mesh: F::ZERO,
+            mesh: F::Mask::NONE,
         };
     }
     let mut hits = [None; WIDTH];
@@ -73,7 +75,7 @@ pub(super) fn closest<F: FloatLanes>(
             alpha: F::from_array(hits.map(|h| h.map_or(f32::INFINITY, |h| h.alpha))),
             object: F::Ints::from_array(hits.map(|h| h.map_or(-1, |h| h.object as i32))),
         },
-        mesh: mask_from(|k| hits[k].is_some_and(|h| h.triangle.is_some())),
+        mesh: mask_from::<F>(|k| hits[k].is_some_and(|h| h.triangle.is_some())),
         hits: Some(hits),
     }
 }
@@ -86,7 +88,7 @@ pub(super) fn surfaces<F: FloatLanes>(
     scene: &WavefrontScene,
     rays: &Rays<F>,
     closest: &Closest<F>,
-    lanes: F,
+    lanes: F::Mask,
 ) -> (Vec3s<F>, Vec3s<F>) {
     if let Some(shapes) = &scene.shapes {
         return shapes.surface(rays, &closest.packet);
@@ -108,16 +110,16 @@ pub(super) fn occluded<F: FloatLanes>(
     scene: &WavefrontScene,
     method: Method,
     rays: &Rays<F>,
-    lanes: F,
+    lanes: F::Mask,
     tests: &mut [u64; WIDTH],
-) -> F {
+) -> F::Mask {
     if !lanes.any() {
-        return F::ZERO;
+        return F::Mask::NONE;
     }
     if let Some(shapes) = &scene.shapes {
         let mut tested = F::Ints::splat(0);
         let blocked = shapes.occluded(rays, &mut tested) & lanes;
-        count(lanes, tested, tests);
+        count::<F>(lanes, tested, tests);
         return blocked;
     }
     let mut blocked = [false; WIDTH];
@@ -128,13 +130,13 @@ pub(super) fn occluded<F: FloatLanes>(
             tests[k] += shape_tests_on_this_thread() - before;
         }
     }
-    mask_from(|k| blocked[k])
+    mask_from::<F>(|k| blocked[k])
 }
 
 /// Counts one ray and its lane of `tested` shape tests for every lane of
 /// `lanes`.
 #[inline(always)]
-fn count<F: FloatLanes>(lanes: F, tested: F::Ints, tests: &mut [u64; WIDTH]) {
+fn count<F: FloatLanes>(lanes: F::Mask, tested: F::Ints, tests: &mut [u64; WIDTH]) {
     let tested = tested.to_array();
     for (k, tests) in tests.iter_mut().enumerate() {
         if lane_set(lanes, k) {

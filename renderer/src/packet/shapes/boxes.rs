@@ -7,7 +7,7 @@
 //! out here: the slab test alone gives the same answer, and for sixteen
 //! incoherent rays it rarely could skip a box anyway.
 
-use super::{FloatLanes, Nearest, Rays, Vec3s, WIDTH, coordinate, gather3};
+use super::{FloatLanes, MaskLanes, Nearest, Rays, Vec3s, WIDTH, coordinate, gather3};
 use crate::shapes::Cuboid;
 use glam::Vec3;
 use std::ops::Range;
@@ -74,14 +74,14 @@ fn clamp<F: FloatLanes>(p: F, h: F) -> F {
 /// In the lanes of `on` (the face's axis), the coordinate `p` snapped to
 /// ±`h` with its sign; `p` elsewhere.
 #[inline(always)]
-fn snap<F: FloatLanes>(on: F, p: F, h: F) -> F {
+fn snap<F: FloatLanes>(on: F::Mask, p: F, h: F) -> F {
     on.select(copysign(h, p), p)
 }
 
 /// The local normal's coordinate: ±1 with the sign of `p` in the lanes of
 /// `on` (the face's axis), +0 elsewhere.
 #[inline(always)]
-fn face<F: FloatLanes>(on: F, p: F) -> F {
+fn face<F: FloatLanes>(on: F::Mask, p: F) -> F {
     on.select(copysign(F::ONE, p), F::ZERO)
 }
 
@@ -110,13 +110,13 @@ impl Boxes {
     /// The lanes whose ray hits `b` in (0, limit), and α there (anything
     /// elsewhere): `Cuboid::intersect_exact`'s operations lane by lane.
     #[inline(always)]
-    fn hit<F: FloatLanes>(b: &PackedBox, rays: &Rays<F>, limit: F) -> (F, F) {
+    fn hit<F: FloatLanes>(b: &PackedBox, rays: &Rays<F>, limit: F) -> (F::Mask, F) {
         let m = &b.object_from_world;
         let columns = [Vec3s::splat(m[0]), Vec3s::splat(m[1]), Vec3s::splat(m[2])];
         let (o, d) = to_object(&columns, Vec3s::splat(b.origin), rays);
         let zero = F::ZERO;
         let (mut t_near, mut t_far) = (F::NEG_INFINITY, F::INFINITY);
-        let mut miss = F::ZERO;
+        let mut miss = F::Mask::NONE;
         for axis in 0..3 {
             let (o, d) = (coordinate(&o, axis), coordinate(&d, axis));
             let h = b.half[axis];
@@ -163,7 +163,7 @@ impl Boxes {
         &self,
         rays: &Rays<F>,
         range: Range<usize>,
-        settled: &mut F,
+        settled: &mut F::Mask,
     ) -> bool {
         for b in &self.items[range] {
             let (hit, _) = Self::hit(b, rays, rays.t_max);

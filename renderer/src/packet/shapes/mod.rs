@@ -20,7 +20,7 @@ mod spheres;
 mod tree;
 mod triangles;
 
-use super::{FloatLanes, IntLanes, Rays, Vec3s, WIDTH, mask_from};
+use super::{FloatLanes, IntLanes, MaskLanes, Rays, Vec3s, WIDTH};
 use crate::shapes::Shape;
 use crate::world::{Object, World};
 use boxes::Boxes;
@@ -96,7 +96,7 @@ impl<F: FloatLanes> Nearest<F> {
     /// first asking whether any lane hit: in incoherent packets that branch
     /// goes either way and mispredicting it cost more than two blends.
     #[inline(always)]
-    pub(super) fn take(&mut self, hit: F, alpha: F, object: i32) {
+    pub(super) fn take(&mut self, hit: F::Mask, alpha: F, object: i32) {
         self.limit = hit.select(alpha, self.limit);
         self.object = F::Ints::select(hit, F::Ints::splat(object), self.object);
     }
@@ -114,14 +114,14 @@ impl<F: FloatLanes> Nearest<F> {
 
 /// The live lanes of a packet: those with t_max > 0 (dead ones hold 0).
 #[inline(always)]
-fn live_lanes<F: FloatLanes>(rays: &Rays<F>) -> F {
+fn live_lanes<F: FloatLanes>(rays: &Rays<F>) -> F::Mask {
     rays.t_max.simd_gt(F::ZERO)
 }
 
 /// The mask of the lanes whose bit is set in `bits`.
 #[inline(always)]
-fn mask_of_bits<F: FloatLanes>(bits: u32) -> F {
-    mask_from(|k| bits & (1 << k) != 0)
+fn mask_of_bits<F: FloatLanes>(bits: u32) -> F::Mask {
+    F::Mask::from_bitmask(bits)
 }
 
 impl PacketShapes {
@@ -249,10 +249,10 @@ impl PacketShapes {
     /// testing once every lane is blocked). Adds to `tests`, lane by lane,
     /// how many primitives its ray was tested against.
     #[inline(always)]
-    pub fn occluded<F: FloatLanes>(&self, rays: &Rays<F>, tests: &mut F::Ints) -> F {
+    pub fn occluded<F: FloatLanes>(&self, rays: &Rays<F>, tests: &mut F::Ints) -> F::Mask {
         let live = live_lanes(rays);
         if !live.any() {
-            return F::ZERO;
+            return F::Mask::NONE;
         }
         let mut search = Occluded {
             prepared: Prepared::new(self, rays, live, *tests),
@@ -267,7 +267,7 @@ impl PacketShapes {
     /// Hands `visitor` the leaves the lanes `live` of `rays` may hit: those
     /// the tree lets through, or every primitive as one leaf.
     #[inline(always)]
-    fn search<F: FloatLanes>(&self, rays: &Rays<F>, live: F, visitor: &mut impl Visitor<F>) {
+    fn search<F: FloatLanes>(&self, rays: &Rays<F>, live: F::Mask, visitor: &mut impl Visitor<F>) {
         match &self.tree {
             Some(tree) => tree.walk(&BoxRays::new(rays), visitor),
             None => {
@@ -323,7 +323,7 @@ impl PacketShapes {
                 // Every lane that hit, hit this kind.
                 return (p, n);
             }
-            let mask = mask_of_bits(bits[kind]);
+            let mask = mask_of_bits::<F>(bits[kind]);
             point = Vec3s::select(mask, p, point);
             normal = Vec3s::select(mask, n, normal);
         }
@@ -347,7 +347,7 @@ struct Prepared<'a, F: FloatLanes> {
 impl<'a, F: FloatLanes> Prepared<'a, F> {
     /// `rays` (live in `live`) prepared for `shapes`' tests, `tests` counted so far.
     #[inline(always)]
-    fn new(shapes: &'a PacketShapes, rays: &'a Rays<F>, live: F, tests: F::Ints) -> Self {
+    fn new(shapes: &'a PacketShapes, rays: &'a Rays<F>, live: F::Mask, tests: F::Ints) -> Self {
         Self {
             shapes,
             rays,
@@ -363,7 +363,7 @@ struct Closest<'a, F: FloatLanes> {
     prepared: Prepared<'a, F>,
     nearest: Nearest<F>,
     /// The lanes with a ray.
-    live: F,
+    live: F::Mask,
 }
 
 impl<F: FloatLanes> Visitor<F> for Closest<'_, F> {
@@ -373,13 +373,13 @@ impl<F: FloatLanes> Visitor<F> for Closest<'_, F> {
     }
 
     #[inline(always)]
-    fn searching(&self) -> F {
+    fn searching(&self) -> F::Mask {
         self.live
     }
 
     /// Tests the leaf's triangles, boxes, then spheres, each kind in order.
     #[inline(always)]
-    fn leaf(&mut self, leaf: &Leaf, entered: F) -> bool {
+    fn leaf(&mut self, leaf: &Leaf, entered: F::Mask) -> bool {
         let p = &mut self.prepared;
         if let Some(sheared) = &p.sheared {
             let range = leaf.triangles.clone();
@@ -393,7 +393,7 @@ impl<F: FloatLanes> Visitor<F> for Closest<'_, F> {
         p.shapes
             .spheres
             .closest(&p.spheres, range, &mut self.nearest);
-        p.tests = p.tests + count(entered, leaf.len());
+        p.tests = p.tests + count::<F>(entered, leaf.len());
         false
     }
 }
@@ -402,7 +402,7 @@ impl<F: FloatLanes> Visitor<F> for Closest<'_, F> {
 struct Occluded<'a, F: FloatLanes> {
     prepared: Prepared<'a, F>,
     /// Blocked lanes and dead ones.
-    settled: F,
+    settled: F::Mask,
 }
 
 impl<F: FloatLanes> Visitor<F> for Occluded<'_, F> {
@@ -412,17 +412,17 @@ impl<F: FloatLanes> Visitor<F> for Occluded<'_, F> {
     }
 
     #[inline(always)]
-    fn searching(&self) -> F {
+    fn searching(&self) -> F::Mask {
         !self.settled
     }
 
     /// Tests the leaf's triangles, boxes, then spheres; true once every
     /// lane is settled.
     #[inline(always)]
-    fn leaf(&mut self, leaf: &Leaf, entered: F) -> bool {
+    fn leaf(&mut self, leaf: &Leaf, entered: F::Mask) -> bool {
         let p = &mut self.prepared;
         let t_max = p.rays.t_max;
-        p.tests = p.tests + count(entered, leaf.len());
+        p.tests = p.tests + count::<F>(entered, leaf.len());
         let settled = &mut self.settled;
         if let Some(sheared) = &p.sheared
             && p.shapes
@@ -442,7 +442,7 @@ impl<F: FloatLanes> Visitor<F> for Occluded<'_, F> {
 
 /// `n` in the lanes of `lanes`, 0 elsewhere.
 #[inline(always)]
-fn count<F: FloatLanes>(lanes: F, n: usize) -> F::Ints {
+fn count<F: FloatLanes>(lanes: F::Mask, n: usize) -> F::Ints {
     F::Ints::select(lanes, F::Ints::splat(n as i32), F::Ints::splat(0))
 }
 
@@ -503,7 +503,7 @@ pub(super) mod testing {
     /// against `surface`. Returns how many lanes hit.
     pub fn assert_lanes_equal_scalar<F: FloatLanes>(
         lanes: &[Ray; WIDTH],
-        (hit, alpha): (F, F),
+        (hit, alpha): (F::Mask, F),
         (point, normal): (Vec3s<F>, Vec3s<F>),
         intersect: impl Fn(&Ray) -> Option<f32>,
         surface: impl Fn(&Ray, f32) -> crate::shapes::Surface,

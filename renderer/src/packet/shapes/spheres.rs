@@ -1,7 +1,7 @@
 //! Spheres against sixteen rays: the robust quadratic of [`Sphere::intersect`]
 //! (Ray Tracing Gems ch. 7) and [`Sphere::surface`], lane by lane.
 
-use super::{FloatLanes, Nearest, Rays, Vec3s, WIDTH, gather, gather3};
+use super::{FloatLanes, MaskLanes, Nearest, Rays, Vec3s, WIDTH, gather, gather3};
 use crate::shapes::Sphere;
 use glam::Vec3;
 use std::ops::Range;
@@ -28,7 +28,7 @@ pub(super) struct Spheres {
 
 /// Sixteen rays prepared for the sphere test: what depends on the rays only.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct SphereRays<F> {
+pub(super) struct SphereRays<F: FloatLanes> {
     /// P0.
     origin: Vec3s<F>,
     /// v.
@@ -74,7 +74,7 @@ impl Spheres {
     /// q = 0), used only when both are finite; the near root if it is in
     /// the interval, else the far one.
     #[inline(always)]
-    fn hit<F: FloatLanes>(s: &PackedSphere, r: &SphereRays<F>, limit: F) -> (F, F) {
+    fn hit<F: FloatLanes>(s: &PackedSphere, r: &SphereRays<F>, limit: F) -> (F::Mask, F) {
         let zero = F::ZERO;
         let f = r.origin - Vec3s::splat(s.center);
         let (v, a) = (r.dir, r.a);
@@ -126,7 +126,7 @@ impl Spheres {
         r: &SphereRays<F>,
         range: Range<usize>,
         t_max: F,
-        settled: &mut F,
+        settled: &mut F::Mask,
     ) -> bool {
         for s in &self.items[range] {
             let (hit, _) = Self::hit(s, r, t_max);

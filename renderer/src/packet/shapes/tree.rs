@@ -1,6 +1,6 @@
 //! A binary BVH over a world's primitives, walked by whole packets (Wald,
 //! Slusallek, Benthin and Wagner, "Interactive Rendering with Coherent Ray
-//! Tracing", 2001): a node is visited once for the eight rays, its box
+//! Tracing", 2001): a node is visited once for the sixteen rays, its box
 //! tested against all of them in one go, and skipped only when no lane
 //! still searching enters it. A leaf's few primitives are then tested
 //! against every lane with the packet tests of their kinds, so each lane's
@@ -15,7 +15,7 @@
 //!
 //! [`World::shape_bounds`]: crate::world::World::shape_bounds
 
-use super::{FloatLanes, Rays, Vec3s, coordinate};
+use super::{FloatLanes, MaskLanes, Rays, Vec3s, coordinate};
 use crate::accel::Aabb;
 use crate::accel::binned_sah::{PrimRef, Span, split};
 use crate::accel::slab::FAR_SLACK;
@@ -71,16 +71,16 @@ pub(super) struct Tree {
     leaves: Vec<Leaf>,
 }
 
-/// Eight rays prepared for box tests: origins, reciprocal directions and
+/// Sixteen rays prepared for box tests: origins, reciprocal directions and
 /// the sign of each.
-pub(super) struct BoxRays<F> {
+pub(super) struct BoxRays<F: FloatLanes> {
     /// P0.
     origin: Vec3s<F>,
     /// 1/v (±∞ for ±0).
     inv_dir: Vec3s<F>,
     /// Per axis, the mask of the lanes whose 1/v has its sign bit set
     /// (whose near plane is the box's high one).
-    negative: [F; 3],
+    negative: [F::Mask; 3],
 }
 
 impl<F: FloatLanes> BoxRays<F> {
@@ -112,7 +112,7 @@ impl<F: FloatLanes> BoxRays<F> {
     /// maximum and minimum ignore a NaN distance (a ray lying in a face
     /// with a zero direction component: 0 · ∞).
     #[inline(always)]
-    fn enter(&self, node: &Node, limit: F) -> F {
+    fn enter(&self, node: &Node, limit: F) -> F::Mask {
         let mut entry = F::ZERO;
         let mut exit = limit;
         for axis in 0..3 {
@@ -137,10 +137,10 @@ pub(super) trait Visitor<F: FloatLanes> {
     /// hit so far): boxes entered beyond it are skipped.
     fn limit(&self) -> F;
     /// The lanes still searching.
-    fn searching(&self) -> F;
+    fn searching(&self) -> F::Mask;
     /// Tests `leaf`'s primitives, which the lanes `entered` may hit; true
     /// ends the walk.
-    fn leaf(&mut self, leaf: &Leaf, entered: F) -> bool;
+    fn leaf(&mut self, leaf: &Leaf, entered: F::Mask) -> bool;
 }
 
 impl Tree {

@@ -5,7 +5,7 @@
 //!
 //! [`WatertightRay`]: crate::shapes::WatertightRay
 
-use super::{FloatLanes, Nearest, Rays, Vec3s, WIDTH, gather3};
+use super::{FloatLanes, MaskLanes, Nearest, Rays, Vec3s, WIDTH, gather3};
 use crate::shapes::Triangle;
 use glam::Vec3;
 use std::ops::Range;
@@ -39,23 +39,23 @@ pub(super) struct Triangles {
 /// Which world axis feeds each axis of the sheared frame, for the sixteen
 /// lanes together.
 #[derive(Clone, Copy, Debug)]
-enum Frame<F> {
+enum Frame<F: FloatLanes> {
     /// Every live lane has the permutation (kx, ky, kz).
     Same([usize; 3]),
     /// Lanes differ: per sheared axis (x', y', z'), the lanes where world x
     /// feeds it, and those where world y does (world z elsewhere).
     Mixed {
         /// Lanes whose x', y', z' is world x.
-        from_x: [F; 3],
+        from_x: [F::Mask; 3],
         /// Lanes whose x', y', z' is world y.
-        from_y: [F; 3],
+        from_y: [F::Mask; 3],
     },
 }
 
 /// Per lane, `x` where `from_x` is set, else `y` where `from_y` is, else
 /// `z`: the coordinate a permuted axis takes from world x, y, z.
 #[inline(always)]
-fn pick<F: FloatLanes>(from_x: F, from_y: F, x: F, y: F, z: F) -> F {
+fn pick<F: FloatLanes>(from_x: F::Mask, from_y: F::Mask, x: F, y: F, z: F) -> F {
     from_x.select(x, from_y.select(y, z))
 }
 
@@ -84,11 +84,11 @@ impl<F: FloatLanes> Permutation<F> for SameAxes {
 /// [`Frame::Mixed`]'s permutations: coordinate k is world x in
 /// `from_x[k]`'s lanes, world y in `from_y[k]`'s, world z elsewhere.
 #[derive(Clone, Copy, Debug)]
-struct MixedAxes<F> {
+struct MixedAxes<F: FloatLanes> {
     /// Lanes whose x', y', z' is world x.
-    from_x: [F; 3],
+    from_x: [F::Mask; 3],
     /// Lanes whose x', y', z' is world y.
-    from_y: [F; 3],
+    from_y: [F::Mask; 3],
 }
 
 impl<F: FloatLanes> Permutation<F> for MixedAxes<F> {
@@ -119,7 +119,7 @@ fn shear<F: FloatLanes>(r: &ShearedRays<F>, [px, py, pz]: [F; 3]) -> (F, F, F) {
 /// The per-ray half of the watertight test for sixteen rays: what
 /// [`WatertightRay::new`](crate::shapes::WatertightRay::new) computes, lane by lane.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct ShearedRays<F> {
+pub(super) struct ShearedRays<F: FloatLanes> {
     /// The permutation (kx, ky, kz) of every lane.
     frame: Frame<F>,
     /// The origins P0 in the permuted frame: (P0[kx], P0[ky], P0[kz]).
@@ -131,7 +131,7 @@ pub(super) struct ShearedRays<F> {
     /// 1 / v[kz].
     sz: F,
     /// The live lanes (the rare exact-zero fallback runs only for them).
-    live: F,
+    live: F::Mask,
 }
 
 impl<F: FloatLanes> ShearedRays<F> {
@@ -139,7 +139,7 @@ impl<F: FloatLanes> ShearedRays<F> {
     /// direction's largest magnitude (glam's `max_position`: the first on a
     /// tie), kx and ky the next two, swapped when v[kz] < 0.
     #[inline(always)]
-    pub(super) fn new(rays: &Rays<F>, live: F) -> Self {
+    pub(super) fn new(rays: &Rays<F>, live: F::Mask) -> Self {
         let d = rays.dir;
         let (ax, ay, az) = (d.x.abs(), d.y.abs(), d.z.abs());
         let y_beats_x = ay.simd_gt(ax);
@@ -153,10 +153,10 @@ impl<F: FloatLanes> ShearedRays<F> {
         // ... swapped when v[kz] < 0, to keep the winding.
         let swap = dz.simd_lt(F::ZERO);
         let (kx_x, kx_y, ky_x, ky_y) = (
-            swap.select(ky_x, kx_x),
-            swap.select(ky_y, kx_y),
-            swap.select(kx_x, ky_x),
-            swap.select(kx_y, ky_y),
+            swap.select_mask(ky_x, kx_x),
+            swap.select_mask(ky_y, kx_y),
+            swap.select_mask(kx_x, ky_x),
+            swap.select_mask(kx_y, ky_y),
         );
         let (from_x, from_y) = ([kx_x, ky_x, kz_x], [kx_y, ky_y, kz_y]);
         let o = rays.origin;
@@ -176,7 +176,7 @@ impl<F: FloatLanes> ShearedRays<F> {
 
     /// [`Frame::Same`] when every live lane has the same permutation.
     #[inline(always)]
-    fn frame(from_x: [F; 3], from_y: [F; 3], live: F) -> Frame<F> {
+    fn frame(from_x: [F::Mask; 3], from_y: [F::Mask; 3], live: F::Mask) -> Frame<F> {
         // The masks as bits first: what follows is scalar code (closures
         // and iterators over lane values might not be inlined).
         let live_bits = live.to_bitmask();
@@ -265,7 +265,7 @@ impl Triangles {
         r: &ShearedRays<F>,
         permute: impl Permutation<F>,
         limit: F,
-    ) -> (F, F) {
+    ) -> (F::Mask, F) {
         let corners = &triangle.corners;
         let (ax, ay, az) = shear(r, permute.permute(&corners[0]));
         let (bx, by, bz) = shear(r, permute.permute(&corners[1]));
@@ -341,7 +341,7 @@ impl Triangles {
         r: &ShearedRays<F>,
         range: Range<usize>,
         t_max: F,
-        settled: &mut F,
+        settled: &mut F::Mask,
     ) -> bool {
         let items = &self.items[range];
         match r.frame {
@@ -359,7 +359,7 @@ impl Triangles {
         r: &ShearedRays<F>,
         permute: impl Permutation<F>,
         t_max: F,
-        settled: &mut F,
+        settled: &mut F::Mask,
     ) -> bool {
         for triangle in items {
             let (hit, _) = Self::hit(triangle, r, permute, t_max);
