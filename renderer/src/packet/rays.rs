@@ -1,9 +1,9 @@
-//! Eight rays.
+//! Sixteen rays.
 
 use super::{FloatLanes, Vec3s, WIDTH};
 use crate::geometry::ray::Ray;
 
-/// Eight rays R = (P0, v) over (0, t_max), one per lane. Dead lanes hold a
+/// Sixteen rays R = (P0, v) over (0, t_max), one per lane. Dead lanes hold a
 /// harmless ray (any origin, a unit direction, t_max = 0: it hits nothing).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Rays<F: FloatLanes> {
@@ -16,7 +16,7 @@ pub struct Rays<F: FloatLanes> {
 }
 
 impl<F: FloatLanes> Rays<F> {
-    /// The packet of eight rays, each over (0, its t_max); `t_min` must be 0.
+    /// The packet of sixteen rays, each over (0, its t_max); `t_min` must be 0.
     #[inline(always)]
     pub fn from_lanes(rays: &[Ray; WIDTH]) -> Self {
         debug_assert!(

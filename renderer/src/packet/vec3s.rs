@@ -35,7 +35,7 @@ impl<F: FloatLanes> Vec3s<F> {
         Self::new(F::splat(v.x), F::splat(v.y), F::splat(v.z))
     }
 
-    /// The lanes' vectors from eight `Vec3`s.
+    /// The lanes' vectors from sixteen `Vec3`s.
     #[inline(always)]
     pub fn from_lanes(lanes: &[Vec3; WIDTH]) -> Self {
         Self::new(
@@ -45,7 +45,7 @@ impl<F: FloatLanes> Vec3s<F> {
         )
     }
 
-    /// The eight vectors as `Vec3`s.
+    /// The sixteen vectors as `Vec3`s.
     #[inline(always)]
     pub fn to_lanes(self) -> [Vec3; WIDTH] {
         let (x, y, z) = (self.x.to_array(), self.y.to_array(), self.z.to_array());
