@@ -24,7 +24,8 @@
       raylab-SCENE-K.csv from `raylab chart`), computes from each curve the
       time to each level of LEVELS and the samples per pixel per second, prints
       per scene a markdown table of the medians over the rounds with the ratios
-      raylab/Mitsuba, and writes everything as JSON.
+      raylab/Mitsuba (the medians', then each round's own), and writes
+      everything as JSON.
 
 Time to a level: the first point at or below it, interpolated linearly in
 log(time)–log(relMSE) with the point before (as raylab chart's own
@@ -152,6 +153,16 @@ def median(values):
     return None if math.isinf(m) else m
 
 
+def per_round(pairs):
+    """Each round's own ratio raylab/Mitsuba (its two renders ran back to back), as text after the
+    median: how far apart the rounds are says how much the median can be trusted. Empty for one
+    round; a round where either side missed is shown as –."""
+    pairs = list(pairs)
+    if len(pairs) < 2:
+        return ""
+    return " (rounds: " + ", ".join(fmt(y / x) if x and y else "–" for y, x in pairs) + ")"
+
+
 def exp(level):
     """1e-2, not 1e-02."""
     return f"1e{round(math.log10(level))}"
@@ -197,7 +208,8 @@ def cmd_report(args):
             a_end = median(s["last"]["seconds"] for s in m)
             b_end = median(s["last"]["seconds"] for s in y)
             if a is not None and b is not None:
-                ratio, ratio_text = b / a, fmt(b / a)
+                ratio, ratio_text = b / a, fmt(b / a) + per_round(
+                    (ys["time_to"][str(level)], ms["time_to"][str(level)]) for ms, ys in zip(m, y))
             elif a is not None:
                 ratio, ratio_text = None, f"> {fmt(b_end / a)}"
             elif b is not None:
@@ -216,7 +228,8 @@ def cmd_report(args):
                                                   "rounds_reached": {"mitsuba": reached[0], "raylab": reached[1]}}
         a = median(s["spp_per_second"] for s in m)
         b = median(s["spp_per_second"] for s in y)
-        rows.append(("samples per pixel per second", fmt(a), fmt(b), fmt(b / a)))
+        rows.append(("samples per pixel per second", fmt(a), fmt(b), fmt(b / a) + per_round(
+            (ys["spp_per_second"], ms["spp_per_second"]) for ms, ys in zip(m, y))))
         medians["spp_per_second"] = {"mitsuba": a, "raylab": b, "ratio_raylab_over_mitsuba": b / a}
         # Error per sample: the largest power of two of spp every curve has.
         common = set.intersection(*(set(s["rel_mse_at_spp"]) for s in m + y))
