@@ -160,28 +160,29 @@ def cmd_report(args):
     def emb(cast):
         return lambda r: (r.get(cast) or {}).get("mrays_per_second")
 
-    # (figure, raylab's median, Embree's median, True when higher is better)
+    # (figure, raylab's value per round, Embree's per round, True when higher is better);
+    # round k of each list ran back to back (raylab, then Embree on 1 thread, then on all).
     rows = [
-        ("BVH build s, all threads", median(r["mesh_bvh_build_seconds"] for r in raylab),
-         median(r["build_seconds"] for r in every), False),
-        ("BVH build s, 1 thread", median(r["mesh_bvh_build_seconds_one_thread"] for r in raylab),
-         median(r["build_seconds"] for r in one), False),
+        ("BVH build s, all threads", [r["mesh_bvh_build_seconds"] for r in raylab],
+         [r["build_seconds"] for r in every], False),
+        ("BVH build s, 1 thread", [r["mesh_bvh_build_seconds_one_thread"] for r in raylab],
+         [r["build_seconds"] for r in one], False),
     ]
     for cast in ("primary", "incoherent"):
-        rows.append((f"{cast} Mrays/s, 1 thread", median(map(ray(cast, "one"), raylab)),
-                     median(map(emb(cast), one)), True))
-        rows.append((f"{cast} Mrays/s, {threads} threads", median(map(ray(cast, "all"), raylab)),
-                     median(map(emb(cast), every)), True))
+        rows.append((f"{cast} Mrays/s, 1 thread", list(map(ray(cast, "one"), raylab)),
+                     list(map(emb(cast), one)), True))
+        rows.append((f"{cast} Mrays/s, {threads} threads", list(map(ray(cast, "all"), raylab)),
+                     list(map(emb(cast), every)), True))
 
     # raylab's batches of the same rays (World::intersect_batch: packets of eight
     # for the coherent primary rays, interleaved rays for the incoherent ones),
     # against Embree's one-ray-at-a-time casts above.
     for cast in ("primary", "incoherent"):
         if raylab[0].get(f"{cast}_batched"):
-            rows.append((f"{cast} batched, 1 thread", median(map(ray(f"{cast}_batched", "one"), raylab)),
-                         median(map(emb(cast), one)), True))
-            rows.append((f"{cast} batched, {threads} thr", median(map(ray(f"{cast}_batched", "all"), raylab)),
-                         median(map(emb(cast), every)), True))
+            rows.append((f"{cast} batched, 1 thread", list(map(ray(f"{cast}_batched", "one"), raylab)),
+                         list(map(emb(cast), one)), True))
+            rows.append((f"{cast} batched, {threads} thr", list(map(ray(f"{cast}_batched", "all"), raylab)),
+                         list(map(emb(cast), every)), True))
 
     def ratio(a, b):
         return a / b if a is not None and b else None
@@ -193,9 +194,11 @@ def cmd_report(args):
     print(f"raylab vs Embree {e0['embree']} (embreex, {'robust' if e0['robust'] else 'not robust'}) on "
           f"{r0['scene']}, {r0['width']}×{r0['height']} rays, {threads} threads; medians of "
           f"{len(raylab)} rounds of raylab → Embree on 1 thread → Embree on {threads}")
-    print(f"  {'':<32}{'raylab':>10}{'Embree':>10}{'raylab/Embree':>15}")
+    print(f"  {'':<32}{'raylab':>10}{'Embree':>10}{'raylab/Embree':>15}   each round's own ratio")
     for name, a, b, _ in rows:
-        print(f"  {name:<32}{fmt(a):>10}{fmt(b):>10}{fmt(ratio(a, b), 3):>15}")
+        each = ", ".join(fmt(ratio(x, y), 3) for x, y in zip(a, b)) if len(a) > 1 else ""
+        print(f"  {name:<32}{fmt(median(a)):>10}{fmt(median(b)):>10}"
+              f"{fmt(ratio(median(a), median(b)), 3):>15}   {each}")
     print("  (Mrays/s: a ratio above 1 is raylab faster; build seconds: below 1 is raylab faster)")
 
     hits, agree = {}, True
@@ -216,7 +219,9 @@ def cmd_report(args):
         "scene": r0["scene"], "triangles": r0["triangles"], "width": r0["width"],
         "height": r0["height"], "threads": threads, "rounds": len(raylab),
         "embree": e0["embree"], "embree_robust": e0["robust"],
-        "medians": [{"figure": n, "raylab": a, "embree": b, "ratio_raylab_over_embree": ratio(a, b),
+        "medians": [{"figure": n, "raylab": median(a), "embree": median(b),
+                     "ratio_raylab_over_embree": ratio(median(a), median(b)),
+                     "ratios_per_round": [ratio(x, y) for x, y in zip(a, b)],
                      "higher_is_better": h} for n, a, b, h in rows],
         "hit_fractions": hits,
         "raw": {"raylab": raylab, "embree_1_thread": one, "embree_all_threads": every},
