@@ -222,14 +222,17 @@ fn corner<F: FloatLanes>(gradients: &[i32; LANE_TABLE], index: F::Ints, x: F, y:
     let sign = F::Ints::splat(i32::MIN);
     let zero = F::Ints::splat(0);
     // Each component ±1 or 0: the offset with its sign flipped, or +0.
-    let component = |bit: i32, flipped: F| {
-        (g & F::Ints::splat(bit))
-            .simd_gt(zero)
-            .select(flipped, F::ZERO)
-    };
-    let gx = component(1, x ^ (g.shl::<30>() & sign).bits_to_floats());
-    let gy = component(4, y ^ (g.shl::<28>() & sign).bits_to_floats());
-    let gz = component(16, z ^ (g.shl::<26>() & sign).bits_to_floats());
+    // (Written out, not through a closure, which might not be inlined into
+    // the dispatched SIMD function.)
+    let gx = (g & F::Ints::splat(1))
+        .simd_gt(zero)
+        .select(x ^ (g.shl::<30>() & sign).bits_to_floats(), F::ZERO);
+    let gy = (g & F::Ints::splat(4))
+        .simd_gt(zero)
+        .select(y ^ (g.shl::<28>() & sign).bits_to_floats(), F::ZERO);
+    let gz = (g & F::Ints::splat(16))
+        .simd_gt(zero)
+        .select(z ^ (g.shl::<26>() & sign).bits_to_floats(), F::ZERO);
     gx + gy + gz
 }
 

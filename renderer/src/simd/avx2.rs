@@ -153,16 +153,18 @@ impl MaskLanes for Avx2 {
     const NONE: Self = bits(0.0);
     #[inline(always)]
     fn from_bitmask(bits: u32) -> Self {
-        // Lane k keeps bit k of the splatted bits and compares it with itself.
+        // Lane k keeps bit k of the splatted bits and compares it with
+        // itself. (Written out, not through a closure: a closure might not
+        // be inlined into the AVX2 function, and each intrinsic would be a call.)
         // SAFETY: module invariant.
         Self(unsafe {
             let splat = _mm256_set1_epi32(bits as i32);
             let low = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
             let high = _mm256_slli_epi32::<8>(low);
-            let lane = |bit: __m256i| {
-                _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_and_si256(splat, bit), bit))
-            };
-            [lane(low), lane(high)]
+            [
+                _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_and_si256(splat, low), low)),
+                _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_and_si256(splat, high), high)),
+            ]
         })
     }
     #[inline(always)]

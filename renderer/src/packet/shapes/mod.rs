@@ -118,12 +118,6 @@ fn live_lanes<F: FloatLanes>(rays: &Rays<F>) -> F::Mask {
     rays.t_max.simd_gt(F::ZERO)
 }
 
-/// The mask of the lanes whose bit is set in `bits`.
-#[inline(always)]
-fn mask_of_bits<F: FloatLanes>(bits: u32) -> F::Mask {
-    F::Mask::from_bitmask(bits)
-}
-
 impl PacketShapes {
     /// Up to this many primitives, every packet tests every primitive:
     /// below it the tree's box tests cost more than the primitives they
@@ -323,7 +317,7 @@ impl PacketShapes {
                 // Every lane that hit, hit this kind.
                 return (p, n);
             }
-            let mask = mask_of_bits::<F>(bits[kind]);
+            let mask = F::Mask::from_bitmask(bits[kind]);
             point = Vec3s::select(mask, p, point);
             normal = Vec3s::select(mask, n, normal);
         }
