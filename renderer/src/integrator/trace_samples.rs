@@ -1,6 +1,6 @@
 //! Tracing a list of samples, as a pass of the film does: the path tracer
-//! traces them eight at a time in SIMD lanes where the wavefront covers the
-//! world (`integrator/wavefront/`), else in batches of scalar lanes
+//! traces them sixteen at a time in SIMD lanes where the wavefront is the
+//! faster (`integrator/wavefront/`), else in batches of scalar lanes
 //! (`trace_lanes` in `integrator/lanes.rs`), Whitted one by
 //! one (as a lane it measured 8–18% slower than its recursion; it becomes
 //! one when batched ray kernels pay for that). Either way a sample's
@@ -29,11 +29,8 @@ pub fn trace_samples(
 }
 
 /// The wavefront view of `world` when the wavefront path tracer is the
-/// faster: when its rays are tested in packets. Traced lane by lane through
-/// the world's BVH, it computes the same samples but measured slower than
-/// the scalar lanes (320×240, 16 spp, 2 threads: seed.xml 0.62 against
-/// 0.48 s; spheres.xml 0.52 against 0.46 s before its shapes went into
-/// packets), so those worlds keep them.
+/// faster there ([`WavefrontScene::for_film`] says when and what was
+/// measured), else `None`: the scalar lanes.
 ///
 /// Built once per world, method and thread, not per call: the film calls
 /// once per chunk of a pass, and building the tree of spheres.xml's 104
@@ -50,7 +47,7 @@ fn wavefront_scene(world: &World, options: &RenderOptions) -> Rc<Option<Wavefron
             scene.clone()
         }
         _ => {
-            let scene = Rc::new(WavefrontScene::with_packets(world, options.method));
+            let scene = Rc::new(WavefrontScene::for_film(world, options.method));
             *last = Some((world.id(), options.method, scene.clone()));
             scene
         }

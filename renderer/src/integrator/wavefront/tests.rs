@@ -435,3 +435,45 @@ fn a_tree_world_of_every_smooth_material_and_mixed_emitters_matches_too() {
     );
     assert_every_pixel_matches(&world, &[(12, 4), (3, 8)], 3);
 }
+
+#[test]
+fn the_film_takes_the_wavefront_unless_a_material_is_textured() {
+    // Packets where the world allows them (marble or not); through the BVH
+    // for other shapes (a cylinder) and for the lecture's formulas; the
+    // scalar lanes for those once a material is marble.
+    let scene = |body: &str| {
+        world_from(
+            &format!(
+                r#"<scene>
+  <camera eye="0 2 9" toward="0 -0.3 -1" up="0 1 0" theta="30" width="8" height="6"/>
+  <sphere center="0 3 -1" radius="0.5" material="matte" emission="8 8 8"/>
+  {body}
+</scene>"#
+            ),
+            8,
+            6,
+        )
+    };
+    let lone = scene(r#"<sphere center="0 0 0" radius="1" material="glass"/>"#);
+    let other = scene(r#"<cylinder base="0 -1 0" radius="0.6" height="1.5" material="matte"/>"#);
+    let marble = scene(r#"<sphere center="0 0 0" radius="1" material="marble"/>"#);
+    let other_marble =
+        scene(r#"<cylinder base="0 -1 0" radius="0.6" height="1.5" material="marble"/>"#);
+    let choice = |world: &World, method| {
+        WavefrontScene::for_film(world, method).map(|scene| scene.shapes.is_some())
+    };
+    assert_eq!(choice(&lone, Method::Robust), Some(true), "packets");
+    assert_eq!(
+        choice(&lone, Method::Lecture),
+        Some(false),
+        "through the BVH"
+    );
+    assert_eq!(
+        choice(&other, Method::Robust),
+        Some(false),
+        "through the BVH"
+    );
+    assert_eq!(choice(&marble, Method::Robust), Some(true), "packets");
+    assert_eq!(choice(&marble, Method::Lecture), None, "scalar lanes");
+    assert_eq!(choice(&other_marble, Method::Robust), None, "scalar lanes");
+}
