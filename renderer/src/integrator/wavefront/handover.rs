@@ -46,6 +46,9 @@ impl Target {
 /// The lanes of one bounce that the scalar code shades. A group keeps one
 /// for all its bounces, so that the shadow-ray lists are allocated once.
 pub(super) struct Handover {
+    /// The lanes handed over this bounce (bit k for lane k): most bounces
+    /// hand over none, and then nothing below is read.
+    handed: u32,
     pending: [Option<Pending>; WIDTH],
     /// Per lane, its shadow rays: at most one toward each light, then one
     /// toward the emitters, in that order (empty for a lane not handed over).
@@ -59,6 +62,7 @@ impl Handover {
     #[inline(always)]
     pub(super) fn new() -> Self {
         Self {
+            handed: 0,
             pending: std::array::from_fn(|_| None),
             shadows: std::array::from_fn(|_| Vec::new()),
             blocked: Vec::new(),
@@ -108,13 +112,17 @@ impl Handover {
                 &mut NoRecorder,
             );
             self.pending[k] = Some(Pending { lane, next });
+            self.handed |= 1 << k;
         }
     }
 
     /// The handed-over lanes with a shadow ray for packet `target`.
     #[inline(always)]
     pub(super) fn shadowed<F: FloatLanes>(&self, target: Target) -> F::Mask {
-        mask_from::<F>(|k| self.shadow(k, target).is_some())
+        if self.handed == 0 {
+            return F::Mask::NONE;
+        }
+        mask_from::<F>(|k| self.handed & (1 << k) != 0 && self.shadow(k, target).is_some())
     }
 
     /// Lane `k`'s shadow ray for packet `target`, if it has one.
@@ -131,7 +139,10 @@ impl Handover {
         target: Target,
         mut shadows: Rays<F>,
     ) -> Rays<F> {
-        for k in 0..WIDTH {
+        let mut handed = self.handed;
+        while handed != 0 {
+            let k = handed.trailing_zeros() as usize;
+            handed &= handed - 1;
             if let Some(shadow) = self.shadow(k, target) {
                 shadows.origin.set_lane(k, shadow.ray.origin);
                 shadows.dir.set_lane(k, shadow.ray.dir);
@@ -153,9 +164,12 @@ impl Handover {
         toward_emitter: F::Mask,
     ) -> u32 {
         let mut finished = 0;
-        for k in 0..WIDTH {
+        let mut handed = std::mem::take(&mut self.handed);
+        while handed != 0 {
+            let k = handed.trailing_zeros() as usize;
+            handed &= handed - 1;
             let Some(Pending { mut lane, next }) = self.pending[k].take() else {
-                continue;
+                unreachable!("lane {k} was handed over");
             };
             let shadows = &mut self.shadows[k];
             self.blocked.clear();
