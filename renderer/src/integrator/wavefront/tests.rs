@@ -477,3 +477,40 @@ fn the_film_takes_the_wavefront_unless_a_material_is_textured() {
     assert_eq!(choice(&marble, Method::Lecture), None, "scalar lanes");
     assert_eq!(choice(&other_marble, Method::Robust), None, "scalar lanes");
 }
+
+#[test]
+fn a_world_of_a_thousand_spheres_goes_in_packets_and_matches_the_scalar_samples() {
+    // Past the old limit of 512 primitives: a 30 × 30 grid of spheres of
+    // every material the lanes shade, on a floor of two triangles, lit by
+    // an emitting sphere.
+    let materials = [
+        r#"material="matte" color="0.7 0.3 0.2""#,
+        r#"material="mirror" color="0.9 0.8 0.7""#,
+        r#"material="glass" ior="1.5""#,
+        r#"material="metal" color="0.8 0.6 0.3" roughness="0.4""#,
+    ];
+    let mut xml = String::from(
+        r#"<scene>
+  <camera eye="0 9 16" toward="0 -9 -16" up="0 1 0" theta="22" width="8" height="6"/>
+  <triangle t0="-40 0 40" t1="40 0 40" t2="40 0 -40" material="matte" color="0.5 0.5 0.5"/>
+  <triangle t0="-40 0 40" t1="40 0 -40" t2="-40 0 -40" material="matte" color="0.5 0.5 0.5"/>
+  <sphere center="0 8 0" radius="1" material="matte" color="0 0 0" emission="20 20 20"/>
+"#,
+    );
+    for k in 0..900 {
+        let (x, z) = ((k % 30) as f32 * 0.5 - 7.5, (k / 30) as f32 * 0.5 - 7.5);
+        xml += &format!(
+            "  <sphere center=\"{x} 0.2 {z}\" radius=\"0.2\" {}/>\n",
+            materials[k % 4]
+        );
+    }
+    xml += "</scene>";
+    let world = world_from(&xml, 8, 6);
+    assert!(world.objects.len() > 512);
+    let options = path_options(Sampling::Sobol, 8, 3);
+    assert!(
+        WavefrontScene::for_film(&world, Method::Robust).is_some_and(|s| s.shapes.is_some()),
+        "packets through the tree"
+    );
+    assert_wavefront_equals_scalar(&world, &options, &all_samples(8, 6, 2));
+}
