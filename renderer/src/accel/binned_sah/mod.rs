@@ -14,6 +14,10 @@ use wide::f32x4;
 /// Slices per axis.
 pub const BINS: usize = 32;
 
+/// Primitives at or above which one thread bins into two sets of bins
+/// ([`Bins::add`]).
+const TWO_SETS: usize = 1024;
+
 /// Primitives at or above which a set is binned by several threads.
 const PARALLEL_BINNING: usize = 1 << 16;
 
@@ -233,23 +237,51 @@ impl Bins {
     };
 
     fn add(&mut self, refs: &[PrimRef], mapping: &Mapping) {
-        for r in refs {
-            let (lo, hi) = (r.lo(), r.hi());
-            let bins = mapping.bins(lo + hi);
-            for (axis, &bin) in bins[..3].iter().enumerate() {
-                self.bounds[bin as usize][axis].grow(lo, hi);
-                self.counts[bin as usize][axis] += 1;
+        if refs.len() < TWO_SETS {
+            for r in refs {
+                self.add_one(r, mapping);
             }
+            return;
+        }
+        // Neighbouring primitives often fall in the same bins, and one's
+        // update then waits for the other's stores to land: alternate
+        // primitives go to two sets of bins, merged at the end (unions and
+        // sums, so the bins are the same).
+        let mut other = Bins::EMPTY;
+        let mut pairs = refs.chunks_exact(2);
+        for pair in &mut pairs {
+            self.add_one(&pair[0], mapping);
+            other.add_one(&pair[1], mapping);
+        }
+        for r in pairs.remainder() {
+            self.add_one(r, mapping);
+        }
+        self.merge_from(&other);
+    }
+
+    /// Adds one primitive to its bin on each axis.
+    #[inline(always)]
+    fn add_one(&mut self, r: &PrimRef, mapping: &Mapping) {
+        let (lo, hi) = (r.lo(), r.hi());
+        let bins = mapping.bins(lo + hi);
+        for (axis, &bin) in bins[..3].iter().enumerate() {
+            self.bounds[bin as usize][axis].grow(lo, hi);
+            self.counts[bin as usize][axis] += 1;
         }
     }
 
-    fn merge(mut self, other: Bins) -> Bins {
+    /// Adds `other`'s boxes and counts to these.
+    fn merge_from(&mut self, other: &Bins) {
         for bin in 0..BINS {
             for axis in 0..3 {
                 self.bounds[bin][axis] = self.bounds[bin][axis].union(other.bounds[bin][axis]);
                 self.counts[bin][axis] += other.counts[bin][axis];
             }
         }
+    }
+
+    fn merge(mut self, other: Bins) -> Bins {
+        self.merge_from(&other);
         self
     }
 
@@ -391,24 +423,13 @@ fn partition(
     refs: &mut [PrimRef],
     goes_left: impl Fn(&PrimRef) -> bool,
 ) -> (usize, Bounds, Bounds) {
-    let (mut left_c, mut right_c) = (Bounds::EMPTY, Bounds::EMPTY);
-    // Hoare partition; an element may be looked at twice, which the
-    // centroid boxes (unions) do not mind.
-    let mut side = |r: &PrimRef| {
-        let left = goes_left(r);
-        if left {
-            left_c.grow_point(r.centroid());
-        } else {
-            right_c.grow_point(r.centroid());
-        }
-        left
-    };
+    // Hoare partition.
     let (mut i, mut j) = (0usize, refs.len());
     loop {
-        while i < j && side(&refs[i]) {
+        while i < j && goes_left(&refs[i]) {
             i += 1;
         }
-        while i < j && !side(&refs[j - 1]) {
+        while i < j && !goes_left(&refs[j - 1]) {
             j -= 1;
         }
         if i >= j {
@@ -418,7 +439,16 @@ fn partition(
         i += 1;
         j -= 1;
     }
-    (i, left_c, right_c)
+    // The centroid boxes afterwards, each side in one straight pass (a
+    // union, so the order does not matter): cheaper than growing one box or
+    // the other inside the partition's loop, which branches on each.
+    let centroids = |side: &[PrimRef]| {
+        side.iter().fold(Bounds::EMPTY, |mut b, r| {
+            b.grow_point(r.centroid());
+            b
+        })
+    };
+    (i, centroids(&refs[..i]), centroids(&refs[i..]))
 }
 
 /// Halves `span` by count (its centroids all coincide, so no plane
