@@ -5,10 +5,13 @@
 # installed with apt-get when missing).
 #
 #   scripts/bench-vs-mitsuba.sh [--rounds R] [--scenes a,b] [--max-seconds S]
-#                               [--method M] [--out FILE]
+#                               [--method M] [--out FILE] [--dir DIR [--references SPP]]
 #
 # The scenes are every assets/reference/NAME.xml with a NAME.exr beside it
-# (--scenes picks some by NAME). The script installs mitsuba and numpy into a
+# (--scenes picks some by NAME), or every DIR/NAME.xml: scenes not in the
+# repository, such as those scripts/unseen_scenes.py writes. With
+# --references SPP, a DIR/NAME.xml without its NAME.exr first gets one,
+# rendered by Mitsuba at SPP samples per pixel (scripts/mitsuba_reference.py). The script installs mitsuba and numpy into a
 # throw-away venv, builds raylab in release, then runs R rounds (default 3); in
 # each, per scene, Mitsuba and raylab one after the other, the order swapped
 # every other round, so that a busy neighbour slows both alike:
@@ -41,6 +44,8 @@ max_seconds=35
 method=path-sobol
 out=out/bench-vs-mitsuba.json
 picked=
+dir=assets/reference
+references=
 while [ $# -gt 0 ]; do
   case "$1" in
     --rounds) rounds=$2; shift 2 ;;
@@ -48,23 +53,25 @@ while [ $# -gt 0 ]; do
     --max-seconds) max_seconds=$2; shift 2 ;;
     --method) method=$2; shift 2 ;;
     --out) out=$2; [[ $out = /* ]] || out=$here/$out; shift 2 ;;
-    -h | --help) sed -n '2,34p' "$0"; exit 0 ;;
+    --dir) dir=$2; [[ $dir = /* ]] || dir=$here/$dir; shift 2 ;;
+    --references) references=$2; shift 2 ;;
+    -h | --help) sed -n '2,38p' "$0"; exit 0 ;;
     *) echo "bench-vs-mitsuba: unknown option $1" >&2; exit 2 ;;
   esac
 done
 
 scenes=()
-for xml in assets/reference/*.xml; do
+for xml in "$dir"/*.xml; do
   name=$(basename "$xml" .xml)
-  [ -f "assets/reference/$name.exr" ] || continue
+  [ -f "$dir/$name.exr" ] || [ -n "$references" ] || continue
   if [ -z "$picked" ] || [[ ",$picked," == *",$name,"* ]]; then scenes+=("$name"); fi
 done
 if [ ${#scenes[@]} -eq 0 ]; then
-  echo "bench-vs-mitsuba: no reference scene (NAME.xml with NAME.exr) matches '${picked:-*}'" >&2
+  echo "bench-vs-mitsuba: no reference scene (NAME.xml with NAME.exr) in $dir matches '${picked:-*}'" >&2
   exit 2
 fi
 for name in ${picked//,/ }; do
-  [ -f "assets/reference/$name.exr" ] || { echo "bench-vs-mitsuba: no assets/reference/$name.xml + .exr" >&2; exit 2; }
+  [ -f "$dir/$name.exr" ] || [ -n "$references" ] || { echo "bench-vs-mitsuba: no $dir/$name.xml + .exr" >&2; exit 2; }
 done
 
 # Mitsuba's llvm variant JITs through the LLVM shared library it finds at
@@ -89,6 +96,13 @@ python3 -m venv "$tmp/venv"
 "$tmp/venv/bin/pip" install --quiet --disable-pip-version-check mitsuba numpy
 py="$tmp/venv/bin/python"
 
+for scene in "${scenes[@]}"; do
+  if [ ! -f "$dir/$scene.exr" ]; then
+    echo "== reference for $scene: Mitsuba at $references spp"
+    "$py" scripts/mitsuba_reference.py "$dir/$scene.xml" "$references"
+  fi
+done
+
 echo "== cargo build --release -p raylab"
 cargo build --release --quiet -p raylab
 raylab="${CARGO_TARGET_DIR:-target}/release/raylab"
@@ -105,12 +119,12 @@ run() { # run LOG CMD...: CMD's stdout to LOG; its stderr shown only if it fails
 }
 run_mitsuba() {
   run "$tmp/rounds/mitsuba-$1-$2.json" "$py" scripts/mitsuba_time_to_error.py render \
-    "assets/reference/$1.xml" --reference "assets/reference/$1.exr" \
+    "$dir/$1.xml" --reference "$dir/$1.exr" \
     --max-seconds "$max_seconds" --threads "$threads" --seed "$2"
 }
 run_raylab() {
   run "$tmp/rounds/raylab-$1-$2.log" env RAYON_NUM_THREADS="$threads" "$raylab" chart \
-    "assets/reference/$1.xml" --reference "assets/reference/$1.exr" --methods "$method" \
+    "$dir/$1.xml" --reference "$dir/$1.exr" --methods "$method" \
     --max-depth 8 --seconds "$max_seconds" --seed "$2" --output "$tmp/rounds/raylab-$1-$2"
 }
 for r in $(seq 1 "$rounds"); do

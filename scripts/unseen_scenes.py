@@ -1,0 +1,102 @@
+#!/usr/bin/env python3
+"""Writes scenes unlike the three in assets/reference, for measuring raylab against Mitsuba on scenes it
+was not tuned on (issue 26: "it will be checked on scenes that are not in the repository"):
+
+  grid900.xml       a 30 × 30 grid of spheres (matte, mirror, glass) on a floor, lit by an area light;
+  scatter3000.xml   3,000 spheres of random sizes scattered over the floor and in the air;
+  tessellated.xml   a UV sphere of 3,480 lone triangles beside five spheres.
+
+Each is in the subset of raylab's format that scripts/mitsuba_reference.py translates (triangles, spheres,
+boxes; matte, mirror, glass; emission), 512×384. The scenes are the same on every run (fixed seeds).
+
+    python3 scripts/unseen_scenes.py DIR
+
+scripts/bench-vs-mitsuba.sh --dir DIR --references SPP renders their references with Mitsuba and compares.
+"""
+import math
+import os
+import random
+import sys
+
+HEAD = """<scene>
+  <camera eye="0 9 16" toward="0 -9 -16" up="0 1 0" theta="22" width="512" height="384"/>
+  <triangle t0="-40 0 40" t1="40 0 40" t2="40 0 -40" material="matte" color="0.5 0.5 0.5"/>
+  <triangle t0="-40 0 40" t1="40 0 -40" t2="-40 0 -40" material="matte" color="0.5 0.5 0.5"/>
+  <triangle t0="-2 8 -2" t1="2 8 -2" t2="2 8 2" material="matte" color="0 0 0" emission="20 20 20"/>
+  <triangle t0="-2 8 -2" t1="2 8 2" t2="-2 8 2" material="matte" color="0 0 0" emission="20 20 20"/>
+"""
+
+
+def material(rng):
+    """A random material: matte twice as often as mirror or glass."""
+    kind = rng.choice(["matte", "matte", "mirror", "glass"])
+    if kind == "glass":
+        return 'material="glass" ior="1.5"'
+    color = " ".join("%.3f" % rng.random() for _ in range(3))
+    return f'material="{kind}" color="{color}"'
+
+
+def sphere(x, y, z, r, rng):
+    return f'  <sphere center="{x:.4f} {y:.4f} {z:.4f}" radius="{r:.4f}" {material(rng)}/>\n'
+
+
+def grid(n):
+    rng = random.Random(7)
+    side = int(math.isqrt(n))
+    step = 16.0 / side
+    body = ""
+    for i in range(side):
+        for j in range(side):
+            r = 0.35 * step
+            body += sphere((i - side / 2) * step, r, (j - side / 2) * step, r, rng)
+    return HEAD + body + "</scene>\n"
+
+
+def scatter(n):
+    rng = random.Random(3)
+    body = ""
+    for _ in range(n):
+        r = rng.uniform(0.05, 0.5)
+        x, z = rng.uniform(-8, 8), rng.uniform(-8, 4)
+        y = r + rng.choice([0, 0, rng.uniform(0, 3)])
+        body += sphere(x, y, z, r, rng)
+    return HEAD + body + "</scene>\n"
+
+
+def tessellated(nu=60, nv=30, radius=2.5):
+    rng = random.Random(11)
+
+    def point(u, v):
+        theta, phi = 2 * math.pi * u / nu, math.pi * v / nv
+        return (radius * math.sin(phi) * math.cos(theta), radius + 0.1 + radius * math.cos(phi),
+                radius * math.sin(phi) * math.sin(theta))
+
+    body = ""
+    for u in range(nu):
+        for v in range(nv):
+            a, b, c, d = point(u, v), point(u + 1, v), point(u + 1, v + 1), point(u, v + 1)
+            quads = ([(a, b, c)] if v > 0 else []) + ([(a, c, d)] if v < nv - 1 else [])
+            for t in quads:
+                t0, t1, t2 = ("%.5f %.5f %.5f" % p for p in t)
+                body += (f'  <triangle t0="{t0}" t1="{t1}" t2="{t2}" material="matte" '
+                         'color="0.7 0.5 0.3"/>\n')
+    for k in range(5):
+        body += sphere(-5 + 2.5 * k, 0.6, 4, 0.6, rng)
+    return HEAD + body + "</scene>\n"
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    out = sys.argv[1]
+    os.makedirs(out, exist_ok=True)
+    for name, text in [("grid900", grid(900)), ("scatter3000", scatter(3000)),
+                       ("tessellated", tessellated())]:
+        path = os.path.join(out, name + ".xml")
+        with open(path, "w") as f:
+            f.write(text)
+        print(path)
+
+
+if __name__ == "__main__":
+    main()
