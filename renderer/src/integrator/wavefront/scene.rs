@@ -126,26 +126,15 @@ impl WavefrontScene {
     /// ([`LaneBsdf`]) are shaded on lanes, the others (a highlight,
     /// marble's texture, mesh triangles) by the scalar code,
     /// lane by lane; rays are tested in packets when the world allows it
-    /// ([`WavefrontScene::with_packets`]), else lane by lane through its BVH.
+    /// ([`PacketShapes::new`]), else lane by lane through its BVH. The
+    /// tests trace any world with it; the film asks [`WavefrontScene::for_film`].
+    #[cfg(test)]
     pub(crate) fn new(world: &World, method: Method) -> Self {
         Self {
             shapes: packet_shapes(world, method),
             objects: ObjectTable::new(world),
             emitters: EmitterTable::new(&world.emitters),
         }
-    }
-
-    /// The wavefront view of `world` when its rays can be tested in
-    /// packets: lone triangles, boxes and spheres (at most
-    /// [`PacketShapes::MAX_PRIMITIVES`]) and the robust formulas. Asks that
-    /// first, so a world without packets costs next to nothing.
-    pub(crate) fn with_packets(world: &World, method: Method) -> Option<Self> {
-        let shapes = packet_shapes(world, method)?;
-        Some(Self {
-            shapes: Some(shapes),
-            objects: ObjectTable::new(world),
-            emitters: EmitterTable::new(&world.emitters),
-        })
     }
 
     /// The wavefront view of `world` when the wavefront is the faster path
@@ -158,15 +147,21 @@ impl WavefrontScene {
     /// gain only on shading, and a textured hit is shaded by the scalar code
     /// after the lanes' bookkeeping. Measured against the scalar lanes
     /// (path, sobol, 16 or 32 spp, 2 threads, medians of 3 alternated runs):
-    /// 900 and 2,500 spheres 3.06 → 2.61 s and 2.94 → 2.41 s; the 20,000-
+    /// 900 and 2,500 spheres (before they went in packets) 3.06 → 2.61 s and
+    /// 2.94 → 2.41 s; the 20,000-
     /// triangle knot mesh 0.45 → 0.41 s; seed.xml and roughness.xml with
     /// their marble floors made matte 3.01 → 2.25 s and 2.89 → 2.03 s, but
     /// with marble 4.07 → 4.90 s and 4.08 → 4.98 s.
     pub(crate) fn for_film(world: &World, method: Method) -> Option<Self> {
-        if let Some(scene) = Self::with_packets(world, method) {
-            return Some(scene);
+        let shapes = packet_shapes(world, method);
+        if shapes.is_none() && has_textures(world) {
+            return None;
         }
-        (!has_textures(world)).then(|| Self::new(world, method))
+        Some(Self {
+            shapes,
+            objects: ObjectTable::new(world),
+            emitters: EmitterTable::new(&world.emitters),
+        })
     }
 }
 
