@@ -122,7 +122,7 @@ impl Handover {
         if self.handed == 0 {
             return F::Mask::NONE;
         }
-        mask_from::<F>(|k| self.handed & (1 << k) != 0 && self.shadow(k, target).is_some())
+        mask_from::<F>(|k| self.shadow(k, target).is_some())
     }
 
     /// Lane `k`'s shadow ray for packet `target`, if it has one.

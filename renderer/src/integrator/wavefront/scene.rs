@@ -144,14 +144,13 @@ impl WavefrontScene {
     /// base-colour image).
     ///
     /// Through the BVH each lane's ray takes the scalar query, so the lanes
-    /// gain only on shading, and a textured hit is shaded by the scalar code
-    /// after the lanes' bookkeeping. Measured against the scalar lanes
-    /// (path, sobol, 16 or 32 spp, 2 threads, medians of 3 alternated runs):
-    /// 900 and 2,500 spheres (before they went in packets) 3.06 → 2.61 s and
-    /// 2.94 → 2.41 s; the 20,000-
-    /// triangle knot mesh 0.45 → 0.41 s; seed.xml and roughness.xml with
-    /// their marble floors made matte 3.01 → 2.25 s and 2.89 → 2.03 s, but
-    /// with marble 4.07 → 4.90 s and 4.08 → 4.98 s.
+    /// gain only on shading; a textured hit is shaded by the scalar code.
+    /// Measured against the scalar lanes (path, sobol, 16 or 32 spp,
+    /// 2 threads, medians of 3 alternated runs): 900 and 2,500 spheres
+    /// (before they went in packets) 3.06 → 2.61 s and 2.94 → 2.41 s; the
+    /// 20,000-triangle knot mesh 0.45 → 0.41 s; seed.xml and roughness.xml
+    /// with their marble floors made matte 3.01 → 2.25 s and 2.89 → 2.03 s,
+    /// but with marble 4.07 → 4.90 s and 4.08 → 4.98 s.
     pub(crate) fn for_film(world: &World, method: Method) -> Option<Self> {
         let shapes = packet_shapes(world, method);
         if shapes.is_none() && has_textures(world) {

@@ -479,7 +479,7 @@ fn the_film_takes_the_wavefront_unless_a_material_is_textured() {
 }
 
 #[test]
-fn a_world_of_a_thousand_spheres_goes_in_packets_and_matches_the_scalar_samples() {
+fn a_world_of_nine_hundred_spheres_goes_in_packets_and_matches_the_scalar_samples() {
     // Past the old limit of 512 primitives: a 30 × 30 grid of spheres of
     // every material the lanes shade, on a floor of two triangles, lit by
     // an emitting sphere.
