@@ -14,7 +14,7 @@
 # primary and incoherent closest-hit Mrays/s on 1 thread and on all threads,
 # both hit fractions (they must agree) and the ratios raylab/Embree, plus
 # raylab's batches of the same rays (World::intersect_batch: primary rays in
-# packets of eight, incoherent rays interleaved) against Embree's
+# packets of sixteen, a 4×4 tile each, incoherent rays interleaved) against Embree's
 # one-at-a-time casts. The JSON goes to FILE (default:
 # out/bench-vs-embree.json). See scripts/embree_cast.py
 # for how Embree's thread count is controlled. Embree runs with

@@ -174,8 +174,8 @@ def cmd_report(args):
         rows.append((f"{cast} Mrays/s, {threads} threads", list(map(ray(cast, "all"), raylab)),
                      list(map(emb(cast), every)), True))
 
-    # raylab's batches of the same rays (World::intersect_batch: packets of eight
-    # for the coherent primary rays, interleaved rays for the incoherent ones),
+    # raylab's batches of the same rays (World::intersect_batch: packets of sixteen
+    # for the coherent primary rays (4×4 tiles), interleaved rays for the incoherent ones),
     # against Embree's one-ray-at-a-time casts above.
     for cast in ("primary", "incoherent"):
         if raylab[0].get(f"{cast}_batched"):

@@ -7,20 +7,23 @@
 //! arithmetic as [`crate::shapes::Triangle`] ([`WatertightRay`]), so
 //! closest hits equal brute force exactly.
 
-mod packet;
+mod lanes;
 
 use super::ploc::build_ploc;
 use super::scene::Aabb;
 use super::simd::{prefetch, with_widest_simd};
 use super::stack::Stack;
-use super::triangle_pack::{PACK, TrianglePack};
-use super::wide::{ChildRef, WIDTH, WideNode, WideRay, pop_within, push_children_nearest_last};
+use super::triangle_pack::{PACK, PackHit, TrianglePack};
+use super::wide::{ChildRef, WideNode, WideRay, pop_within, push_children_nearest_last};
 use super::wide_build::build_wide;
 use crate::geometry::ray::Ray;
 use crate::shapes::WatertightRay;
+use crate::simd::{FloatLanes, WithLanes, dispatch};
 use glam::Vec3;
 use obvhs::BvhBuildParams;
-use packet::{LANES, LaneBest, Packet};
+
+/// The closest hit of one ray so far: its pack and the hit in it.
+type LaneBest<'a> = Option<(&'a TrianglePack, PackHit)>;
 
 /// The closest hit of a ray with a mesh: P0 + α v = (1 − β − γ) t0 + β t1 + γ t2.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -164,20 +167,28 @@ impl MeshBvh {
 
     /// [`MeshBvh::closest_hit`] of every ray in `rays`, written to `hits`
     /// (same length): the same α; on an exact tie between two triangles
-    /// either may be reported. Each run of [`LANES`] consecutive rays that
-    /// are coherent (camera rays through neighbouring pixels: one octant,
-    /// close directions and origins) is traced as a packet, each node
-    /// loaded once for all its rays. The other rays are traced
+    /// either may be reported. Each run of sixteen consecutive rays that
+    /// are coherent (camera rays through a 4 × 4 tile of pixels: one
+    /// octant, close directions and origins) is traced as a packet in SIMD
+    /// lanes (`mesh/lanes.rs`), each node loaded and each triangle tested
+    /// once for all its rays. The other rays are traced
     /// [`INTERLEAVED`] at a time, one node or leaf of each in turn, so that
     /// while one ray waits for its next node to arrive from memory (it was
     /// prefetched) the others compute: incoherent rays in a large mesh
     /// spend most of their time waiting otherwise.
     pub fn closest_hits(&self, rays: &[Ray], hits: &mut [Option<MeshHit>]) {
         assert_eq!(rays.len(), hits.len(), "one hit slot per ray");
+        let mut alone = Vec::new();
+        dispatch(Packets {
+            bvh: self,
+            rays,
+            hits: &mut *hits,
+            alone: &mut alone,
+        });
         with_widest_simd(
             #[inline(always)]
-            || self.closest_hits_inline(rays, hits),
-        )
+            || self.interleaved(alone.into_iter().map(|i| (i, &rays[i])), hits),
+        );
     }
 
     /// [`MeshBvh::closest_hit`], compiled into its caller.
@@ -200,28 +211,6 @@ impl MeshBvh {
         let mut walk = Walk::new(ray, self.root());
         while self.step::<true>(&mut walk) {}
         walk.best.is_some()
-    }
-
-    /// [`MeshBvh::closest_hits`], compiled into its caller.
-    #[inline(always)]
-    fn closest_hits_inline(&self, rays: &[Ray], hits: &mut [Option<MeshHit>]) {
-        let size = (self.bounds.max - self.bounds.min).length();
-        // Rays not coherent enough for a packet, traced interleaved.
-        let mut alone = Vec::new();
-        let mut packet = Packet::new();
-        for (k, chunk) in rays.chunks(LANES).enumerate() {
-            let first = k * LANES;
-            if packet.load(chunk, size) {
-                let mut best = [None; LANES];
-                self.trace_packet(&mut packet, &mut best);
-                for (hit, best) in hits[first..first + chunk.len()].iter_mut().zip(best) {
-                    *hit = mesh_hit(best);
-                }
-            } else {
-                alone.extend(first..first + chunk.len());
-            }
-        }
-        self.interleaved(alone.into_iter().map(|i| (i, &rays[i])), hits);
     }
 
     /// The closest hit of each ray `waiting` yields (its index in `hits`
@@ -336,6 +325,31 @@ impl MeshBvh {
         match child.packs() {
             Some(range) => self.packs[range].iter().for_each(prefetch),
             None => prefetch(&self.nodes[child.0 as usize]),
+        }
+    }
+}
+
+/// [`MeshBvh::closest_hits`]'s packets, run with the widest lane type:
+/// each run of [`lanes::LANES`] consecutive rays that are coherent is
+/// traced as one packet; the others are left in `alone`, by index.
+struct Packets<'a> {
+    bvh: &'a MeshBvh,
+    rays: &'a [Ray],
+    hits: &'a mut [Option<MeshHit>],
+    alone: &'a mut Vec<usize>,
+}
+
+impl WithLanes for Packets<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run<F: FloatLanes>(self) {
+        for (k, chunk) in self.rays.chunks(lanes::LANES).enumerate() {
+            let first = k * lanes::LANES;
+            let hits = &mut self.hits[first..first + chunk.len()];
+            if !self.bvh.trace_lanes::<F>(chunk, hits) {
+                self.alone.extend(first..first + chunk.len());
+            }
         }
     }
 }
@@ -550,20 +564,16 @@ mod tests {
                 rays.push(ray);
             }
             // The batched paths start there too: interleaved walks for the
-            // random rays above, packets for runs of LANES parallel rays
-            // close enough together to load as one.
-            let size = (bvh.bounds.max - bvh.bounds.min).length();
-            assert_eq!(rays.len() % LANES, 0, "each run below is one chunk");
+            // random rays above, packets for runs of sixteen parallel rays
+            // close enough together to travel as one (1e-4 apart, within
+            // a hundredth of the strip's size).
+            let lanes = crate::packet::WIDTH;
+            assert_eq!(rays.len() % lanes, 0, "each run below is one chunk");
             for run in 0..32 {
                 let base = Vec3::new(0.16 * run as f32, 0.02 * run as f32, 2.0);
-                let packet: Vec<Ray> = (0..LANES)
-                    .map(|k| Ray::new(base + Vec3::X * 1e-3 * k as f32, Vec3::new(0.01, 0.0, -1.0)))
-                    .collect();
-                assert!(
-                    Packet::new().load(&packet, size),
-                    "run {run} forms a packet"
-                );
-                rays.extend(packet);
+                rays.extend((0..lanes).map(|k| {
+                    Ray::new(base + Vec3::X * 1e-4 * k as f32, Vec3::new(0.01, 0.0, -1.0))
+                }));
             }
             let mut hits = vec![None; rays.len()];
             bvh.closest_hits(&rays, &mut hits);

@@ -6,8 +6,9 @@
 //!   top down by a binned SAH, triangles copied into packs of four in leaf
 //!   order; obvhs's PLOC tree collapsed to the same nodes for comparison:
 //!   it builds slower and traces slower). One ray at a time ([`MeshBvh::closest_hit`]), or
-//!   a batch ([`MeshBvh::closest_hits`]): coherent rays in packets of eight
-//!   that share each node's loads, incoherent ones several at a time,
+//!   a batch ([`MeshBvh::closest_hits`]): coherent rays in packets of
+//!   sixteen in SIMD lanes (`mesh/lanes.rs`) that share each node's loads
+//!   and each triangle's test, incoherent ones several at a time,
 //!   interleaved, to hide memory latency.
 //! - [`SceneBvh`]: the top level over items known only by their boxes (mesh
 //!   instances, analytic shapes), the same 8-wide nodes by the same binned

@@ -53,10 +53,27 @@ impl TrianglePack {
     /// planes directly).
     #[cfg(test)]
     pub fn corners(&self, lane: usize) -> [Vec3; 3] {
-        std::array::from_fn(|c| {
-            let [x, y, z] = &self.corners[c];
-            Vec3::new(x.as_array()[lane], y.as_array()[lane], z.as_array()[lane])
-        })
+        self.corner_arrays(lane).map(Vec3::from_array)
+    }
+
+    /// t0, t1, t2 of the triangle in `lane`, coordinate by coordinate (what
+    /// a packet of rays tests one triangle at a time).
+    #[inline(always)]
+    pub fn corner_arrays(&self, lane: usize) -> [[f32; 3]; 3] {
+        let at = |c: usize, k: usize| self.corners[c][k].as_array()[lane];
+        [
+            [at(0, 0), at(0, 1), at(0, 2)],
+            [at(1, 0), at(1, 1), at(1, 2)],
+            [at(2, 0), at(2, 1), at(2, 2)],
+        ]
+    }
+
+    /// How many triangles it holds (the lanes past them repeat the last).
+    #[inline(always)]
+    pub fn triangle_count(&self) -> usize {
+        (1..PACK)
+            .find(|&i| self.ids[i] == self.ids[i - 1])
+            .unwrap_or(PACK)
     }
 
     /// The nearest hit in (t_min, t_max) among the pack's triangles (the

@@ -18,5 +18,6 @@ pub use crate::simd::{
     lane_set, mask_from,
 };
 pub use rays::Rays;
+pub(crate) use shapes::ShearedRays;
 pub use shapes::{PacketHits, PacketShapes};
 pub use vec3s::Vec3s;

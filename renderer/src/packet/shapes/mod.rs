@@ -26,7 +26,8 @@ use crate::world::{Object, World};
 use boxes::Boxes;
 use spheres::{SphereRays, Spheres};
 use tree::{BoxRays, Leaf, Tree, Visitor};
-use triangles::{ShearedRays, Triangles};
+pub(crate) use triangles::ShearedRays;
+use triangles::Triangles;
 
 /// The closest hits of a packet: α per lane (+∞ where nothing was hit) and the object id hit (-1 where none).
 #[derive(Clone, Copy, Debug)]

@@ -116,10 +116,25 @@ fn shear<F: FloatLanes>(r: &ShearedRays<F>, [px, py, pz]: [F; 3]) -> (F, F, F) {
     )
 }
 
+/// What the watertight test of one triangle gives sixteen rays.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct TriangleLanes<F: FloatLanes> {
+    /// The lanes that hit it in (0, limit).
+    pub(crate) hit: F::Mask,
+    /// α (anything in the other lanes).
+    pub(crate) alpha: F,
+    /// The edge function V (β = V / det).
+    pub(crate) v: F,
+    /// The edge function W (γ = W / det).
+    pub(crate) w: F,
+    /// The determinant U + V + W.
+    pub(crate) det: F,
+}
+
 /// The per-ray half of the watertight test for sixteen rays: what
 /// [`WatertightRay::new`](crate::shapes::WatertightRay::new) computes, lane by lane.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct ShearedRays<F: FloatLanes> {
+pub(crate) struct ShearedRays<F: FloatLanes> {
     /// The permutation (kx, ky, kz) of every lane.
     frame: Frame<F>,
     /// The origins P0 in the permuted frame: (P0[kx], P0[ky], P0[kz]).
@@ -139,7 +154,7 @@ impl<F: FloatLanes> ShearedRays<F> {
     /// direction's largest magnitude (glam's `max_position`: the first on a
     /// tie), kx and ky the next two, swapped when v[kz] < 0.
     #[inline(always)]
-    pub(super) fn new(rays: &Rays<F>, live: F::Mask) -> Self {
+    pub(crate) fn new(rays: &Rays<F>, live: F::Mask) -> Self {
         let d = rays.dir;
         let (ax, ay, az) = (d.x.abs(), d.y.abs(), d.z.abs());
         let y_beats_x = ay.simd_gt(ax);
@@ -210,6 +225,21 @@ impl<F: FloatLanes> ShearedRays<F> {
             Frame::Mixed { from_x, from_y }
         }
     }
+    /// The lanes whose ray hits the triangle of `corners` (t0, t1, t2) in
+    /// (0, limit), with α, β and γ's terms: [`WatertightRay::hit`]'s
+    /// operations lane by lane, for a caller holding its own triangles (the
+    /// mesh BVH's packets).
+    ///
+    /// [`WatertightRay::hit`]: crate::shapes::WatertightRay::hit
+    #[inline(always)]
+    pub(crate) fn hit(&self, corners: &[[f32; 3]; 3], limit: F) -> TriangleLanes<F> {
+        match self.frame {
+            Frame::Same(k) => Triangles::hit(corners, self, SameAxes(k), limit),
+            Frame::Mixed { from_x, from_y } => {
+                Triangles::hit(corners, self, MixedAxes { from_x, from_y }, limit)
+            }
+        }
+    }
 }
 
 impl Triangles {
@@ -255,18 +285,18 @@ impl Triangles {
         self.items.len()
     }
 
-    /// The lanes whose ray hits `triangle` in (0, limit), and α there
-    /// (anything elsewhere): `WatertightRay::hit`'s operations lane by lane,
+    /// The lanes whose ray hits the triangle of `corners` in (0, limit),
+    /// with α (anything elsewhere) and what gives β and γ:
+    /// `WatertightRay::hit`'s operations lane by lane,
     /// `permute` giving a corner in each lane's frame ([`SameAxes`] or
     /// [`MixedAxes`], as `r.frame` says).
     #[inline(always)]
     fn hit<F: FloatLanes>(
-        triangle: &PackedTriangle,
+        corners: &[[f32; 3]; 3],
         r: &ShearedRays<F>,
         permute: impl Permutation<F>,
         limit: F,
-    ) -> (F::Mask, F) {
-        let corners = &triangle.corners;
+    ) -> TriangleLanes<F> {
         let (ax, ay, az) = shear(r, permute.permute(&corners[0]));
         let (bx, by, bz) = shear(r, permute.permute(&corners[1]));
         let (cx, cy, cz) = shear(r, permute.permute(&corners[2]));
@@ -298,7 +328,13 @@ impl Triangles {
         // A zero det gives α = ±∞ or NaN, and a non-finite α is never in
         // (0, limit): the scalar code's `det == 0` and `is_finite` tests.
         let hit = !(negative & positive) & alpha.simd_gt(zero) & alpha.simd_lt(limit);
-        (hit, alpha)
+        TriangleLanes {
+            hit,
+            alpha,
+            v: ev,
+            w: ew,
+            det,
+        }
     }
 
     /// Takes the hits of the triangles `range` (indices here) that are
@@ -328,8 +364,8 @@ impl Triangles {
         nearest: &mut Nearest<F>,
     ) {
         for triangle in items {
-            let (hit, alpha) = Self::hit(triangle, r, permute, nearest.limit);
-            nearest.take(hit, alpha, triangle.object);
+            let lanes = Self::hit(&triangle.corners, r, permute, nearest.limit);
+            nearest.take(lanes.hit, lanes.alpha, triangle.object);
         }
     }
 
@@ -362,7 +398,7 @@ impl Triangles {
         settled: &mut F::Mask,
     ) -> bool {
         for triangle in items {
-            let (hit, _) = Self::hit(triangle, r, permute, t_max);
+            let hit = Self::hit(&triangle.corners, r, permute, t_max).hit;
             *settled = *settled | hit;
             if settled.all() {
                 return true;
@@ -444,17 +480,8 @@ mod tests {
         let rays = Rays::<F>::from_lanes(lanes);
         let live = rays.t_max.simd_gt(F::ZERO);
         let sheared = ShearedRays::new(&rays, live);
-        let (hit, alpha) = match sheared.frame {
-            Frame::Same(k) => {
-                Triangles::hit(&triangles.items[0], &sheared, SameAxes(k), rays.t_max)
-            }
-            Frame::Mixed { from_x, from_y } => Triangles::hit(
-                &triangles.items[0],
-                &sheared,
-                MixedAxes { from_x, from_y },
-                rays.t_max,
-            ),
-        };
+        let lanes_hit = sheared.hit(&triangles.items[0].corners, rays.t_max);
+        let (hit, alpha) = (lanes_hit.hit, lanes_hit.alpha);
         let (point, normal) = triangles.surface(&rays, alpha, &[0; WIDTH]);
         assert_lanes_equal_scalar(
             lanes,
