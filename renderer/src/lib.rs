@@ -21,6 +21,7 @@ pub mod geometry;
 pub mod inspect;
 pub mod integrator;
 pub mod packet;
+pub mod packet_shapes;
 pub mod progressive;
 pub mod shading;
 pub mod shapes;

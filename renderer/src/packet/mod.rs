@@ -10,7 +10,7 @@
 //! neighbours hold and whichever instruction set runs it.
 
 mod rays;
-mod shapes;
+pub(crate) mod triangle;
 mod vec3s;
 
 pub use crate::simd::{
@@ -18,6 +18,5 @@ pub use crate::simd::{
     lane_set, mask_from,
 };
 pub use rays::Rays;
-pub(crate) use shapes::ShearedRays;
-pub use shapes::{PacketHits, PacketShapes};
+pub(crate) use triangle::ShearedRays;
 pub use vec3s::Vec3s;

@@ -13,7 +13,7 @@
 //! every pixel of the scenes it covers.
 //!
 //! Rays are tested in packets in worlds of lone triangles, boxes and
-//! spheres ([`crate::packet::PacketShapes`]: against every primitive, or
+//! spheres ([`crate::packet_shapes::PacketShapes`]: against every primitive, or
 //! through a tree), else traced lane by lane through the world's BVH
 //! (`tracing.rs`). Hits on analytic shapes with smooth lobes are shaded on
 //! lanes: Lambertian with a mirror lobe, rough conductors (`glossy.rs`) and

@@ -1,7 +1,7 @@
 //! What the wavefront path tracer needs of a world, laid out for lanes.
 
 use super::emitter_table::EmitterTable;
-use crate::packet::PacketShapes;
+use crate::packet_shapes::PacketShapes;
 use crate::shading::bsdf::PreparedBsdf;
 use crate::shapes::Method;
 use crate::world::{Hit, World};

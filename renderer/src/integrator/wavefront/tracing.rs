@@ -6,9 +6,8 @@
 
 use super::scene::WavefrontScene;
 use crate::geometry::counters::{count_ray, count_shape_tests, shape_tests_on_this_thread};
-use crate::packet::{
-    FloatLanes, IntLanes, MaskLanes, PacketHits, Rays, Vec3s, WIDTH, lane_set, mask_from,
-};
+use crate::packet::{FloatLanes, IntLanes, MaskLanes, Rays, Vec3s, WIDTH, lane_set, mask_from};
+use crate::packet_shapes::PacketHits;
 use crate::shapes::Method;
 use crate::world::{Hit, World};
 use glam::Vec3;

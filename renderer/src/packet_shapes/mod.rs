@@ -20,13 +20,13 @@ mod spheres;
 mod tree;
 mod triangles;
 
-use super::{FloatLanes, IntLanes, MaskLanes, Rays, Vec3s, WIDTH};
+use crate::packet::ShearedRays;
+use crate::packet::{FloatLanes, IntLanes, MaskLanes, Rays, Vec3s, WIDTH};
 use crate::shapes::Shape;
 use crate::world::{Object, World};
 use boxes::Boxes;
 use spheres::{SphereRays, Spheres};
 use tree::{BoxRays, Leaf, Tree, Visitor};
-pub(crate) use triangles::ShearedRays;
 use triangles::Triangles;
 
 /// The closest hits of a packet: α per lane (+∞ where nothing was hit) and the object id hit (-1 where none).
