@@ -146,9 +146,11 @@ impl MeshBvh {
             + (self.packs.capacity() + self.flat.capacity()) * std::mem::size_of::<TrianglePack>()
     }
 
-    /// The hit with the smallest α in (t_min, t_max), with the same α as
-    /// testing every triangle with the watertight test (ties: any triangle at
-    /// that α).
+    /// The hit with the smallest α in (t_min, t_max), exactly as testing
+    /// every triangle with the watertight test finds it: the same α, β and γ,
+    /// and on a tie the lowest triangle index, whatever the order the walk
+    /// meets them in (so a packet of rays, which visits nodes in its own
+    /// order, reports the same triangle).
     pub fn closest_hit(&self, ray: &Ray) -> Option<MeshHit> {
         with_widest_simd(
             #[inline(always)]
@@ -292,9 +294,20 @@ impl MeshBvh {
         if let Some(range) = current.packs() {
             for pack in &self.packs[range] {
                 let s = &mut walk.ray.slab;
-                if let Some(hit) = pack.nearest(&walk.triangle_ray, s.t_min, s.t_max) {
-                    s.set_t_max(hit.alpha);
-                    walk.best = Some((pack, hit));
+                // Once a hit is found, one at the same α with a lower index
+                // still wins: the pack is tested up to and including it.
+                let limit = if walk.best_index == u32::MAX {
+                    s.t_max
+                } else {
+                    next_up(s.t_max)
+                };
+                if let Some(hit) = pack.nearest(&walk.triangle_ray, s.t_min, limit) {
+                    let index = pack.id(hit.lane);
+                    if hit.alpha < s.t_max || index < walk.best_index {
+                        s.set_t_max(hit.alpha);
+                        walk.best = Some((pack, hit));
+                        walk.best_index = index;
+                    }
                     if ANY {
                         walk.next = None;
                         return false;
@@ -381,6 +394,9 @@ struct Walk<'a> {
     next: Option<ChildRef>,
     /// The closest hit so far (its pack and lane).
     best: LaneBest<'a>,
+    /// The triangle index of the closest hit so far (of `best`, or of one a
+    /// packet found before handing the ray over); `u32::MAX` for none.
+    best_index: u32,
 }
 
 impl<'a> Walk<'a> {
@@ -393,6 +409,7 @@ impl<'a> Walk<'a> {
             stack: Stack::new(),
             next: root,
             best: None,
+            best_index: u32::MAX,
         }
     }
 
@@ -405,12 +422,24 @@ impl<'a> Walk<'a> {
         self.stack.clear();
         self.next = root;
         self.best = None;
+        self.best_index = u32::MAX;
     }
 
     /// The closest hit found.
     #[inline(always)]
     fn closest(&self) -> Option<MeshHit> {
         mesh_hit(self.best)
+    }
+}
+
+/// The smallest `f32` above `x` (a positive finite number or +∞, which
+/// stays): a limit below which a hit at exactly `x` still counts.
+#[inline(always)]
+fn next_up(x: f32) -> f32 {
+    if x < f32::INFINITY {
+        f32::from_bits(x.to_bits() + 1)
+    } else {
+        x
     }
 }
 
@@ -551,15 +580,8 @@ mod tests {
                 ray.t_min = 0.5 * rng.next_f32();
                 let want = reference::closest_hit(&p, &t, &ray);
                 let got = bvh.closest_hit(&ray);
-                assert_eq!(
-                    got.map(|h| h.alpha),
-                    want.map(|h| h.alpha),
-                    "{n} triangles, {ray:?}"
-                );
-                if let Some(h) = got {
-                    let alpha = reference::triangle_alpha(&p, t[h.triangle as usize], &ray);
-                    assert_eq!(alpha, Some(h.alpha), "{ray:?}");
-                }
+                // α, β, γ and the triangle (the lowest index on a tie).
+                assert_eq!(got, want, "{n} triangles, {ray:?}");
                 assert_eq!(bvh.any_hit(&ray), want.is_some(), "{n} triangles, {ray:?}");
                 rays.push(ray);
             }
@@ -578,12 +600,8 @@ mod tests {
             let mut hits = vec![None; rays.len()];
             bvh.closest_hits(&rays, &mut hits);
             for (ray, hit) in rays.iter().zip(hits) {
-                let want = reference::closest_hit(&p, &t, ray).map(|h| h.alpha);
-                assert_eq!(
-                    hit.map(|h| h.alpha),
-                    want,
-                    "batched, {n} triangles, {ray:?}"
-                );
+                let want = reference::closest_hit(&p, &t, ray);
+                assert_eq!(hit, want, "batched, {n} triangles, {ray:?}");
             }
         }
     }

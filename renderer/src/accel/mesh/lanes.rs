@@ -18,7 +18,7 @@
 use super::{MeshBvh, MeshHit, Walk};
 use crate::accel::slab::FAR_SLACK;
 use crate::accel::stack::Stack;
-use crate::accel::triangle_pack::{PACK, TrianglePack};
+use crate::accel::triangle_pack::TrianglePack;
 use crate::accel::wide::{ChildRef, WIDTH as CHILDREN, WideNode};
 use crate::geometry::ray::Ray;
 use crate::packet::{FloatLanes, IntLanes, MaskLanes, Rays, ShearedRays, Vec3s, WIDTH};
@@ -133,12 +133,17 @@ fn widen_up<F: FloatLanes>(x: F) -> F {
     x + x.abs() * F::splat(FAR_SLACK)
 }
 
+/// [`Nearest::triangle`] of a lane without a hit.
+const NONE: i32 = i32::MAX;
+
 /// A packet's search: each lane's closest α so far and where it lies.
 struct Nearest<F: FloatLanes> {
     /// Per lane, the ray's t_max, then the α of its closest hit.
     limit: F,
-    /// Per lane, the closest triangle so far as pack · [`PACK`] + lane in
-    /// the pack, −1 for none.
+    /// Per lane, the rays' own t_max (hits at or beyond it do not count).
+    t_max: F,
+    /// Per lane, the index of the closest triangle so far, `i32::MAX` for
+    /// none (at the same α the lowest index wins, as for a single ray).
     triangle: F::Ints,
     /// Per lane, its edge function V (β = V / det).
     v: F,
@@ -180,7 +185,8 @@ impl MeshBvh {
         let sheared = ShearedRays::new(&packet, F::Mask::from_bitmask(live));
         let mut nearest = Nearest {
             limit: packet.t_max,
-            triangle: F::Ints::splat(-1),
+            t_max: packet.t_max,
+            triangle: F::Ints::splat(NONE),
             v: F::ZERO,
             w: F::ZERO,
             det: F::ONE,
@@ -195,10 +201,9 @@ impl MeshBvh {
         );
         for (k, hit) in hits.iter_mut().enumerate() {
             *hit = None;
-            if found[k] >= 0 {
-                let (pack, lane) = (found[k] as usize / PACK, found[k] as usize % PACK);
+            if found[k] != NONE {
                 *hit = Some(MeshHit {
-                    triangle: self.packs[pack].id(lane),
+                    triangle: found[k] as u32,
                     alpha: alpha[k],
                     // `PackHit::barycentrics`.
                     beta: v[k] / det[k],
@@ -293,13 +298,22 @@ impl MeshBvh {
     ) {
         let pack: &TrianglePack = &self.packs[index];
         for lane in 0..pack.triangle_count() {
-            let t = sheared.hit(&pack.corner_arrays(lane), nearest.limit);
-            nearest.limit = t.hit.select(t.alpha, nearest.limit);
-            let id = F::Ints::splat((index * PACK + lane) as i32);
-            nearest.triangle = F::Ints::select(t.hit, id, nearest.triangle);
-            nearest.v = t.hit.select(t.v, nearest.v);
-            nearest.w = t.hit.select(t.w, nearest.w);
-            nearest.det = t.hit.select(t.det, nearest.det);
+            let t = sheared.hit(&pack.corner_arrays(lane), nearest.t_max);
+            let id = F::Ints::splat(pack.id(lane) as i32);
+            // Nearer, or as near with a lower index (`MeshBvh::step`'s rule;
+            // ties are rare, so their test is a branch that is rarely taken).
+            let nearer = t.hit & t.alpha.simd_lt(nearest.limit);
+            let tied = t.hit & t.alpha.simd_eq(nearest.limit);
+            let take = if tied.any() {
+                nearer | (tied & nearest.triangle.simd_gt(id))
+            } else {
+                nearer
+            };
+            nearest.limit = take.select(t.alpha, nearest.limit);
+            nearest.triangle = F::Ints::select(take, id, nearest.triangle);
+            nearest.v = take.select(t.v, nearest.v);
+            nearest.w = take.select(t.w, nearest.w);
+            nearest.det = take.select(t.det, nearest.det);
         }
     }
 
@@ -318,33 +332,29 @@ impl MeshBvh {
             return Some((child, lanes));
         }
         let mut todo = lanes;
+        let mut triangle = nearest.triangle.to_array();
         while todo != 0 {
             let i = todo.trailing_zeros() as usize;
             todo &= todo - 1;
+            // The walk goes on from the lane's closest hit so far.
             let ray = rays[i].with_t_max(nearest.limit.as_array()[i]);
             let mut walk = Walk::new(&ray, Some(child));
+            if triangle[i] != NONE {
+                walk.best_index = triangle[i] as u32;
+            }
             while self.step::<false>(&mut walk) {}
-            if let Some((pack, hit)) = walk.best {
-                let index = self.pack_index(pack);
+            if let Some((_, hit)) = walk.best {
+                triangle[i] = walk.best_index as i32;
                 nearest.limit.as_mut_array()[i] = hit.alpha;
                 // β / 1 and γ / 1 are β and γ exactly.
                 let (beta, gamma) = hit.barycentrics();
                 nearest.v.as_mut_array()[i] = beta;
                 nearest.w.as_mut_array()[i] = gamma;
                 nearest.det.as_mut_array()[i] = 1.0;
-                let mut triangle = nearest.triangle.to_array();
-                triangle[i] = (index * PACK + hit.lane) as i32;
-                nearest.triangle = F::Ints::from_array(triangle);
             }
         }
+        nearest.triangle = F::Ints::from_array(triangle);
         None
-    }
-
-    /// The index in `packs` of `pack`, one of them.
-    #[inline(always)]
-    fn pack_index(&self, pack: &TrianglePack) -> usize {
-        let offset = pack as *const TrianglePack as usize - self.packs.as_ptr() as usize;
-        offset / std::mem::size_of::<TrianglePack>()
     }
 }
 
@@ -498,21 +508,10 @@ mod tests {
                 );
                 let mut found = 0;
                 for (ray, hit) in rays.iter().zip(&hits) {
-                    let alone = bvh.closest_hit(ray);
-                    let (Some(hit), Some(alone)) = (hit, alone) else {
-                        assert_eq!(*hit, alone, "{ray:?}");
-                        continue;
-                    };
-                    found += 1;
-                    assert_eq!(hit.alpha.to_bits(), alone.alpha.to_bits(), "{ray:?}");
-                    if hit.triangle == alone.triangle {
-                        assert_eq!(hit, &alone, "{ray:?}");
-                    } else {
-                        // A tie: the packet's triangle is hit at the same α.
-                        let t = triangles[hit.triangle as usize];
-                        let alpha = crate::accel::reference::triangle_alpha(&positions, t, ray);
-                        assert_eq!(alpha, Some(hit.alpha), "{ray:?}");
-                    }
+                    // α, β, γ and the triangle (the lowest index on a tie),
+                    // bit for bit.
+                    assert_eq!(*hit, bvh.closest_hit(ray), "{ray:?}");
+                    found += hit.is_some() as usize;
                 }
                 assert!(found > rays.len() / 3, "{found} hits of {}", rays.len());
             }
