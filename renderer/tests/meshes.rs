@@ -296,6 +296,46 @@ fn a_batch_of_rays_finds_the_same_hits_as_ray_by_ray() {
 }
 
 #[test]
+fn a_batch_of_rays_breaks_ties_between_objects_as_ray_by_ray() {
+    // Two instances of one quad at the same place, a second model of it
+    // placed there too, a lone quad of two triangles in the same plane and
+    // a box whose face lies in it: every hit is a tie, which the lower
+    // top-level item wins one ray at a time; the batch must agree, its
+    // camera rays going as packets.
+    let mut scene = scene_with(
+        Arc::new(model(quad(), &[Mat4::IDENTITY, Mat4::IDENTITY])),
+        Vec3::ZERO,
+    );
+    let again = scene.objects[0].clone();
+    let extra = scene::read_str(
+        r#"<scene>
+             <triangle t0="0 0 0" t1="1 0 0" t2="1 1 0"/>
+             <triangle t0="0 0 0" t1="1 1 0" t2="0 1 0"/>
+             <box center="0.5 0.5 -0.25" size="1 1 0.5"/>
+           </scene>"#,
+        "extra.xml",
+    )
+    .expect("parses");
+    // The lone shapes first: their items are the lower ones.
+    let first = std::mem::take(&mut scene.objects);
+    scene.objects.extend(extra.objects);
+    scene.objects.extend(first);
+    scene.objects.push(again);
+    let world = World::from_scene(&scene).expect("world");
+    let rays = renderer::diagnostics::throughput::primary_rays(&world);
+    let mut hits = vec![None; rays.len()];
+    world.intersect_batch(&rays, Method::Robust, &mut hits);
+    let objects: std::collections::HashSet<u32> = hits.iter().flatten().map(|h| h.object).collect();
+    assert!(
+        objects.contains(&0),
+        "the lone triangles win the ties: {objects:?}"
+    );
+    for (ray, hit) in rays.iter().zip(&hits) {
+        assert_eq!(*hit, world.intersect(ray, Method::Robust), "{ray:?}");
+    }
+}
+
+#[test]
 fn path_traced_meshes_in_the_films_passes_are_the_samples_traced_alone() {
     use renderer::RenderOptions;
     use renderer::integrator::sampler::Sampling;

@@ -299,7 +299,7 @@ impl MeshBvh {
                 let limit = if walk.best_index == u32::MAX {
                     s.t_max
                 } else {
-                    next_up(s.t_max)
+                    s.t_max.next_up()
                 };
                 if let Some(hit) = pack.nearest(&walk.triangle_ray, s.t_min, limit) {
                     let index = pack.id(hit.lane);
@@ -429,17 +429,6 @@ impl<'a> Walk<'a> {
     #[inline(always)]
     fn closest(&self) -> Option<MeshHit> {
         mesh_hit(self.best)
-    }
-}
-
-/// The smallest `f32` above `x` (a positive finite number or +∞, which
-/// stays): a limit below which a hit at exactly `x` still counts.
-#[inline(always)]
-fn next_up(x: f32) -> f32 {
-    if x < f32::INFINITY {
-        f32::from_bits(x.to_bits() + 1)
-    } else {
-        x
     }
 }
 

@@ -1,7 +1,8 @@
 //! Many rays at once: [`World::intersect_batch`] hands each mesh instance the
 //! whole batch, so that the mesh BVH can trace them as packets or
-//! interleaved. Today only the throughput benchmark (`raylab bench`, its
-//! "batched" figures) calls it; the integrators trace one ray at a time.
+//! interleaved, with exactly [`World::intersect`]'s hits. Today only the
+//! throughput benchmark (`raylab bench`, its "batched" figures) calls it;
+//! the integrators trace one ray at a time.
 
 use super::{Hit, Item, TriangleRef, World};
 use crate::geometry::ray::Ray;
@@ -13,14 +14,16 @@ pub const BATCHED_INSTANCES: usize = 8;
 
 impl World {
     /// [`World::intersect`] of every ray in `rays`, written to `hits` (same
-    /// length), for callers holding many rays at once. Each mesh instance
-    /// takes the whole batch in turn ([`MeshBvh::closest_hits`]: several
-    /// rays interleaved, which hides memory latency on incoherent rays),
-    /// then each ray meets the analytic shapes with its interval ending at
-    /// its nearest mesh hit. The same nearest α as `intersect`; on an exact
-    /// tie between two objects either may be reported. A world of more than
-    /// [`BATCHED_INSTANCES`] mesh instances is traced ray by ray instead (the
-    /// top level culls instances there, which matters more).
+    /// length), for callers holding many rays at once: the same hit bit for
+    /// bit (α, object, triangle and barycentrics; a tie between objects goes
+    /// to the lower top-level item, as `intersect`'s walk decides it). Each
+    /// mesh instance takes the whole batch in turn
+    /// ([`MeshBvh::closest_hits`]: coherent rays in packets, the others
+    /// interleaved, which hides memory latency), then each ray meets the
+    /// analytic shapes with its interval ending just past its nearest mesh
+    /// hit. A world of more than [`BATCHED_INSTANCES`] mesh instances is
+    /// traced ray by ray instead (the top level culls instances there, which
+    /// matters more).
     ///
     /// [`MeshBvh::closest_hits`]: crate::accel::MeshBvh::closest_hits
     pub fn intersect_batch(&self, rays: &[Ray], method: Method, hits: &mut [Option<Hit>]) {
@@ -31,39 +34,46 @@ impl World {
             }
             return;
         }
-        hits.fill(None);
+        let top = self.top.for_method(method);
+        // Each ray's closest hit so far and the top-level item it lies on.
+        let mut best: Vec<Option<(u32, Hit)>> = vec![None; rays.len()];
         let mut local = Vec::with_capacity(rays.len());
         let mut found = vec![None; rays.len()];
-        for (instance, placed) in self.meshes.iter().enumerate() {
+        for (item, kind) in top.items.iter().enumerate() {
+            let Item::Mesh(instance) = *kind else {
+                continue;
+            };
+            let placed = &self.meshes[instance as usize];
             local.clear();
-            local.extend(rays.iter().zip(hits.iter()).map(|(ray, hit)| {
-                let ray = hit.map_or(*ray, |h: Hit| ray.with_t_max(h.alpha));
-                placed.instance.ray_to_object(&ray)
-            }));
+            local.extend(
+                rays.iter()
+                    .zip(&best)
+                    .map(|(ray, best)| placed.instance.ray_to_object(&within(ray, best))),
+            );
             placed.bvh.closest_hits(&local, &mut found);
-            for (hit, mesh_hit) in hits.iter_mut().zip(&found) {
+            for (best, mesh_hit) in best.iter_mut().zip(&found) {
                 if let Some(m) = mesh_hit {
-                    *hit = Some(Hit {
+                    let hit = Hit {
                         object: placed.object,
                         alpha: m.alpha,
                         triangle: Some(TriangleRef {
-                            instance: instance as u32,
+                            instance,
                             triangle: m.triangle,
                             beta: m.beta,
                             gamma: m.gamma,
                         }),
-                    });
+                    };
+                    offer(best, item as u32, hit);
                 }
             }
         }
-        let top = self.top.for_method(method);
         let has_shapes = top.items.len() > self.meshes.len();
         let mut tests = 0usize;
-        for (ray, hit) in rays.iter().zip(hits.iter_mut()) {
+        for ((ray, best), hit) in rays.iter().zip(&mut best).zip(hits.iter_mut()) {
             crate::geometry::counters::count_ray();
             tests += self.meshes.len();
             if has_shapes {
-                let search = hit.map_or(*ray, |h| ray.with_t_max(h.alpha));
+                let search = within(ray, best);
                 let shape =
                     top.bvh
                         .closest_with(&search, |item, ray| match top.items[item as usize] {
@@ -83,16 +93,36 @@ impl World {
                             }
                             Item::Mesh(_) => None,
                         });
-                if let Some((_, alpha, object)) = shape {
-                    *hit = Some(Hit {
+                if let Some((item, alpha, object)) = shape {
+                    let hit = Hit {
                         object,
                         alpha,
                         triangle: None,
-                    });
+                    };
+                    offer(best, item, hit);
                 }
             }
-            *hit = self.planes_last(ray, *hit, method, &mut tests);
+            *hit = self.planes_last(ray, best.map(|(_, h)| h), method, &mut tests);
         }
         crate::geometry::counters::count_shape_tests(tests);
+    }
+}
+
+/// `ray` with its interval ending just past `best`'s α (so that a hit as
+/// near still counts, for the tie rule of [`offer`]), or `ray` itself.
+#[inline]
+fn within(ray: &Ray, best: &Option<(u32, Hit)>) -> Ray {
+    best.map_or(*ray, |(_, h)| ray.with_t_max(h.alpha.next_up()))
+}
+
+/// Keeps `hit`, on top-level item `item`, when it is nearer than `best` or
+/// as near on a lower item: the rule of `SceneBvh::closest_with`'s walk.
+#[inline]
+fn offer(best: &mut Option<(u32, Hit)>, item: u32, hit: Hit) {
+    let better = best.is_none_or(|(best_item, b)| {
+        hit.alpha < b.alpha || (hit.alpha == b.alpha && item < best_item)
+    });
+    if better {
+        *best = Some((item, hit));
     }
 }
