@@ -121,11 +121,12 @@ impl<F: FloatLanes> BoxRays<F> {
             let (near, far) = (negative.select(hi, lo), negative.select(lo, hi));
             let o = coordinate(&self.origin, axis);
             let inv = coordinate(&self.inv_dir, axis);
-            // `t > acc ? t : acc` and `t < acc ? t : acc`: a NaN t keeps acc.
+            // `t > acc ? t : acc` and `t < acc ? t : acc`, one instruction
+            // each (`maxps`, `minps`): a NaN t keeps acc.
             let t_near = (near - o) * inv;
-            entry = t_near.simd_gt(entry).select(t_near, entry);
+            entry = t_near.fast_max(entry);
             let t_far = (far - o) * inv;
-            exit = t_far.simd_lt(exit).select(t_far, exit);
+            exit = t_far.fast_min(exit);
         }
         entry.simd_le(exit + exit.abs() * F::splat(FAR_SLACK))
     }
