@@ -5,7 +5,9 @@
 //! rays at once, with a single ray's conservative slab test
 //! ([`box_entry`]) lane by lane; each triangle of a leaf is tested against
 //! the sixteen rays at once with [`ShearedRays::hit`], `WatertightRay`'s
-//! arithmetic lane by lane, so each lane's α is its own ray's bit for bit.
+//! arithmetic lane by lane, so each lane's α is its own ray's bit for bit;
+//! at the same α the lowest triangle index wins, as in the single walk, so
+//! each lane reports exactly [`MeshBvh::closest_hit`] of its ray.
 //!
 //! Children wait on the stack with every lane's entry distance, so a lane
 //! leaves a waiting child as soon as its closest hit lies before the child.
@@ -27,7 +29,9 @@ use crate::packet::{FloatLanes, IntLanes, MaskLanes, Rays, ShearedRays, Vec3s, W
 pub(super) const LANES: usize = WIDTH;
 
 /// A subtree that fewer than this many rays of a packet enter is traced
-/// one ray at a time.
+/// one ray at a time. (2, 3, 4 and 6 measured within the noise of each
+/// other on the knot's primary rays, 10–12.5 Mrays/s on one thread with
+/// packets of sixteen rays in a row.)
 const PACKET_AT_LEAST: u32 = 2;
 
 /// Rays whose directions are within this cosine of the first ray's, and
