@@ -168,8 +168,8 @@ impl MeshBvh {
     }
 
     /// [`MeshBvh::closest_hit`] of every ray in `rays`, written to `hits`
-    /// (same length): the same α; on an exact tie between two triangles
-    /// either may be reported. Each run of sixteen consecutive rays that
+    /// (same length): the same hit bit for bit, the lowest triangle index
+    /// on a tie. Each run of sixteen consecutive rays that
     /// are coherent (camera rays through a 4 × 4 tile of pixels: one
     /// octant, close directions and origins) is traced as a packet in SIMD
     /// lanes (`mesh/lanes.rs`), each node loaded and each triangle tested

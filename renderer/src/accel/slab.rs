@@ -43,6 +43,12 @@ pub fn widen_up(x: f32) -> f32 {
     x + x.abs() * FAR_SLACK
 }
 
+/// [`widen_up`] lane by lane, for packets of rays.
+#[inline(always)]
+pub fn widen_up_lanes<F: crate::simd::FloatLanes>(x: F) -> F {
+    x + x.abs() * F::splat(FAR_SLACK)
+}
+
 /// Ize's test of one box for one ray, in the form the eight-lane loops of
 /// the wide node tests vectorise: the entry distance max(t_min, slab
 /// entries), and whether the box is entered, that is entry ≤ the widened

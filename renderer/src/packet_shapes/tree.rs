@@ -18,7 +18,7 @@
 use super::{FloatLanes, MaskLanes, Rays, Vec3s, coordinate};
 use crate::accel::Aabb;
 use crate::accel::binned_sah::{PrimRef, Span, split};
-use crate::accel::slab::FAR_SLACK;
+use crate::accel::slab::widen_up_lanes;
 use glam::Vec3A;
 use std::ops::Range;
 
@@ -128,7 +128,7 @@ impl<F: FloatLanes> BoxRays<F> {
             let t_far = (far - o) * inv;
             exit = t_far.fast_min(exit);
         }
-        entry.simd_le(exit + exit.abs() * F::splat(FAR_SLACK))
+        entry.simd_le(widen_up_lanes(exit))
     }
 }
 

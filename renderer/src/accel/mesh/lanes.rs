@@ -18,7 +18,7 @@
 //! [`box_entry`]: crate::accel::slab::box_entry
 
 use super::{MeshBvh, MeshHit, Walk};
-use crate::accel::slab::FAR_SLACK;
+use crate::accel::slab::widen_up_lanes as widen_up;
 use crate::accel::stack::Stack;
 use crate::accel::triangle_pack::TrianglePack;
 use crate::accel::wide::{ChildRef, WIDTH as CHILDREN, WideNode};
@@ -132,12 +132,6 @@ impl<F: FloatLanes> BoxLanes<F> {
     }
 }
 
-/// `x + |x| · FAR_SLACK` lane by lane (`slab::widen_up`).
-#[inline(always)]
-fn widen_up<F: FloatLanes>(x: F) -> F {
-    x + x.abs() * F::splat(FAR_SLACK)
-}
-
 /// [`Nearest::triangle`] of a lane without a hit.
 const NONE: i32 = i32::MAX;
 
@@ -162,8 +156,8 @@ impl MeshBvh {
     /// [`MeshBvh::closest_hit`] of each of `rays` (1 to [`LANES`]), written
     /// to `hits`, when they are coherent enough to travel as a packet
     /// through this mesh (they start at α = 0, and [`coherent_lanes`] holds
-    /// for all): the same α bit for bit (on a tie between triangles either
-    /// may be reported). False, and `hits` untouched, when they are not.
+    /// for all): the same hit bit for bit, the lowest triangle index on a
+    /// tie. False, and `hits` untouched, when they are not.
     #[inline(always)]
     pub(super) fn trace_lanes<F: FloatLanes>(
         &self,
@@ -305,15 +299,10 @@ impl MeshBvh {
         for lane in 0..pack.triangle_count() {
             let t = sheared.hit(&pack.corner_arrays(lane), nearest.t_max);
             let id = F::Ints::splat(pack.id(lane) as i32);
-            // Nearer, or as near with a lower index (`MeshBvh::step`'s rule;
-            // ties are rare, so their test is a branch that is rarely taken).
-            let nearer = t.hit & t.alpha.simd_lt(nearest.limit);
-            let tied = t.hit & t.alpha.simd_eq(nearest.limit);
-            let take = if tied.any() {
-                nearer | (tied & nearest.triangle.simd_gt(id))
-            } else {
-                nearer
-            };
+            // Nearer, or as near with a lower index (`MeshBvh::step`'s rule).
+            let take = t.hit
+                & (t.alpha.simd_lt(nearest.limit)
+                    | (t.alpha.simd_eq(nearest.limit) & nearest.triangle.simd_gt(id)));
             nearest.limit = take.select(t.alpha, nearest.limit);
             nearest.triangle = F::Ints::select(take, id, nearest.triangle);
             nearest.v = take.select(t.v, nearest.v);
@@ -478,9 +467,9 @@ mod tests {
     /// Each ray's packet hit, in lanes `F`, and how many packets went as
     /// packets.
     #[derive(Clone)]
-    struct PacketHits<'a>(&'a MeshBvh, &'a [Ray]);
+    struct TracedInLanes<'a>(&'a MeshBvh, &'a [Ray]);
 
-    impl WithLanes for PacketHits<'_> {
+    impl WithLanes for TracedInLanes<'_> {
         type Output = (Vec<Option<MeshHit>>, usize);
         fn run<F: FloatLanes>(self) -> Self::Output {
             let (bvh, rays) = (self.0, self.1);
@@ -505,7 +494,7 @@ mod tests {
         let bvh = MeshBvh::build(&positions, &triangles);
         for eye in [Vec3::new(0.0, 0.0, 2.5), Vec3::new(0.3, -0.2, 1.6)] {
             let rays = tile_rays(eye);
-            for (hits, packets) in on_every_lane_type(PacketHits(&bvh, &rays)) {
+            for (hits, packets) in on_every_lane_type(TracedInLanes(&bvh, &rays)) {
                 assert!(
                     packets >= rays.len() / LANES * 9 / 10,
                     "{packets} of {} tiles went as packets",
@@ -532,7 +521,7 @@ mod tests {
         let middle = (rays.len() / LANES / 2 + TILE_ROW as usize / 2) * LANES;
         for n in [1, 2, 5, LANES - 1] {
             let chunk = &rays[middle..][..n];
-            for (hits, packets) in on_every_lane_type(PacketHits(&bvh, chunk)) {
+            for (hits, packets) in on_every_lane_type(TracedInLanes(&bvh, chunk)) {
                 assert_eq!(packets, 1);
                 for (ray, hit) in chunk.iter().zip(&hits) {
                     assert_eq!(hit.map(|h| h.alpha), bvh.closest_hit(ray).map(|h| h.alpha));
