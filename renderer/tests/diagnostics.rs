@@ -71,10 +71,16 @@ fn relative_variance_is_zero_on_the_background_and_matches_the_samples_at_an_edg
 
 #[test]
 fn far_off_shapes_cost_nothing_a_miss_costs_nothing_and_a_lit_hit_costs_two() {
+    // Traced ray by ray through the BVH (the lecture's formulas take no
+    // packets).
+    let options = RenderOptions {
+        method: Method::Lecture,
+        ..RenderOptions::default()
+    };
     for n in [1usize, 5] {
         let world = sphere_world(16, n - 1);
         assert_eq!(world.objects.len(), n);
-        let film = Film::render(&world, &RenderOptions::default(), 3);
+        let film = Film::render(&world, &options, 3);
         let cost = film.cost_per_sample();
         // A corner ray enters no shape's box in the BVH: nothing is tested.
         assert_eq!(cost[0], 0.0, "a miss with {n} shapes");
@@ -82,6 +88,24 @@ fn far_off_shapes_cost_nothing_a_miss_costs_nothing_and_a_lit_hit_costs_two() {
         // shadow ray toward the light behind the eye: two tests, whatever
         // the number of spheres far off to the side.
         assert_eq!(cost[8 * 16 + 8], 2.0, "a lit hit with {n} shapes");
+    }
+}
+
+#[test]
+fn camera_rays_in_packets_cost_every_shape_their_packet_tests() {
+    // A few spheres (the robust formulas): Whitted's camera rays go
+    // sixteen at a time against every sphere, the shadow ray alone
+    // through the BVH.
+    for n in [1usize, 5] {
+        let world = sphere_world(16, n - 1);
+        let film = Film::render(&world, &RenderOptions::default(), 3);
+        let cost = film.cost_per_sample();
+        assert_eq!(cost[0], n as f32, "a miss with {n} shapes");
+        assert_eq!(
+            cost[8 * 16 + 8],
+            n as f32 + 1.0,
+            "a lit hit with {n} shapes"
+        );
     }
 }
 

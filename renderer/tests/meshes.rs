@@ -336,7 +336,7 @@ fn a_batch_of_rays_breaks_ties_between_objects_as_ray_by_ray() {
 }
 
 #[test]
-fn path_traced_meshes_in_the_films_passes_are_the_samples_traced_alone() {
+fn meshes_in_the_films_passes_are_the_samples_traced_alone_for_both_integrators() {
     use renderer::RenderOptions;
     use renderer::integrator::sampler::Sampling;
     use renderer::integrator::{Integrator, SampleRef, SampleResult, sample_pixel, trace_samples};
@@ -360,9 +360,13 @@ fn path_traced_meshes_in_the_films_passes_are_the_samples_traced_alone() {
     scene.camera.width = width;
     scene.camera.height = height;
     let world = World::from_scene(&scene).expect("valid");
-    for sampling in [Sampling::Independent, Sampling::Sobol] {
+    for (integrator, sampling) in [
+        (Integrator::Path, Sampling::Independent),
+        (Integrator::Path, Sampling::Sobol),
+        (Integrator::Whitted, Sampling::Independent),
+    ] {
         let options = RenderOptions {
-            integrator: Integrator::Path,
+            integrator,
             sampling,
             seed: 3,
             ..RenderOptions::default()
@@ -390,4 +394,56 @@ fn path_traced_meshes_in_the_films_passes_are_the_samples_traced_alone() {
             samples.len()
         );
     }
+}
+
+#[test]
+fn whitted_traces_camera_rays_in_batches_as_each_sample_alone_with_its_own_cost() {
+    use renderer::RenderOptions;
+    use renderer::integrator::{Integrator, SampleRef, SampleResult, sample_pixel, trace_samples};
+    // The knot (a mesh instance), its floor square, 40 spheres, the
+    // infinite plane in the floor: camera rays in tiles go through the
+    // mesh as packets, the others alone.
+    let mut scene = scene::generate::knot_scene(3000);
+    scene
+        .objects
+        .extend(scene::generate::spheres_scene(40).objects);
+    let (width, height) = (48, 28);
+    (scene.camera.width, scene.camera.height) = (width, height);
+    let world = World::from_scene(&scene).expect("world");
+    let options = RenderOptions {
+        integrator: Integrator::Whitted,
+        ..RenderOptions::default()
+    };
+    // Bands of four rows, as a pass gathers them, then the same samples
+    // reversed: other neighbours in every batch.
+    let samples: Vec<SampleRef> = (0..height)
+        .flat_map(|j| (0..width).map(move |i| SampleRef { i, j, sample: 1 }))
+        .collect();
+    let reversed: Vec<SampleRef> = samples.iter().rev().copied().collect();
+    let mut results = vec![SampleResult::default(); samples.len()];
+    let mut results_reversed = results.clone();
+    trace_samples(&world, &options, &samples, &mut results);
+    trace_samples(&world, &options, &reversed, &mut results_reversed);
+    results_reversed.reverse();
+    let mut on_mesh = 0;
+    for ((s, result), other) in samples.iter().zip(&results).zip(&results_reversed) {
+        let alone = sample_pixel(&world, &options, s.i, s.j, s.sample);
+        assert_eq!(
+            result.radiance.to_array().map(f32::to_bits),
+            alone.to_array().map(f32::to_bits),
+            "sample {s:?}"
+        );
+        assert_eq!(result, other, "sample {s:?}: its cost is its own");
+        let ray = world.camera.ray(s.i, s.j, glam::Vec2::splat(0.5));
+        on_mesh += usize::from(
+            world
+                .intersect(&ray, Method::Robust)
+                .is_some_and(|h| h.triangle.is_some()),
+        );
+    }
+    assert!(
+        on_mesh > samples.len() / 4,
+        "{on_mesh} of {} camera rays meet a mesh",
+        samples.len()
+    );
 }

@@ -100,15 +100,20 @@ impl Film {
                 let mut chunk = Chunk::with_capacity(PASS_CHUNK.min(counts.len()));
                 let (mut bad, mut traced) = (0, 0);
                 let rows_in_band = counts.len() / width;
-                for row in 0..rows_in_band {
-                    let j = (band * BAND_ROWS + row) as u32;
-                    let needing_row = needing.map(|n| &n[j as usize * width..][..width]);
-                    let known_row = known
-                        .and_then(|k| k.row(j))
-                        .map(|row| (row, row.stride as usize));
-                    let mut start = 0;
-                    while start < width {
-                        let end = (start + PASS_CHUNK - chunk.len()).min(width);
+                // The band is gathered in strips of columns, every row of
+                // a strip in turn, so that a chunk holds squares of
+                // neighbouring pixels (Whitted traces camera rays in 4 × 4
+                // tiles).
+                let strip = (PASS_CHUNK / rows_in_band).max(1);
+                let mut start = 0;
+                while start < width {
+                    let end = (start + strip).min(width);
+                    for row in 0..rows_in_band {
+                        let j = (band * BAND_ROWS + row) as u32;
+                        let needing_row = needing.map(|n| &n[j as usize * width..][..width]);
+                        let known_row = known
+                            .and_then(|k| k.row(j))
+                            .map(|row| (row, row.stride as usize));
                         for_each_with_known_in(start..end, known_row, |i, sample| {
                             if needing_row.is_some_and(|n| !n[i]) {
                                 return;
@@ -132,18 +137,15 @@ impl Film {
                                 }
                             }
                         });
-                        start = end;
-                        let last = row + 1 == rows_in_band && end == width;
-                        if chunk.len() == PASS_CHUNK || last {
-                            // A stale pass stops within a chunk, not a band:
-                            // an edit's preview waits for at most this much.
-                            if cancelled() {
-                                return (bad, 1, rays_on_this_thread() - rays_before, traced);
-                            }
-                            let (b, t) = chunk.trace_and_add(world, options, rows, stats, counts);
-                            (bad, traced) = (bad + b, traced + t);
-                        }
                     }
+                    start = end;
+                    // A stale pass stops within a chunk, not a band: an
+                    // edit's preview waits for at most this much.
+                    if cancelled() {
+                        return (bad, 1, rays_on_this_thread() - rays_before, traced);
+                    }
+                    let (b, t) = chunk.trace_and_add(world, options, rows, stats, counts);
+                    (bad, traced) = (bad + b, traced + t);
                 }
                 let rays = rays_on_this_thread() - rays_before;
                 (bad, 0, rays, traced)
@@ -202,11 +204,6 @@ impl Chunk {
             samples: Vec::with_capacity(n),
             results: Vec::with_capacity(n),
         }
-    }
-
-    /// Samples gathered so far.
-    fn len(&self) -> usize {
-        self.found.len() + self.samples.len()
     }
 
     /// Traces the samples to trace, adds every sample to the band's pixels

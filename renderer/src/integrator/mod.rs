@@ -17,6 +17,7 @@ mod shading_context;
 pub mod trace_samples;
 mod wavefront;
 pub mod whitted;
+mod whitted_batch;
 
 pub use adaptive::Adaptive;
 pub use options::{Integrator, RenderOptions};

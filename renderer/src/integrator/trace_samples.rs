@@ -1,17 +1,18 @@
 //! Tracing a list of samples, as a pass of the film does: the path tracer
 //! traces them sixteen at a time in SIMD lanes where the wavefront is the
 //! faster (`integrator/wavefront/`), else in batches of scalar lanes
-//! (`trace_lanes` in `integrator/lanes.rs`), Whitted one by
-//! one (as a lane it measured 8–18% slower than its recursion; it becomes
-//! one when batched ray kernels pay for that). Either way a sample's
-//! radiance is [`sample_pixel`]'s bit for bit.
+//! (`trace_lanes` in `integrator/lanes.rs`); Whitted's camera rays sixteen
+//! at a time and the rest of each sample by its recursion
+//! (`integrator/whitted_batch.rs`; as a lane, every ray stopping for the
+//! others, it measured 8–18% slower than its recursion). Either way a
+//! sample's radiance is [`sample_pixel`](super::sample_pixel)'s bit for bit.
 
 use super::lanes::{LANES_PER_BATCH, trace_lanes};
 pub use super::lanes::{SampleRef, SampleResult};
 use super::path::PathLane;
 use super::wavefront::{WavefrontScene, trace_wavefront};
-use super::{Integrator, RenderOptions, sample_pixel};
-use crate::geometry::counters::shape_tests_on_this_thread;
+use super::whitted_batch::trace_whitted;
+use super::{Integrator, RenderOptions};
 use crate::shapes::Method;
 use crate::world::World;
 use std::cell::RefCell;
@@ -75,14 +76,9 @@ pub fn trace_samples_batched(
             None => trace_lanes::<PathLane<()>>(world, options, samples, batch, results),
         },
         Integrator::Whitted => {
-            for (s, result) in samples.iter().zip(results.iter_mut()) {
-                let before = shape_tests_on_this_thread();
-                let radiance = sample_pixel(world, options, s.i, s.j, s.sample);
-                *result = SampleResult {
-                    radiance,
-                    shape_tests: shape_tests_on_this_thread() - before,
-                };
-            }
+            let scene = wavefront_scene(world, options);
+            let packets = scene.as_ref().as_ref().and_then(|s| s.shapes.as_ref());
+            trace_whitted(world, packets, options, samples, results);
         }
     }
 }

@@ -19,7 +19,7 @@ use crate::geometry::ray::Ray;
 use crate::shading::bsdf::rough_conductor::RoughConductor;
 use crate::shading::bsdf::{Bsdf, ShadingFrame, conductor_reflectance};
 use crate::shading::optics::{fresnel_dielectric, reflect, refract};
-use crate::world::World;
+use crate::world::{Hit, World};
 use glam::Vec3;
 use scene::BaseMaterial;
 use std::f32::consts::PI;
@@ -41,6 +41,20 @@ pub fn whitted_recorded<R: Recorder>(
     trace(world, ray, options, 0, recorder, node)
 }
 
+/// [`whitted`] of the camera ray `ray` whose closest hit `hit` is already
+/// known (`None`: it escapes), as a batch of camera rays traced together
+/// finds it ([`World::intersect_batch`]): the same radiance bit for bit,
+/// the hit being [`World::intersect`]'s.
+pub(crate) fn whitted_from_hit(
+    world: &World,
+    ray: &Ray,
+    hit: Option<Hit>,
+    options: &RenderOptions,
+) -> Vec3 {
+    shade(world, ray, hit, options, 0, &mut NoRecorder, ())
+}
+
+/// The radiance along `ray`, traced at `depth` bounces.
 fn trace<R: Recorder>(
     world: &World,
     ray: &Ray,
@@ -49,7 +63,23 @@ fn trace<R: Recorder>(
     rec: &mut R,
     node: R::Node,
 ) -> Vec3 {
-    let Some(hit) = world.intersect(ray, options.method) else {
+    let hit = world.intersect(ray, options.method);
+    shade(world, ray, hit, options, depth, rec, node)
+}
+
+/// The radiance along `ray` (at `depth` bounces) whose closest hit is
+/// `hit`: the background on a miss, else the hit shaded, recursing.
+#[inline(always)]
+fn shade<R: Recorder>(
+    world: &World,
+    ray: &Ray,
+    hit: Option<Hit>,
+    options: &RenderOptions,
+    depth: u32,
+    rec: &mut R,
+    node: R::Node,
+) -> Vec3 {
+    let Some(hit) = hit else {
         let background = world.ambient + world.sky;
         rec.miss(node, background);
         return background;

@@ -1,8 +1,8 @@
 //! Many rays at once: [`World::intersect_batch`] hands each mesh instance the
 //! whole batch, so that the mesh BVH can trace them as packets or
-//! interleaved, with exactly [`World::intersect`]'s hits. Today only the
-//! throughput benchmark (`raylab bench`, its "batched" figures) calls it;
-//! the integrators trace one ray at a time.
+//! interleaved, with exactly [`World::intersect`]'s hits. Whitted's camera
+//! rays in mesh worlds (`integrator/whitted_batch.rs`) and the throughput
+//! benchmark (`raylab bench`, its "batched" figures) call it.
 
 use super::{Hit, Item, TriangleRef, World};
 use crate::geometry::ray::Ray;
@@ -27,10 +27,30 @@ impl World {
     ///
     /// [`MeshBvh::closest_hits`]: crate::accel::MeshBvh::closest_hits
     pub fn intersect_batch(&self, rays: &[Ray], method: Method, hits: &mut [Option<Hit>]) {
+        let mut tests = vec![0; rays.len()];
+        self.intersect_batch_counted(rays, method, hits, &mut tests);
+    }
+
+    /// [`World::intersect_batch`], adding to `tests` (same length) the
+    /// shape tests each ray cost: one per mesh instance it was sent
+    /// through (every ray meets every instance in a batch, where a lone
+    /// ray meets those the top level lets through), plus its own tests of
+    /// the analytic shapes and planes. A ray's count depends on it alone,
+    /// not on the other rays of the batch.
+    pub fn intersect_batch_counted(
+        &self,
+        rays: &[Ray],
+        method: Method,
+        hits: &mut [Option<Hit>],
+        tests: &mut [u32],
+    ) {
         assert_eq!(rays.len(), hits.len(), "one hit slot per ray");
+        assert_eq!(rays.len(), tests.len(), "one count per ray");
         if self.meshes.len() > BATCHED_INSTANCES {
-            for (ray, hit) in rays.iter().zip(hits.iter_mut()) {
+            for ((ray, hit), tests) in rays.iter().zip(hits.iter_mut()).zip(tests) {
+                let before = crate::geometry::counters::shape_tests_on_this_thread();
                 *hit = self.intersect(ray, method);
+                *tests += (crate::geometry::counters::shape_tests_on_this_thread() - before) as u32;
             }
             return;
         }
@@ -68,10 +88,15 @@ impl World {
             }
         }
         let has_shapes = top.items.len() > self.meshes.len();
-        let mut tests = 0usize;
-        for ((ray, best), hit) in rays.iter().zip(&mut best).zip(hits.iter_mut()) {
+        let mut all_tests = 0usize;
+        for (((ray, best), hit), ray_tests) in rays
+            .iter()
+            .zip(&mut best)
+            .zip(hits.iter_mut())
+            .zip(tests.iter_mut())
+        {
             crate::geometry::counters::count_ray();
-            tests += self.meshes.len();
+            let mut tests = self.meshes.len();
             if has_shapes {
                 let search = within(ray, best);
                 let shape =
@@ -103,8 +128,10 @@ impl World {
                 }
             }
             *hit = self.planes_last(ray, best.map(|(_, h)| h), method, &mut tests);
+            *ray_tests += tests as u32;
+            all_tests += tests;
         }
-        crate::geometry::counters::count_shape_tests(tests);
+        crate::geometry::counters::count_shape_tests(all_tests);
     }
 }
 
