@@ -2,7 +2,7 @@
 //! one ([`Emitters::choose`]) and, per emitter, what drawing a point on a
 //! triangle needs, read by each lane with gathers.
 
-use crate::packet::{FloatLanes, IntLanes, Vec3s};
+use crate::packet::{FloatLanes, IntLanes, MaskLanes, Vec3s};
 use crate::world::emitters::Emitters;
 
 /// Per emitter, a row of [`ROW`] numbers ([`Column`]), and the alias
@@ -19,6 +19,12 @@ pub(crate) struct EmitterTable {
 
 /// The numbers in a row of an [`EmitterTable`].
 const ROW: usize = 17;
+
+/// Up to this many emitters, a lane's number is picked by comparing its
+/// index with each emitter's (a broadcast and a blend per emitter) instead
+/// of gathered: a light of one quad is two rows, and the nineteen
+/// sixteen-lane gathers of a bounce's light sample cost more than that.
+const PICK_AT_MOST: usize = 4;
 
 /// Where each number sits in a row of an [`EmitterTable`].
 #[derive(Clone, Copy, Debug)]
@@ -124,8 +130,22 @@ impl EmitterTable {
         let last = F::Ints::splat(n as i32 - 1);
         let i = x.trunc_to_ints();
         let i = F::Ints::select(i.simd_gt(last), last, i);
-        let keep = F::gather_from(&self.keep, i);
-        let alias = F::Ints::gather_from(&self.alias, i);
+        let (keep, alias) = if n <= PICK_AT_MOST {
+            let bins = i.to_floats();
+            let mut keep = F::splat(self.keep[0]);
+            let mut alias = F::Ints::splat(self.alias[0]);
+            for bin in 1..n {
+                let here = bins.simd_eq(F::splat(bin as f32));
+                keep = here.select(F::splat(self.keep[bin]), keep);
+                alias = F::Ints::select(here, F::Ints::splat(self.alias[bin]), alias);
+            }
+            (keep, alias)
+        } else {
+            (
+                F::gather_from(&self.keep, i),
+                F::Ints::gather_from(&self.alias, i),
+            )
+        };
         let index = F::Ints::select((x - i.to_floats()).simd_lt(keep), i, alias);
         let kind: F = self.column(index, Column::Kind);
         Chosen {
@@ -159,6 +179,16 @@ impl EmitterTable {
     /// Number `at` of each lane's row `index`.
     #[inline(always)]
     fn number<F: FloatLanes>(&self, index: F::Ints, at: i32) -> F {
+        let rows = self.keep.len();
+        if rows <= PICK_AT_MOST {
+            let index = index.to_floats();
+            let mut number = F::splat(self.rows[at as usize]);
+            for row in 1..rows {
+                let here = index.simd_eq(F::splat(row as f32));
+                number = here.select(F::splat(self.rows[row * ROW + at as usize]), number);
+            }
+            return number;
+        }
         let row = F::Ints::splat(ROW as i32);
         F::gather_from(&self.rows, index * row + F::Ints::splat(at))
     }
@@ -186,6 +216,11 @@ mod tests {
     /// and brightnesses, a sphere, and a triangle of no area (never drawn) —
     /// so that the alias table keeps some bins and sends others elsewhere.
     fn emitters() -> Emitters {
+        Emitters::new(&emitter_shapes(), &[])
+    }
+
+    /// The shapes of [`emitters`]: 38 triangles, the sphere, the flat one.
+    fn emitter_shapes() -> Vec<(Option<Shape>, Vec3)> {
         let mut shapes = Vec::new();
         for k in 0..38 {
             let (x, size) = (k as f32 * 3.0, 0.05 + (k % 7) as f32 * 0.4);
@@ -200,7 +235,7 @@ mod tests {
         shapes.push((Some(Shape::Sphere(sphere)), Vec3::new(3.0, 2.0, 1.0)));
         let flat = Triangle::new(Vec3::ZERO, Vec3::X, Vec3::X * 2.0);
         shapes.push((Some(Shape::Triangle(flat)), Vec3::ONE));
-        Emitters::new(&shapes, &[])
+        shapes
     }
 
     /// Every lane chooses the emitter `Emitters::choose` chooses for its
@@ -263,6 +298,31 @@ mod tests {
         for (triangles, spheres) in on_every_lane_type(ChoosesAsTheScalarCode(&emitters)) {
             assert!(triangles > 3000, "too few triangles chosen: {triangles}");
             assert!(spheres > 10, "too few spheres chosen: {spheres}");
+        }
+    }
+
+    #[test]
+    fn a_few_emitters_are_picked_without_gathers_as_the_scalar_code_chooses_them() {
+        let shapes = emitter_shapes();
+        let (sphere, flat) = (shapes[38], shapes[39]);
+        let sets: Vec<Vec<_>> = vec![
+            shapes[..1].to_vec(),
+            shapes[..2].to_vec(),
+            vec![shapes[0], sphere],
+            vec![shapes[3], flat, shapes[5]],
+            shapes[..4].to_vec(),
+            shapes[..5].to_vec(),
+        ];
+        for set in sets {
+            let emitters = Emitters::new(&set, &[]);
+            for (triangles, others) in on_every_lane_type(ChoosesAsTheScalarCode(&emitters)) {
+                assert!(triangles > 0, "{} emitters: no triangle chosen", set.len());
+                assert!(
+                    triangles + others > 4096,
+                    "{} emitters: {triangles} + {others} chosen",
+                    set.len()
+                );
+            }
         }
     }
 }
