@@ -400,50 +400,69 @@ fn meshes_in_the_films_passes_are_the_samples_traced_alone_for_both_integrators(
 fn whitted_traces_camera_rays_in_batches_as_each_sample_alone_with_its_own_cost() {
     use renderer::RenderOptions;
     use renderer::integrator::{Integrator, SampleRef, SampleResult, sample_pixel, trace_samples};
-    // The knot (a mesh instance), its floor square, 40 spheres, the
-    // infinite plane in the floor: camera rays in tiles go through the
-    // mesh as packets, the others alone.
-    let mut scene = scene::generate::knot_scene(3000);
-    scene
-        .objects
+    // The knot (a mesh instance), its floor square, 40 spheres and the
+    // infinite plane in the floor: camera rays go through the mesh as a
+    // batch (coherent ones as packets). The 40 spheres alone: camera rays
+    // go as packets through the packet tree (more than 20 primitives).
+    let mut knot = scene::generate::knot_scene(3000);
+    knot.objects
         .extend(scene::generate::spheres_scene(40).objects);
+    let mut spheres = scene::generate::spheres_scene(40);
+    // Without its infinite floor, which packets do not test.
+    spheres
+        .objects
+        .retain(|o| !matches!(o.shape, scene::Shape::Floor { .. }));
     let (width, height) = (48, 28);
-    (scene.camera.width, scene.camera.height) = (width, height);
-    let world = World::from_scene(&scene).expect("world");
     let options = RenderOptions {
         integrator: Integrator::Whitted,
         ..RenderOptions::default()
     };
-    // Bands of four rows, as a pass gathers them, then the same samples
-    // reversed: other neighbours in every batch.
-    let samples: Vec<SampleRef> = (0..height)
-        .flat_map(|j| (0..width).map(move |i| SampleRef { i, j, sample: 1 }))
-        .collect();
-    let reversed: Vec<SampleRef> = samples.iter().rev().copied().collect();
-    let mut results = vec![SampleResult::default(); samples.len()];
-    let mut results_reversed = results.clone();
-    trace_samples(&world, &options, &samples, &mut results);
-    trace_samples(&world, &options, &reversed, &mut results_reversed);
-    results_reversed.reverse();
-    let mut on_mesh = 0;
-    for ((s, result), other) in samples.iter().zip(&results).zip(&results_reversed) {
-        let alone = sample_pixel(&world, &options, s.i, s.j, s.sample);
-        assert_eq!(
-            result.radiance.to_array().map(f32::to_bits),
-            alone.to_array().map(f32::to_bits),
-            "sample {s:?}"
-        );
-        assert_eq!(result, other, "sample {s:?}: its cost is its own");
-        let ray = world.camera.ray(s.i, s.j, glam::Vec2::splat(0.5));
-        on_mesh += usize::from(
-            world
-                .intersect(&ray, Method::Robust)
-                .is_some_and(|h| h.triangle.is_some()),
-        );
+    for (name, mut scene) in [("knot", knot), ("spheres", spheres)] {
+        (scene.camera.width, scene.camera.height) = (width, height);
+        let world = World::from_scene(&scene).expect("world");
+        let mut on_mesh = 0;
+        let mut hits = 0;
+        // Band by band (four rows), each in strips of 20 columns, every
+        // row of a strip in turn, as a pass gathers them (so in 4 × 4
+        // tiles); then the same list shifted by five samples, which puts
+        // each sample in a batch with other neighbours.
+        for band in 0..height / 4 {
+            let samples: Vec<SampleRef> = (0..width)
+                .step_by(20)
+                .flat_map(|start| {
+                    (4 * band..4 * band + 4).flat_map(move |j| {
+                        (start..(start + 20).min(width)).map(move |i| SampleRef { i, j, sample: 1 })
+                    })
+                })
+                .collect();
+            let mut shifted = samples.clone();
+            shifted.rotate_left(5);
+            let mut results = vec![SampleResult::default(); samples.len()];
+            let mut results_shifted = results.clone();
+            trace_samples(&world, &options, &samples, &mut results);
+            trace_samples(&world, &options, &shifted, &mut results_shifted);
+            results_shifted.rotate_right(5);
+            for ((s, result), other) in samples.iter().zip(&results).zip(&results_shifted) {
+                let alone = sample_pixel(&world, &options, s.i, s.j, s.sample);
+                assert_eq!(
+                    result.radiance.to_array().map(f32::to_bits),
+                    alone.to_array().map(f32::to_bits),
+                    "{name}: sample {s:?}"
+                );
+                assert_eq!(result, other, "{name}: sample {s:?}: its cost is its own");
+                let ray = world.camera.ray(s.i, s.j, glam::Vec2::splat(0.5));
+                let hit = world.intersect(&ray, Method::Robust);
+                hits += usize::from(hit.is_some());
+                on_mesh += usize::from(hit.is_some_and(|h| h.triangle.is_some()));
+            }
+        }
+        let all = (width * height) as usize;
+        assert!(hits > all / 10, "{name}: {hits} of {all} camera rays hit");
+        if name == "knot" {
+            assert!(
+                on_mesh > all / 4,
+                "{on_mesh} of {all} camera rays meet a mesh"
+            );
+        }
     }
-    assert!(
-        on_mesh > samples.len() / 4,
-        "{on_mesh} of {} camera rays meet a mesh",
-        samples.len()
-    );
 }

@@ -104,7 +104,8 @@ impl Film {
                 // a strip in turn, so that a chunk holds squares of
                 // neighbouring pixels (Whitted traces camera rays in 4 × 4
                 // tiles).
-                let strip = (PASS_CHUNK / rows_in_band).max(1);
+                // (A multiple of four columns, so tiles stay on the grid.)
+                let strip = ((PASS_CHUNK / rows_in_band) & !3).max(4);
                 let mut start = 0;
                 while start < width {
                     let end = (start + strip).min(width);

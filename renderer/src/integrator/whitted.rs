@@ -42,8 +42,8 @@ pub fn whitted_recorded<R: Recorder>(
 }
 
 /// [`whitted`] of the camera ray `ray` whose closest hit `hit` is already
-/// known (`None`: it escapes), as a batch of camera rays traced together
-/// finds it ([`World::intersect_batch`]): the same radiance bit for bit,
+/// known (`None`: it escapes), as camera rays traced together find it (a
+/// packet, or [`World::intersect_batch`]): the same radiance bit for bit,
 /// the hit being [`World::intersect`]'s.
 pub(crate) fn whitted_from_hit(
     world: &World,

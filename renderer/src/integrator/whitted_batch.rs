@@ -53,10 +53,12 @@ pub(crate) fn trace_whitted(
 enum CameraHits<'a> {
     /// Sixteen rays in SIMD lanes against the world's lone primitives.
     Packets(&'a PacketShapes),
-    /// [`World::intersect_batch`]: each mesh instance takes the batch.
+    /// [`World::intersect_batch`]: each mesh instance takes the batch
+    /// (ray by ray past [`crate::world::BATCHED_INSTANCES`] instances).
     Batch,
-    /// [`World::intersect`] ray by ray: a world of analytic shapes and
-    /// planes, which nothing batched covers.
+    /// [`World::intersect`] ray by ray: a world without meshes that
+    /// packets do not cover (other shapes, planes, the lecture's formulas,
+    /// more than [`PacketShapes::MAX_PRIMITIVES`] primitives).
     OneByOne,
 }
 
@@ -171,8 +173,10 @@ fn tiles(samples: &[SampleRef]) -> Vec<u32> {
 }
 
 /// The closest hits of the first `n` rays of `rays` tested as one packet
-/// against `shapes` (the others are dead), with each ray's shape tests,
-/// counted as [`World::intersect`] counts its own.
+/// against `shapes` (the others are dead), with each ray's shape tests:
+/// the primitives of the leaves its own box tests let it into (every
+/// primitive, up to [`PacketShapes::BRUTE_FORCE_MAX`]), whatever the other
+/// lanes do.
 #[inline(always)]
 fn packet_hits<F: FloatLanes>(
     shapes: &PacketShapes,
@@ -204,6 +208,7 @@ fn packet_hits<F: FloatLanes>(
 mod tests {
     use super::*;
 
+    /// Sample 0 of each pixel of `columns` × `rows`, row by row.
     fn rows(columns: std::ops::Range<u32>, rows: std::ops::Range<u32>) -> Vec<SampleRef> {
         rows.flat_map(|j| columns.clone().map(move |i| SampleRef { i, j, sample: 0 }))
             .collect()

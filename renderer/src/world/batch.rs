@@ -5,6 +5,7 @@
 //! benchmark (`raylab bench`, its "batched" figures) call it.
 
 use super::{Hit, Item, TriangleRef, World};
+use crate::geometry::counters::shape_tests_on_this_thread;
 use crate::geometry::ray::Ray;
 use crate::shapes::Method;
 
@@ -35,8 +36,9 @@ impl World {
     /// shape tests each ray cost: one per mesh instance it was sent
     /// through (every ray meets every instance in a batch, where a lone
     /// ray meets those the top level lets through), plus its own tests of
-    /// the analytic shapes and planes. A ray's count depends on it alone,
-    /// not on the other rays of the batch.
+    /// the analytic shapes and planes; past [`BATCHED_INSTANCES`]
+    /// instances, [`World::intersect`]'s own count. A ray's count depends
+    /// on it alone, not on the other rays of the batch.
     pub fn intersect_batch_counted(
         &self,
         rays: &[Ray],
@@ -48,9 +50,9 @@ impl World {
         assert_eq!(rays.len(), tests.len(), "one count per ray");
         if self.meshes.len() > BATCHED_INSTANCES {
             for ((ray, hit), tests) in rays.iter().zip(hits.iter_mut()).zip(tests) {
-                let before = crate::geometry::counters::shape_tests_on_this_thread();
+                let before = shape_tests_on_this_thread();
                 *hit = self.intersect(ray, method);
-                *tests += (crate::geometry::counters::shape_tests_on_this_thread() - before) as u32;
+                *tests += (shape_tests_on_this_thread() - before) as u32;
             }
             return;
         }

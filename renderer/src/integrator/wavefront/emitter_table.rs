@@ -1,6 +1,7 @@
 //! The world's emitters laid out for lanes: the alias table that chooses
 //! one ([`Emitters::choose`]) and, per emitter, what drawing a point on a
-//! triangle needs, read by each lane with gathers.
+//! triangle needs, read by each lane with gathers (or, for a few
+//! emitters, picked by comparisons).
 
 use crate::packet::{FloatLanes, IntLanes, MaskLanes, Vec3s};
 use crate::world::emitters::Emitters;
@@ -179,7 +180,7 @@ impl EmitterTable {
     /// Number `at` of each lane's row `index`.
     #[inline(always)]
     fn number<F: FloatLanes>(&self, index: F::Ints, at: i32) -> F {
-        let rows = self.keep.len();
+        let rows = self.rows.len() / ROW;
         if rows <= PICK_AT_MOST {
             let index = index.to_floats();
             let mut number = F::splat(self.rows[at as usize]);
