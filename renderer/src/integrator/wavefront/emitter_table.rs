@@ -133,14 +133,12 @@ impl EmitterTable {
         let i = F::Ints::select(i.simd_gt(last), last, i);
         let (keep, alias) = if n <= PICK_AT_MOST {
             let bins = i.to_floats();
-            let mut keep = F::splat(self.keep[0]);
             let mut alias = F::Ints::splat(self.alias[0]);
             for bin in 1..n {
                 let here = bins.simd_eq(F::splat(bin as f32));
-                keep = here.select(F::splat(self.keep[bin]), keep);
                 alias = F::Ints::select(here, F::Ints::splat(self.alias[bin]), alias);
             }
-            (keep, alias)
+            (pick(&self.keep, 1, 0, bins), alias)
         } else {
             (
                 F::gather_from(&self.keep, i),
@@ -180,15 +178,8 @@ impl EmitterTable {
     /// Number `at` of each lane's row `index`.
     #[inline(always)]
     fn number<F: FloatLanes>(&self, index: F::Ints, at: i32) -> F {
-        let rows = self.rows.len() / ROW;
-        if rows <= PICK_AT_MOST {
-            let index = index.to_floats();
-            let mut number = F::splat(self.rows[at as usize]);
-            for row in 1..rows {
-                let here = index.simd_eq(F::splat(row as f32));
-                number = here.select(F::splat(self.rows[row * ROW + at as usize]), number);
-            }
-            return number;
+        if self.rows.len() / ROW <= PICK_AT_MOST {
+            return pick(&self.rows, ROW, at as usize, index.to_floats());
         }
         let row = F::Ints::splat(ROW as i32);
         F::gather_from(&self.rows, index * row + F::Ints::splat(at))
@@ -204,6 +195,20 @@ impl EmitterTable {
             z: self.number(index, c + 2),
         }
     }
+}
+
+/// Number `at` of each lane's row `index` (a whole number, as an `f32`)
+/// of `table`, rows of `stride` numbers, at most [`PICK_AT_MOST`] of them:
+/// the first row's number, replaced row by row where the lane's index is
+/// that row's (exactly the number a gather reads).
+#[inline(always)]
+fn pick<F: FloatLanes>(table: &[f32], stride: usize, at: usize, index: F) -> F {
+    let mut number = F::splat(table[at]);
+    for row in 1..table.len() / stride {
+        let here = index.simd_eq(F::splat(row as f32));
+        number = here.select(F::splat(table[row * stride + at]), number);
+    }
+    number
 }
 
 #[cfg(test)]
