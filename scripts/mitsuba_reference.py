@@ -9,11 +9,22 @@
 writes NAME.exr beside NAME.xml (linear RGB float32) and prints the render's
 own noise: relMSE between two renders of half the samples, halved.
 
-Only what the reference scenes use is translated: the camera, spheres, boxes
-and triangles; matte, mirror and glass, with `roughness` (GGX α =
-roughness²: Mitsuba's roughconductor with material "none", i.e. Fresnel 1
-times `color`, and roughdielectric); emission as an area light on the front
-side. See assets/reference/README.md for the conventions.
+Translated: the camera (eye, toward, up, theta, width, height), spheres, boxes and
+triangles; `<floor>` and `<plane>` as a square of side 2·10⁴ lying in the plane (raylab's is
+infinite); point and directional lights (W/sr and W/m², as raylab's: Mitsuba's `point` and
+`directional` emitters) and `<sky color>` (a `constant` emitter); matte, mirror and glass, and
+named `<material>`s derived from them (a shape's own parameters over its material's), with
+`roughness` (GGX α = roughness²: Mitsuba's roughconductor with material "none", i.e. Fresnel 1
+times `color`, and roughdielectric); emission as an area light on the front side. Colours are
+three linear floats or #rrggbb / #rgb (sRGB). An ambient light is left out: raylab's path tracer
+has no ambient term either (it lights Whitted's images only).
+
+Anything else is refused with an error naming the element, never dropped: a comparison with a
+scene Mitsuba did not see would be meaningless. That includes `<mesh>` (raylab places models and
+maps their glTF materials itself), cylinders, cones and tori, plastic, metal and marble, CSS
+colour names, shapes without an explicit position (raylab stands them on the floor), and scenes with no
+light, emitter or sky (raylab then adds a key light of its own). See assets/reference/README.md
+for the conventions.
 """
 import os
 import sys
@@ -26,16 +37,58 @@ mi.set_variant("llvm_ad_rgb")
 T = mi.ScalarTransform4f
 
 
-def floats(s):
-    return [float(x) for x in s.split()]
+class Untranslated(ValueError):
+    """An element of a raylab scene this script cannot give Mitsuba exactly."""
+
+
+def where(el, n):
+    """How an error names element number n (1-based among <scene>'s children)."""
+    attrs = " ".join(f'{k}="{v}"' for k, v in el.attrib.items())
+    return f"element {n}, <{el.tag}{' ' + attrs if attrs else ''}>"
+
+
+def floats(s, count=3):
+    values = [float(x) for x in s.split()]
+    if len(values) != count:
+        raise ValueError(f"expected {count} numbers, got {s!r}")
+    return values
+
+
+def required(el, name):
+    value = el.get(name)
+    if value is None:
+        raise Untranslated(
+            f"<{el.tag}> without {name}: raylab fills it in itself (a default, or a place on the "
+            f"floor); give it explicitly to compare with Mitsuba")
+    return value
+
+
+def srgb_to_linear(c):
+    return c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4
+
+
+def color(text):
+    """Linear RGB of a raylab colour: three floats, or #rrggbb / #rgb in sRGB."""
+    text = text.strip()
+    if text.startswith("#"):
+        digits = text[1:]
+        if len(digits) == 3:
+            digits = "".join(d * 2 for d in digits)
+        if len(digits) != 6:
+            raise ValueError(f"colour {text!r} is neither #rrggbb nor #rgb")
+        return [srgb_to_linear(int(digits[i:i + 2], 16) / 255) for i in (0, 2, 4)]
+    try:
+        return floats(text)
+    except ValueError:
+        raise Untranslated(f"colour {text!r}: give three linear floats or #rrggbb") from None
 
 
 def bsdf(el):
     kind = el.get("material", "matte")
-    color = floats(el.get("color", "0.8 0.8 0.8"))
+    rgb_value = color(el.get("color", "0.8 0.8 0.8"))
     roughness = float(el.get("roughness", "0"))
     alpha = roughness * roughness
-    rgb = {"type": "rgb", "value": color}
+    rgb = {"type": "rgb", "value": rgb_value}
     if kind == "matte":
         return {"type": "twosided", "b": {"type": "diffuse", "reflectance": rgb}}
     if kind == "mirror":
@@ -49,51 +102,168 @@ def bsdf(el):
             return {"type": "roughdielectric", "distribution": "ggx", "alpha": alpha,
                     "int_ior": ior, "ext_ior": 1.0}
         return {"type": "dielectric", "int_ior": ior, "ext_ior": 1.0}
-    raise ValueError(f"material {kind} has no Mitsuba translation here")
+    raise Untranslated(f"material {kind!r} has no Mitsuba translation here (matte, mirror, glass)")
 
 
 def emitter(el):
     e = el.get("emission")
-    return {"type": "area", "radiance": {"type": "rgb", "value": floats(e)}} if e else None
+    return {"type": "area", "radiance": {"type": "rgb", "value": color(e)}} if e else None
+
+
+def rotation_to(normal):
+    """A rotation taking +z (a Mitsuba rectangle's normal) to the unit vector `normal`."""
+    n = np.array(normal, dtype=float)
+    n /= np.linalg.norm(n)
+    axis = np.cross([0.0, 0.0, 1.0], n)
+    if np.linalg.norm(axis) < 1e-9:
+        return T() if n[2] > 0 else T().rotate([1, 0, 0], 180)
+    angle = np.degrees(np.arccos(np.clip(n[2], -1.0, 1.0)))
+    return T().rotate(list(axis / np.linalg.norm(axis)), float(angle))
+
+
+# Half the side of the square that stands for an infinite plane.
+PLANE_HALF_SIZE = 1.0e4
+
+
+def shape_of(el):
+    """The Mitsuba shape of one raylab object element (without its BSDF), or None for a triangle."""
+    if el.tag == "sphere":
+        return {"type": "sphere", "center": floats(required(el, "center")),
+                "radius": float(required(el, "radius"))}
+    if el.tag == "box":
+        c, size = floats(required(el, "center")), floats(required(el, "size"))
+        rx, ry, rz = floats(el.get("rotate", "0 0 0"))
+        to_world = (T().translate(c) @ T().rotate([0, 0, 1], rz) @ T().rotate([0, 1, 0], ry)
+                    @ T().rotate([1, 0, 0], rx) @ T().scale([s / 2 for s in size]))
+        return {"type": "cube", "to_world": to_world}
+    if el.tag in ("floor", "plane"):
+        if el.tag == "floor":
+            point, normal = [0.0, float(el.get("y", "0")), 0.0], [0.0, 1.0, 0.0]
+        else:
+            point, normal = floats(required(el, "point")), floats(required(el, "normal"))
+        to_world = T().translate(point) @ rotation_to(normal) @ T().scale(PLANE_HALF_SIZE)
+        return {"type": "rectangle", "to_world": to_world}
+    raise Untranslated(f"<{el.tag}> has no Mitsuba translation here")
+
+
+def light_of(el):
+    """The Mitsuba emitter of a raylab <light>, with raylab's defaults; None for ambient light."""
+    kind = el.get("type", "point")
+    rgb = color(el.get("color", "1 1 1"))
+    if kind == "ambient":
+        print(f"note: {el.get('name', 'an ambient light')} is left out: the path tracer has no "
+              "ambient term", file=sys.stderr)
+        return None
+    if kind == "point":
+        power = float(el.get("intensity", "60"))
+        return {"type": "point", "position": floats(el.get("position", "-4 6 4")),
+                "intensity": {"type": "rgb", "value": [power * c for c in rgb]}}
+    if kind == "directional":
+        power = float(el.get("intensity", "2"))
+        return {"type": "directional", "direction": floats(el.get("direction", "-1 -2 -1")),
+                "irradiance": {"type": "rgb", "value": [power * c for c in rgb]}}
+    raise Untranslated(f"light type {kind!r}")
+
+
+# The material parameters a <material> or a shape may set.
+MATERIAL_PARAMS = ("color", "roughness", "ior", "emission", "shininess", "specular", "reflectivity")
+# raylab's built-in materials.
+BUILT_IN = ("matte", "plastic", "mirror", "metal", "glass", "marble")
+
+
+class Resolved:
+    """An element's attributes with its named material folded in, as raylab resolves them: the
+    material's base chain first, then the material's own parameters, then the element's."""
+
+    def __init__(self, el, named):
+        self.tag = el.tag
+        self.attrib = dict(el.attrib)
+        kind = el.get("material", "matte")
+        chain = []
+        while kind not in BUILT_IN:
+            if kind not in named:
+                raise Untranslated(f"material {kind!r} is neither built in nor defined before")
+            chain.append(named[kind])
+            kind = named[kind].get("base", "matte")
+        params = {}
+        for m in reversed(chain):
+            params.update({k: v for k, v in m.attrib.items() if k in MATERIAL_PARAMS})
+        params.update({k: v for k, v in el.attrib.items() if k in MATERIAL_PARAMS})
+        params["material"] = kind
+        self.attrib.update(params)
+
+    def get(self, name, default=None):
+        return self.attrib.get(name, default)
 
 
 def load(path, workdir):
-    root = ET.parse(path).getroot()
+    """The Mitsuba scene of the raylab scene file `path` (OBJ files go to `workdir`); raises
+    Untranslated, naming the element, for anything it cannot translate exactly."""
+    try:
+        root = ET.parse(path).getroot()
+    except ET.ParseError as e:
+        raise Untranslated(f"{path}: {e} (raylab reads unclosed tags, as the lecture writes them; "
+                           "this translation needs well-formed XML)") from None
     cam = root.find("camera")
-    eye, toward = floats(cam.get("eye")), floats(cam.get("toward"))
+    if cam is None:
+        raise Untranslated("no <camera>: raylab frames the scene itself; give eye and toward")
+    eye, toward = floats(required(cam, "eye")), floats(required(cam, "toward"))
     up = floats(cam.get("up", "0 1 0"))
     scene = {
         "type": "scene",
         "integrator": {"type": "path", "max_depth": 8},
         "sensor": {
-            "type": "perspective", "fov": 2 * float(cam.get("theta")), "fov_axis": "y",
+            "type": "perspective", "fov": 2 * float(required(cam, "theta")), "fov_axis": "y",
             "to_world": T().look_at(origin=eye, target=[e + t for e, t in zip(eye, toward)], up=up),
-            "film": {"type": "hdrfilm", "width": int(cam.get("width")),
-                     "height": int(cam.get("height")), "rfilter": {"type": "box"},
+            "film": {"type": "hdrfilm", "width": int(required(cam, "width")),
+                     "height": int(required(cam, "height")), "rfilter": {"type": "box"},
                      "pixel_format": "rgb"},
             "sampler": {"type": "independent", "sample_count": 1},
         },
     }
     triangles = {}
-    for n, el in enumerate(root):
-        shape = None
-        if el.tag == "triangle":
-            key = tuple(el.get(k) for k in ("material", "color", "roughness", "ior", "emission"))
-            triangles.setdefault(key, (el, []))[1].append([floats(el.get(k)) for k in ("t0", "t1", "t2")])
-        elif el.tag == "sphere":
-            shape = {"type": "sphere", "center": floats(el.get("center")),
-                     "radius": float(el.get("radius"))}
-        elif el.tag == "box":
-            c, size = floats(el.get("center")), floats(el.get("size"))
-            rx, ry, rz = floats(el.get("rotate", "0 0 0"))
-            to_world = (T().translate(c) @ T().rotate([0, 0, 1], rz) @ T().rotate([0, 1, 0], ry)
-                        @ T().rotate([1, 0, 0], rx) @ T().scale([s / 2 for s in size]))
-            shape = {"type": "cube", "to_world": to_world}
-        if shape is not None:
+    named = {}
+    lit = False
+    for n, raw in enumerate(root):
+        el = raw
+        try:
+            if el.tag == "camera":
+                continue
+            if el.tag == "material":
+                base = el.get("base", "matte")
+                if base not in BUILT_IN and base not in named:
+                    raise Untranslated(f"base {base!r} is neither built in nor defined before")
+                named[required(el, "name")] = el
+                continue
+            if el.tag == "sky":
+                scene["sky"] = {"type": "constant",
+                                "radiance": {"type": "rgb", "value": color(required(el, "color"))}}
+                lit = True
+                continue
+            if el.tag == "light":
+                light = light_of(el)
+                if light is not None:
+                    scene[f"light{n}"] = light
+                    lit = True
+                continue
+            el = Resolved(el, named)
+            if el.tag == "triangle":
+                key = tuple(el.get(k) for k in ("material", "color", "roughness", "ior", "emission"))
+                corners = [floats(required(el, k)) for k in ("t0", "t1", "t2")]
+                triangles.setdefault(key, (el, []))[1].append(corners)
+                bsdf(el)  # refused now, with the element named, if it has no translation
+                lit = lit or emitter(el) is not None
+                continue
+            shape = shape_of(el)
             shape["bsdf"] = bsdf(el)
             if emitter(el):
                 shape["emitter"] = emitter(el)
+                lit = True
             scene[f"shape{n}"] = shape
+        except (Untranslated, ValueError) as e:
+            raise Untranslated(f"{path}: {where(raw, n + 1)}: {e}") from None
+    if not lit:
+        raise Untranslated(f"{path}: no light, emitter or sky: raylab adds a key light of its own")
     for k, (el, tris) in enumerate(triangles.values()):
         obj = os.path.join(workdir, f"triangles{k}.obj")
         with open(obj, "w") as f:
@@ -117,7 +287,10 @@ def main():
     path, spp = sys.argv[1], int(sys.argv[2])
     workdir = "/tmp/mitsuba-reference"
     os.makedirs(workdir, exist_ok=True)
-    scene = load(path, workdir)
+    try:
+        scene = load(path, workdir)
+    except Untranslated as e:
+        sys.exit(f"mitsuba_reference: {e}")
     halves = [np.array(mi.render(scene, spp=spp // 2, seed=seed))[:, :, :3] for seed in (1, 2)]
     image = 0.5 * (halves[0] + halves[1])
     out = os.path.splitext(path)[0] + ".exr"

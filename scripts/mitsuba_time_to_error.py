@@ -81,7 +81,10 @@ def cmd_render(args):
 
     with tempfile.TemporaryDirectory() as workdir:
         start = time.perf_counter()
-        scene = mitsuba_reference.load(args.scene, workdir)
+        try:
+            scene = mitsuba_reference.load(args.scene, workdir)
+        except mitsuba_reference.Untranslated as e:
+            sys.exit(f"mitsuba_time_to_error: {e}")
         load_seconds = time.perf_counter() - start
     warm_up_seconds, image, warm_up_compiled = render(1, seed=1_000_000 + args.seed)
     if image.shape != reference.shape:
