@@ -4,10 +4,13 @@ was not tuned on (issue 26: "it will be checked on scenes that are not in the re
 
   grid900.xml       a 30 × 30 grid of spheres (matte, mirror, glass) on a floor, lit by an area light;
   scatter3000.xml   3,000 spheres of random sizes scattered over the floor and in the air;
-  tessellated.xml   a UV sphere of 3,480 lone triangles beside five spheres.
+  tessellated.xml   a UV sphere of 3,480 lone triangles beside five spheres;
+  lamps.xml         64 spheres and boxes on an infinite floor before a tilted wall, under a sky, lit by
+                    three point lights and the sun (a directional light), with named materials (rough
+                    mirrors, rough glass): no area light at all.
 
-Each is in the subset of raylab's format that scripts/mitsuba_reference.py translates (triangles, spheres,
-boxes; matte, mirror, glass; emission), 512×384. The scenes are the same on every run (fixed seeds).
+Each is in the subset of raylab's format that scripts/mitsuba_reference.py translates, 512×384. The
+scenes are the same on every run (fixed seeds).
 
     python3 scripts/unseen_scenes.py DIR
 
@@ -85,13 +88,42 @@ def tessellated(nu=60, nv=30, radius=2.5):
     return HEAD + body + "</scene>\n"
 
 
+def lamps(n=64):
+    rng = random.Random(5)
+    body = """<scene>
+  <camera eye="0 5 14" toward="0 -4 -14" up="0 1 0" theta="24" width="512" height="384"/>
+  <sky color="0.15 0.2 0.3"/>
+  <light type="point" position="-5 6 3" color="1 0.85 0.7" intensity="80"/>
+  <light type="point" position="4 3 5" color="0.6 0.7 1" intensity="30"/>
+  <light type="point" position="0 8 -4" intensity="50"/>
+  <light type="directional" direction="0.4 -1 -0.6" color="1 0.95 0.9" intensity="1.2"/>
+  <material name="brushed" base="mirror" color="0.9 0.8 0.6" roughness="0.4"/>
+  <material name="frosted" base="glass" roughness="0.3"/>
+  <floor y="0" color="0.55 0.55 0.5"/>
+  <plane point="0 0 -8" normal="0 0.2 1" color="0.4 0.45 0.5"/>
+"""
+    for k in range(n):
+        x, z = rng.uniform(-7, 7), rng.uniform(-6, 5)
+        kind = rng.choice(["matte", "matte", "brushed", "frosted", "mirror"])
+        color = " ".join("%.3f" % rng.uniform(0.2, 0.9) for _ in range(3))
+        paint = f'material="{kind}"' + (f' color="{color}"' if kind == "matte" else "")
+        if k % 3 == 0:
+            s = rng.uniform(0.4, 1.0)
+            body += (f'  <box center="{x:.4f} {s / 2:.4f} {z:.4f}" size="{s:.4f} {s:.4f} {s:.4f}" '
+                     f'rotate="0 {rng.uniform(0, 90):.2f} 0" {paint}/>\n')
+        else:
+            r = rng.uniform(0.2, 0.7)
+            body += f'  <sphere center="{x:.4f} {r:.4f} {z:.4f}" radius="{r:.4f}" {paint}/>\n'
+    return body + "</scene>\n"
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__)
     out = sys.argv[1]
     os.makedirs(out, exist_ok=True)
     for name, text in [("grid900", grid(900)), ("scatter3000", scatter(3000)),
-                       ("tessellated", tessellated())]:
+                       ("tessellated", tessellated()), ("lamps", lamps())]:
         path = os.path.join(out, name + ".xml")
         with open(path, "w") as f:
             f.write(text)
