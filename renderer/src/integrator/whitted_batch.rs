@@ -1,6 +1,6 @@
 //! Whitted's samples on the film, sixteen at a time: the closest hits of
 //! their camera rays are found together — in SIMD packets in a world of
-//! lone triangles, boxes and spheres ([`PacketShapes`]), as a batch through
+//! lone triangles, boxes, spheres and planes ([`PacketShapes`]), as a batch through
 //! each mesh instance in a world of meshes ([`World::intersect_batch`]),
 //! which takes coherent rays in packets — and each sample is then shaded
 //! from its hit by Whitted's recursion, which traces the reflected,
@@ -57,7 +57,7 @@ enum CameraHits<'a> {
     /// (ray by ray past [`crate::world::BATCHED_INSTANCES`] instances).
     Batch,
     /// [`World::intersect`] ray by ray: a world without meshes that
-    /// packets do not cover (other shapes, planes, the lecture's formulas,
+    /// packets do not cover (cylinders, cones, tori, the lecture's formulas,
     /// more than [`PacketShapes::MAX_PRIMITIVES`] primitives).
     OneByOne,
 }

@@ -1,7 +1,8 @@
 //! Packet intersection for worlds of lone primitives: sixteen rays (one per
-//! lane) tested against the triangles, boxes and spheres of a world made
-//! only of them, with exactly the [`Method::Robust`] formulas of the scalar
-//! code (`shapes/triangle.rs`, `shapes/cuboid.rs`, `shapes/sphere.rs`): the
+//! lane) tested against the triangles, boxes, spheres and infinite planes of
+//! a world made only of them, with exactly the [`Method::Robust`] formulas of
+//! the scalar code (`shapes/triangle.rs`, `shapes/cuboid.rs`,
+//! `shapes/sphere.rs`, `shapes/plane.rs`): the
 //! same operations in the same order in every lane, no fused multiply–add,
 //! so each lane's α, hit point and normal are bit for bit what
 //! [`World::intersect`] and [`World::surface`] give for its ray.
@@ -9,13 +10,15 @@
 //! Each primitive's constants are splatted against the sixteen rays in turn.
 //! A few primitives ([`PacketShapes::BRUTE_FORCE_MAX`]) are all tested;
 //! more are walked through a binary BVH by the whole packet (`tree.rs`),
-//! up to [`PacketShapes::MAX_PRIMITIVES`]. What depends on the rays only
+//! up to [`PacketShapes::MAX_PRIMITIVES`]; planes, which no box holds,
+//! after the bounded primitives (`planes.rs`). What depends on the rays only
 //! (the watertight test's axis permutation and shear, the spheres' v · v,
 //! the reciprocal directions) is computed once per packet.
 //!
 //! [`Method::Robust`]: crate::shapes::Method::Robust
 
 mod boxes;
+mod planes;
 mod spheres;
 mod tree;
 mod triangles;
@@ -25,6 +28,7 @@ use crate::packet::{FloatLanes, IntLanes, MaskLanes, Rays, Vec3s, WIDTH};
 use crate::shapes::Shape;
 use crate::world::{Object, World};
 use boxes::Boxes;
+use planes::Planes;
 use spheres::{SphereRays, Spheres};
 use tree::{BoxRays, Leaf, Tree, Visitor};
 use triangles::Triangles;
@@ -39,7 +43,7 @@ pub struct PacketHits<F: FloatLanes> {
 }
 
 /// Which primitive an object is: its kind ([`TRIANGLE`], [`BOX`],
-/// [`SPHERE`]; [`NO_KIND`] for no primitive) and its index among that kind's.
+/// [`SPHERE`], [`PLANE`]; [`NO_KIND`] for no primitive) and its index among that kind's.
 #[derive(Clone, Copy, Debug)]
 struct Slot {
     /// The kind.
@@ -54,10 +58,12 @@ const TRIANGLE: usize = 0;
 const BOX: usize = 1;
 /// [`Slot::kind`] of a sphere.
 const SPHERE: usize = 2;
+/// [`Slot::kind`] of an infinite plane.
+const PLANE: usize = 3;
 /// [`Slot::kind`] of a lane that hit nothing.
-const NO_KIND: usize = 3;
+const NO_KIND: usize = 4;
 
-/// Every primitive of a world whose top level is only lone triangles, boxes and spheres (no models, no planes, no other shapes), laid out for packet tests.
+/// Every primitive of a world made only of lone triangles, boxes, spheres and infinite planes (no models, no other shapes), laid out for packet tests.
 #[derive(Clone, Debug)]
 pub struct PacketShapes {
     /// The `<triangle>` objects.
@@ -66,6 +72,8 @@ pub struct PacketShapes {
     boxes: Boxes,
     /// The `<sphere>` objects.
     spheres: Spheres,
+    /// The infinite planes (`<plane>`, `<floor>`), outside the tree.
+    planes: Planes,
     /// Per object id, which primitive it is.
     slots: Vec<Slot>,
     /// With more than [`PacketShapes::BRUTE_FORCE_MAX`] primitives, the
@@ -139,8 +147,8 @@ impl PacketShapes {
     /// 10,000 scattered 2.68 against 2.81 s.
     pub const MAX_PRIMITIVES: usize = 4096;
 
-    /// `None` when `world` holds anything else (a model/mesh, an unbounded
-    /// plane, a cylinder, cone, torus, ...), more than
+    /// `None` when `world` holds anything else (a model/mesh, a cylinder,
+    /// cone, torus, ...), more than
     /// [`PacketShapes::MAX_PRIMITIVES`] primitives, or primitives so
     /// unevenly spread that their tree would be deeper than its walk's stack
     /// (64 levels); such worlds are traced by the scalar lanes.
@@ -157,7 +165,9 @@ impl PacketShapes {
         let lone = |object: &Object| {
             matches!(
                 object,
-                Object::Shape(Shape::Triangle(_) | Shape::Box(_) | Shape::Sphere(_))
+                Object::Shape(
+                    Shape::Triangle(_) | Shape::Box(_) | Shape::Sphere(_) | Shape::Plane(_)
+                )
             )
         };
         if !world.objects.iter().all(lone) {
@@ -167,6 +177,7 @@ impl PacketShapes {
             triangles: Triangles::default(),
             boxes: Boxes::default(),
             spheres: Spheres::default(),
+            planes: Planes::default(),
             slots: vec![
                 Slot {
                     kind: NO_KIND,
@@ -182,9 +193,17 @@ impl PacketShapes {
             }
             return Some(shapes);
         }
+        let is_plane = |id: u32| matches!(world.shape(id), Some(Shape::Plane(_)));
         let items = (0..count as u32)
+            .filter(|&id| !is_plane(id))
             .map(|id| Some((id, world.shape_bounds(id)?)))
             .collect::<Option<Vec<_>>>()?;
+        for id in (0..count as u32).filter(|&id| is_plane(id)) {
+            shapes.push(world, id);
+        }
+        if items.is_empty() {
+            return Some(shapes);
+        }
         let tree = Tree::build(&items, |ids| {
             let before = shapes.counts();
             for &id in ids {
@@ -208,12 +227,13 @@ impl PacketShapes {
             Object::Shape(Shape::Triangle(t)) => (TRIANGLE, self.triangles.push(object, t)),
             Object::Shape(Shape::Box(b)) => (BOX, self.boxes.push(object, b)),
             Object::Shape(Shape::Sphere(s)) => (SPHERE, self.spheres.push(object, s)),
+            Object::Shape(Shape::Plane(p)) => (PLANE, self.planes.push(object, p)),
             other => unreachable!("object {id} has no packet test: {other:?}"),
         };
         self.slots[id as usize] = Slot { kind, index };
     }
 
-    /// How many primitives each kind holds.
+    /// How many primitives each bounded kind holds.
     fn counts(&self) -> [usize; 3] {
         [self.triangles.len(), self.boxes.len(), self.spheres.len()]
     }
@@ -240,6 +260,10 @@ impl PacketShapes {
         };
         if live.any() {
             self.search(rays, live, &mut search);
+            // Planes last: a plane must be strictly nearer.
+            self.planes
+                .closest(rays, self.planes.all(), &mut search.nearest);
+            search.prepared.tests = search.prepared.tests + count::<F>(live, self.planes.len());
         }
         *tests = search.prepared.tests;
         search.nearest.hits()
@@ -259,7 +283,18 @@ impl PacketShapes {
             // Lanes settled: blocked ones, and the dead ones from the start.
             settled: !live,
         };
-        self.search(rays, live, &mut search);
+        // Planes first, as the scalar test has them; the lanes they block
+        // walk no further.
+        let all_blocked = self.planes.occluded(
+            rays,
+            self.planes.all(),
+            &mut search.settled,
+            &mut search.prepared.tests,
+        );
+        if !all_blocked {
+            let open = !search.settled;
+            self.search(rays, open, &mut search);
+        }
         *tests = search.prepared.tests;
         search.settled & live
     }
@@ -308,16 +343,17 @@ impl PacketShapes {
             index[slot.kind][lane] = slot.index;
             bits[slot.kind] |= 1 << lane;
         }
-        let hit_bits = bits[TRIANGLE] | bits[BOX] | bits[SPHERE];
+        let hit_bits = bits[TRIANGLE] | bits[BOX] | bits[SPHERE] | bits[PLANE];
         let (mut point, mut normal) = (Vec3s::ZERO, Vec3s::ZERO);
-        for kind in [TRIANGLE, BOX, SPHERE] {
+        for kind in [TRIANGLE, BOX, SPHERE, PLANE] {
             if bits[kind] == 0 {
                 continue;
             }
             let (p, n) = match kind {
                 TRIANGLE => self.triangles.surface(rays, hits.alpha, &index[kind]),
                 BOX => self.boxes.surface(rays, hits.alpha, &index[kind]),
-                _ => self.spheres.surface(rays, hits.alpha, &index[kind]),
+                SPHERE => self.spheres.surface(rays, hits.alpha, &index[kind]),
+                _ => self.planes.surface(rays, hits.alpha, &index[kind]),
             };
             if bits[kind] == hit_bits {
                 // Every lane that hit, hit this kind.
@@ -685,12 +721,16 @@ pub(super) mod testing {
         let mut found = 0;
         for (k, ray) in lanes.iter().enumerate() {
             let (alpha, object) = (hits.alpha.as_array()[k], objects[k]);
-            for tests in [closest_tests, occluded_tests].map(|t| t.to_array()[k] as usize) {
-                // Every primitive without a tree, at most every one with it.
+            for (tests, shadow) in [(closest_tests, false), (occluded_tests, true)]
+                .map(|(t, shadow)| (t.to_array()[k] as usize, shadow))
+            {
+                // Every primitive without a tree, at most every one with it
+                // (or when a plane, met first, blocks a shadow ray).
+                let stops_early = shadow && shapes.planes.len() > 0;
                 let expected = match (&shapes.tree, ray.t_max) {
                     (_, 0.0) => 0..=0,
-                    (None, _) => shapes.len()..=shapes.len(),
-                    (Some(_), _) => 0..=shapes.len(),
+                    (None, _) if !stops_early => shapes.len()..=shapes.len(),
+                    _ => 0..=shapes.len(),
                 };
                 assert!(expected.contains(&tests), "lane {k}: {tests} tests");
             }
@@ -893,9 +933,13 @@ mod tests {
     }
 
     #[test]
-    fn worlds_with_anything_else_or_too_many_primitives_are_refused() {
+    fn worlds_with_other_shapes_or_too_many_primitives_are_refused() {
+        // A plane is a packet primitive; these have no packet test.
+        let with_plane = world_of(
+            r#"<scene><sphere center="0 0 0" radius="1"/><plane point="0 -1 0" normal="0 1 0"/></scene>"#,
+        );
+        assert!(PacketShapes::new(&with_plane).is_some());
         for other in [
-            r#"<plane point="0 -1 0" normal="0 1 0"/>"#,
             r#"<cylinder base="0 0 0" radius="1" height="1"/>"#,
             r#"<cone base="0 0 0" radius="1" height="1"/>"#,
             r#"<torus center="0 0 0" major="1" minor="0.2"/>"#,

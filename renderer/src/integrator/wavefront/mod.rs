@@ -12,9 +12,9 @@
 //! lane, sees exactly the film's sample — and a test holds it to that over
 //! every pixel of the scenes it covers.
 //!
-//! Rays are tested in packets in worlds of lone triangles, boxes and
-//! spheres ([`crate::packet_shapes::PacketShapes`]: against every primitive, or
-//! through a tree), else traced lane by lane through the world's BVH
+//! Rays are tested in packets in worlds of lone triangles, boxes, spheres
+//! and planes ([`crate::packet_shapes::PacketShapes`]: against every
+//! primitive, or through a tree, then the planes), else traced lane by lane through the world's BVH
 //! (`tracing.rs`). Hits on analytic shapes with smooth lobes are shaded on
 //! lanes: Lambertian with a mirror lobe, rough conductors (`glossy.rs`) and
 //! rough glass (`rough_glass.rs`), point and directional lights included,

@@ -178,7 +178,7 @@ fn has_textures(world: &World) -> bool {
 }
 
 /// `world`'s primitives for packet tests, when it has few enough lone
-/// triangles, boxes and spheres and nothing else, and `method` is the
+/// triangles, boxes and spheres, any infinite planes, and nothing else, and `method` is the
 /// robust one (the packet tests are its formulas).
 fn packet_shapes(world: &World, method: Method) -> Option<PacketShapes> {
     match method {

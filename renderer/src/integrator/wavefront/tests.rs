@@ -217,7 +217,7 @@ fn emitters_seen_through_mirrors_metal_and_glass_match_too() {
 
 #[test]
 fn other_shapes_through_the_bvh_and_big_worlds_through_the_tree_match_too() {
-    // Cylinders, cones, tori and planes have no packet test: their rays go
+    // Cylinders, cones and tori have no packet test: their rays go
     // through the world's BVH, lane by lane; so does every shape under the
     // lecture's formulas. The 104 primitives of spheres.xml are walked in
     // packets through a tree.
@@ -280,6 +280,51 @@ fn point_and_directional_lights_match_too() {
     for world in [&lit, &seed] {
         assert_every_pixel_matches(world, &[(8, 13)], 2);
     }
+}
+
+#[test]
+fn floors_and_walls_go_in_packets_with_the_tree_and_match_too() {
+    // Infinite planes are packet primitives outside the tree: a floor, a
+    // tilted wall, and 36 spheres and boxes (every smooth and rough
+    // material the lanes shade), under a sky, two point lights and the sun;
+    // a box stands on the floor, so its face and the floor tie there.
+    let materials = [
+        r#"material="matte" color="0.7 0.3 0.2""#,
+        r#"material="mirror" color="0.9 0.8 0.7" roughness="0.4""#,
+        r#"material="glass" ior="1.5""#,
+        r#"material="glass" roughness="0.3""#,
+        r#"material="metal" color="0.8 0.6 0.3""#,
+    ];
+    let mut xml = String::from(
+        r#"<scene>
+  <camera eye="0 4 9" toward="0 -3 -9" up="0 1 0" theta="28" width="12" height="9"/>
+  <sky color="0.2 0.25 0.3"/>
+  <light position="-3 5 2" intensity="40"/>
+  <light position="3 2 4" color="0.6 0.7 1" intensity="15"/>
+  <light type="directional" direction="0.4 -1 -0.6" intensity="1"/>
+  <floor y="0" color="0.55 0.55 0.5"/>
+  <plane point="0 0 -5" normal="0 0.2 1" color="0.4 0.45 0.5"/>
+  <sphere center="0 4 -2" radius="0.5" material="matte" color="0 0 0" emission="10 10 10"/>
+"#,
+    );
+    for k in 0..36 {
+        let (x, z) = ((k % 6) as f32 - 2.5, (k / 6) as f32 * 0.8 - 3.0);
+        let paint = materials[k % materials.len()];
+        xml += &if k % 3 == 0 {
+            format!(
+                "  <box center=\"{x} 0.25 {z}\" size=\"0.5 0.5 0.5\" rotate=\"0 {k}0 0\" {paint}/>\n"
+            )
+        } else {
+            format!("  <sphere center=\"{x} 0.3 {z}\" radius=\"0.3\" {paint}/>\n")
+        };
+    }
+    xml += "</scene>";
+    let world = world_from(&xml, 12, 9);
+    assert!(
+        WavefrontScene::for_film(&world, Method::Robust).is_some_and(|s| s.shapes.is_some()),
+        "packets through the tree, planes after it"
+    );
+    assert_every_pixel_matches(&world, &[(8, 21), (3, 22)], 3);
 }
 
 #[test]

@@ -1,5 +1,5 @@
 //! A group's ray queries: packets tested against the primitives of a world
-//! of lone triangles, boxes and spheres ([`PacketShapes`]: every primitive,
+//! of lone triangles, boxes, spheres and planes ([`PacketShapes`]: every primitive,
 //! or those a tree lets through), else each lane's ray traced through the world's BVH
 //! (`World::intersect` and `World::occluded`, the scalar path tracer's own
 //! queries). Either way a lane's hit is the scalar one bit for bit.
