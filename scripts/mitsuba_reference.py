@@ -83,31 +83,54 @@ def color(text):
         raise Untranslated(f"colour {text!r}: give three linear floats or #rrggbb") from None
 
 
+# raylab's built-in colours (scene/src/materials.rs) of the materials translated here.
+DEFAULT_COLOR = {"matte": "0.8 0.8 0.8", "mirror": "0.95 0.95 0.95", "glass": "1 1 1"}
+
+
+def refuse_lobes(el, kind, allowed_reflectivity):
+    """raylab adds a mirror lobe (`reflectivity`) or a highlight (`specular`) that Mitsuba's
+    translation here does not have: refuse them."""
+    reflectivity = float(el.get("reflectivity", str(allowed_reflectivity)))
+    if reflectivity != allowed_reflectivity or float(el.get("specular", "0")) > 0:
+        raise Untranslated(f"{kind} with reflectivity or specular set has no Mitsuba translation")
+
+
 def bsdf(el):
     kind = el.get("material", "matte")
-    rgb_value = color(el.get("color", "0.8 0.8 0.8"))
+    rgb_value = color(el.get("color", DEFAULT_COLOR.get(kind, "0.8 0.8 0.8")))
     roughness = float(el.get("roughness", "0"))
     alpha = roughness * roughness
     rgb = {"type": "rgb", "value": rgb_value}
     if kind == "matte":
+        refuse_lobes(el, kind, 0.0)
         return {"type": "twosided", "b": {"type": "diffuse", "reflectance": rgb}}
     if kind == "mirror":
+        refuse_lobes(el, kind, 1.0)
+        # Two-sided, as raylab turns the normal toward the ray for every material.
         if alpha > 0:
-            return {"type": "roughconductor", "material": "none", "distribution": "ggx",
-                    "alpha": alpha, "specular_reflectance": rgb}
-        return {"type": "conductor", "material": "none", "specular_reflectance": rgb}
+            return {"type": "twosided", "b": {
+                "type": "roughconductor", "material": "none", "distribution": "ggx",
+                "alpha": alpha, "specular_reflectance": rgb}}
+        return {"type": "twosided", "b": {"type": "conductor", "material": "none",
+                                          "specular_reflectance": rgb}}
     if kind == "glass":
+        refuse_lobes(el, kind, 0.0)
         ior = float(el.get("ior", "1.5"))
+        # raylab tints what the glass transmits by its colour.
         if alpha > 0:
             return {"type": "roughdielectric", "distribution": "ggx", "alpha": alpha,
-                    "int_ior": ior, "ext_ior": 1.0}
-        return {"type": "dielectric", "int_ior": ior, "ext_ior": 1.0}
+                    "int_ior": ior, "ext_ior": 1.0, "specular_transmittance": rgb}
+        return {"type": "dielectric", "int_ior": ior, "ext_ior": 1.0,
+                "specular_transmittance": rgb}
     raise Untranslated(f"material {kind!r} has no Mitsuba translation here (matte, mirror, glass)")
 
 
 def emitter(el):
+    """The area light of an element whose emission is positive (raylab's rule), else None."""
     e = el.get("emission")
-    return {"type": "area", "radiance": {"type": "rgb", "value": color(e)}} if e else None
+    if e is None or max(color(e)) <= 0:
+        return None
+    return {"type": "area", "radiance": {"type": "rgb", "value": color(e)}}
 
 
 def rotation_to(normal):
@@ -182,7 +205,9 @@ class Resolved:
         chain = []
         while kind not in BUILT_IN:
             if kind not in named:
-                raise Untranslated(f"material {kind!r} is neither built in nor defined before")
+                raise Untranslated(f"material {kind!r} is neither built in nor defined")
+            if named[kind] in chain:
+                raise Untranslated(f"material {kind!r} derives from itself")
             chain.append(named[kind])
             kind = named[kind].get("base", "matte")
         params = {}
@@ -222,7 +247,8 @@ def load(path, workdir):
         },
     }
     triangles = {}
-    named = {}
+    # raylab resolves material names once the whole file is read: a shape may name a later one.
+    named = {el.get("name"): el for el in root if el.tag == "material" and el.get("name")}
     lit = False
     for n, raw in enumerate(root):
         el = raw
@@ -230,10 +256,10 @@ def load(path, workdir):
             if el.tag == "camera":
                 continue
             if el.tag == "material":
+                required(el, "name")
                 base = el.get("base", "matte")
                 if base not in BUILT_IN and base not in named:
-                    raise Untranslated(f"base {base!r} is neither built in nor defined before")
-                named[required(el, "name")] = el
+                    raise Untranslated(f"base {base!r} is neither built in nor defined")
                 continue
             if el.tag == "sky":
                 scene["sky"] = {"type": "constant",

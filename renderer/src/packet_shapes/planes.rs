@@ -199,9 +199,41 @@ mod tests {
     }
 
     #[test]
+    fn a_box_standing_on_the_floor_wins_the_tie_and_a_world_of_planes_alone_matches() {
+        // Rays from under the floor straight up meet the box's bottom face
+        // and the floor at the same α = 1: the box must win, as the scalar
+        // test decides (a plane only when strictly nearer).
+        let world = world_of(
+            r#"<scene><floor y="0"/><box center="0 0.5 0" size="1 1 1"/><sphere center="5 1 0" radius="1"/></scene>"#,
+        );
+        let lanes: [Ray; WIDTH] = std::array::from_fn(|k| {
+            let (x, z) = ((k % 4) as f32 * 0.2 - 0.3, (k / 4) as f32 * 0.1 - 0.15);
+            Ray::new(Vec3::new(x, -1.0, z), Vec3::Y)
+        });
+        for ray in &lanes {
+            let want = world
+                .intersect(ray, crate::shapes::Method::Robust)
+                .expect("a hit");
+            assert_eq!(
+                (want.object, want.alpha),
+                (1, 1.0),
+                "the box, at the floor's α"
+            );
+        }
+        assert_eq!(check_rays(&world, &lanes), WIDTH);
+        // Planes and nothing else: no tree, every lane's plane hit.
+        let planes = world_of(
+            r#"<scene><floor y="0"/><plane point="0 0 -4" normal="0 0.3 1"/><plane point="3 0 0" normal="-1 0 0"/></scene>"#,
+        );
+        let rays = rays_for(&planes, 44, 500);
+        assert!(check_rays(&planes, &rays) > 100);
+    }
+
+    #[test]
     fn worlds_with_floors_and_walls_give_the_scalar_worlds_hits_bit_for_bit() {
-        // A floor, a tilted wall and a plane a box lies in (the box's face
-        // must win the tie), with few primitives (every one tested) and
+        // A floor, a tilted wall and a wall through the shapes, with boxes
+        // standing on the floor (a box's face and the floor tie there, and
+        // the box must win), with few primitives (every one tested) and
         // with many (through the tree).
         let mut rng = Sampler::for_sample(42, 0, 0, 0);
         let planes = r#"<floor y="0"/><plane point="0 0 -4" normal="0 0.3 1"/><plane point="0 0 0" normal="1 0 0"/>"#;
