@@ -262,8 +262,7 @@ impl PacketShapes {
             self.search(rays, live, &mut search);
             // Planes last: a plane must be strictly nearer.
             self.planes
-                .closest(rays, self.planes.all(), &mut search.nearest);
-            search.prepared.tests = search.prepared.tests + count::<F>(live, self.planes.len());
+                .closest(rays, live, &mut search.nearest, &mut search.prepared.tests);
         }
         *tests = search.prepared.tests;
         search.nearest.hits()
@@ -285,12 +284,9 @@ impl PacketShapes {
         };
         // Planes first, as the scalar test has them; the lanes they block
         // walk no further.
-        let all_blocked = self.planes.occluded(
-            rays,
-            self.planes.all(),
-            &mut search.settled,
-            &mut search.prepared.tests,
-        );
+        let all_blocked =
+            self.planes
+                .occluded(rays, &mut search.settled, &mut search.prepared.tests);
         if !all_blocked {
             let open = !search.settled;
             self.search(rays, open, &mut search);
@@ -726,7 +722,7 @@ pub(super) mod testing {
             {
                 // Every primitive without a tree, at most every one with it
                 // (or when a plane, met first, blocks a shadow ray).
-                let stops_early = shadow && shapes.planes.len() > 0;
+                let stops_early = shadow && !shapes.planes.is_empty();
                 let expected = match (&shapes.tree, ray.t_max) {
                     (_, 0.0) => 0..=0,
                     (None, _) if !stops_early => shapes.len()..=shapes.len(),

@@ -7,7 +7,6 @@
 
 use super::{FloatLanes, MaskLanes, Nearest, Rays, Vec3s, WIDTH, gather3};
 use crate::shapes::Plane;
-use std::ops::Range;
 
 /// One plane's constants.
 #[derive(Clone, Copy, Debug)]
@@ -38,16 +37,10 @@ impl Planes {
         self.items.len() as u32 - 1
     }
 
-    /// How many there are.
-    #[inline(always)]
-    pub(super) fn len(&self) -> usize {
-        self.items.len()
-    }
-
-    /// Every plane's index.
-    #[inline(always)]
-    pub(super) fn all(&self) -> Range<usize> {
-        0..self.items.len()
+    /// True when there are none (the packet checker's test counts).
+    #[cfg(test)]
+    pub(super) fn is_empty(&self) -> bool {
+        self.items.is_empty()
     }
 
     /// The lanes whose ray meets `p` in (0, limit), and α there (anything
@@ -62,22 +55,25 @@ impl Planes {
         (hit, alpha)
     }
 
-    /// Takes the hits of the planes `range` (indices here) that are
-    /// strictly nearer than `nearest`'s, one plane after the other.
+    /// Takes the hits of every plane that are strictly nearer than
+    /// `nearest`'s, one plane after the other, adding to `tests` one test
+    /// per plane for each lane of `live`.
     #[inline(always)]
     pub(super) fn closest<F: FloatLanes>(
         &self,
         rays: &Rays<F>,
-        range: Range<usize>,
+        live: F::Mask,
         nearest: &mut Nearest<F>,
+        tests: &mut F::Ints,
     ) {
-        for p in &self.items[range] {
+        for p in &self.items {
+            *tests = *tests + super::count::<F>(live, 1);
             let (hit, alpha) = Self::hit(p, rays, nearest.limit);
             nearest.take(hit, alpha, p.object);
         }
     }
 
-    /// Adds the lanes a plane of `range` blocks within their t_max to
+    /// Adds the lanes a plane blocks within their t_max to
     /// `settled`, and to `tests` one test per plane for each lane that
     /// was still open when it was tested (a lane stops at the first
     /// plane that blocks it, as `World::occluded`'s do); true as soon as
@@ -86,11 +82,10 @@ impl Planes {
     pub(super) fn occluded<F: FloatLanes>(
         &self,
         rays: &Rays<F>,
-        range: Range<usize>,
         settled: &mut F::Mask,
         tests: &mut F::Ints,
     ) -> bool {
-        for p in &self.items[range] {
+        for p in &self.items {
             *tests = *tests + super::count::<F>(!*settled, 1);
             let (hit, _) = Self::hit(p, rays, rays.t_max);
             *settled = *settled | hit;
