@@ -128,9 +128,10 @@ def bsdf(el):
 def emitter(el):
     """The area light of an element whose emission is positive (raylab's rule), else None."""
     e = el.get("emission")
-    if e is None or max(color(e)) <= 0:
+    radiance = color(e) if e is not None else [0.0]
+    if max(radiance) <= 0:
         return None
-    return {"type": "area", "radiance": {"type": "rgb", "value": color(e)}}
+    return {"type": "area", "radiance": {"type": "rgb", "value": radiance}}
 
 
 def rotation_to(normal):
@@ -149,7 +150,7 @@ PLANE_HALF_SIZE = 1.0e4
 
 
 def shape_of(el):
-    """The Mitsuba shape of one raylab object element (without its BSDF), or None for a triangle."""
+    """The Mitsuba shape of one raylab object element other than a triangle (without its BSDF)."""
     if el.tag == "sphere":
         return {"type": "sphere", "center": floats(required(el, "center")),
                 "radius": float(required(el, "radius"))}
@@ -282,8 +283,9 @@ def load(path, workdir):
                 continue
             shape = shape_of(el)
             shape["bsdf"] = bsdf(el)
-            if emitter(el):
-                shape["emitter"] = emitter(el)
+            light = emitter(el)
+            if light:
+                shape["emitter"] = light
                 lit = True
             scene[f"shape{n}"] = shape
         except (Untranslated, ValueError) as e:
@@ -299,8 +301,9 @@ def load(path, workdir):
             for i in range(len(tris)):
                 f.write("f %d %d %d\n" % (3 * i + 1, 3 * i + 2, 3 * i + 3))
         shape = {"type": "obj", "filename": obj, "face_normals": True, "bsdf": bsdf(el)}
-        if emitter(el):
-            shape["emitter"] = emitter(el)
+        light = emitter(el)
+        if light:
+            shape["emitter"] = light
         scene[f"triangles{k}"] = shape
     return mi.load_dict(scene)
 
