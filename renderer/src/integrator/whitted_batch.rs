@@ -175,8 +175,8 @@ fn tiles(samples: &[SampleRef]) -> Vec<u32> {
 /// The closest hits of the first `n` rays of `rays` tested as one packet
 /// against `shapes` (the others are dead), with each ray's shape tests:
 /// the primitives of the leaves its own box tests let it into (every
-/// primitive, up to [`PacketShapes::BRUTE_FORCE_MAX`]), whatever the other
-/// lanes do.
+/// primitive, up to [`PacketShapes::BRUTE_FORCE_MAX`]) and every plane,
+/// whatever the other lanes do.
 #[inline(always)]
 fn packet_hits<F: FloatLanes>(
     shapes: &PacketShapes,
