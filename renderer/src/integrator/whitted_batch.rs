@@ -1,6 +1,7 @@
 //! Whitted's samples on the film, sixteen at a time: the closest hits of
 //! their camera rays are found together — in SIMD packets in a world of
-//! lone triangles, boxes, spheres and planes ([`PacketShapes`]), as a batch through
+//! lone triangles (small meshes' included), boxes, spheres and planes
+//! ([`PacketShapes`]), as a batch through
 //! each mesh instance in a world of meshes ([`World::intersect_batch`]),
 //! which takes coherent rays in packets — and each sample is then shaded
 //! from its hit by Whitted's recursion, which traces the reflected,
@@ -187,17 +188,9 @@ fn packet_hits<F: FloatLanes>(
 ) {
     let mut tested = F::Ints::splat(0);
     let packet = shapes.closest(&Rays::<F>::from_lanes(rays), &mut tested);
-    let (alpha, object, tested) = (
-        packet.alpha.to_array(),
-        packet.object.to_array(),
-        tested.to_array(),
-    );
+    let tested = tested.to_array();
     for k in 0..n {
-        hits[k] = (alpha[k] < f32::INFINITY).then(|| Hit {
-            object: object[k] as u32,
-            alpha: alpha[k],
-            triangle: None,
-        });
+        hits[k] = shapes.lane_hit(&packet, k, &rays[k]);
         tests[k] = tested[k] as u32;
         count_ray();
         count_shape_tests(tested[k] as usize);

@@ -7,6 +7,14 @@
 //! so each lane's α, hit point and normal are bit for bit what
 //! [`World::intersect`] and [`World::surface`] give for its ray.
 //!
+//! Small meshes count as lone triangles: the world places their triangles
+//! in world space among its `<triangle>`s ([`World::grouped_triangles`]),
+//! and the packets test those same corners. Among these triangles a tie
+//! goes to the lowest index, as in the group's BVH, so a lane finds the
+//! scalar query's very triangle; its β and γ, which the mesh's shading
+//! needs, are the watertight test's again on that one triangle
+//! ([`PacketShapes::lane_hit`]).
+//!
 //! Each primitive's constants are splatted against the sixteen rays in turn.
 //! A few primitives ([`PacketShapes::BRUTE_FORCE_MAX`]) are all tested;
 //! more are walked through a binary BVH by the whole packet (`tree.rs`),
@@ -23,23 +31,29 @@ mod spheres;
 mod tree;
 mod triangles;
 
+use crate::geometry::ray::Ray;
 use crate::packet::ShearedRays;
 use crate::packet::{FloatLanes, IntLanes, MaskLanes, Rays, Vec3s, WIDTH};
-use crate::shapes::Shape;
-use crate::world::{Object, World};
+use crate::shapes::{Method, Shape, Triangle};
+use crate::world::{Hit, Object, TriangleRef, World};
 use boxes::Boxes;
 use planes::Planes;
 use spheres::{SphereRays, Spheres};
 use tree::{BoxRays, Leaf, Tree, Visitor};
 use triangles::Triangles;
 
-/// The closest hits of a packet: α per lane (+∞ where nothing was hit) and the object id hit (-1 where none).
+/// The closest hits of a packet: α per lane (+∞ where nothing was hit),
+/// the object id hit (−1 where none) and, where a triangle was hit, which.
 #[derive(Clone, Copy, Debug)]
 pub struct PacketHits<F: FloatLanes> {
     /// α of each lane's nearest hit, +∞ where its ray hit nothing.
     pub alpha: F,
     /// The object id ([`World::objects`] index) hit in each lane, −1 where nothing was.
     pub object: F::Ints,
+    /// The triangle hit in each lane, by its key (its index among
+    /// [`World::grouped_triangles`], or among the `<triangle>`s in object
+    /// order when there is no group); −1 where the hit is no triangle.
+    pub triangle: F::Ints,
 }
 
 /// Which primitive an object is: its kind ([`TRIANGLE`], [`BOX`],
@@ -63,10 +77,13 @@ const PLANE: usize = 3;
 /// [`Slot::kind`] of a lane that hit nothing.
 const NO_KIND: usize = 4;
 
-/// Every primitive of a world made only of lone triangles, boxes, spheres and infinite planes (no models, no other shapes), laid out for packet tests.
+/// Every primitive of a world made only of lone triangles, small meshes
+/// (their triangles placed in world space, as [`World::grouped_triangles`]
+/// holds them), boxes, spheres and infinite planes (no other shapes), laid
+/// out for packet tests.
 #[derive(Clone, Debug)]
 pub struct PacketShapes {
-    /// The `<triangle>` objects.
+    /// The triangles: `<triangle>` objects and mesh triangles.
     triangles: Triangles,
     /// The `<box>` objects.
     boxes: Boxes,
@@ -74,12 +91,32 @@ pub struct PacketShapes {
     spheres: Spheres,
     /// The infinite planes (`<plane>`, `<floor>`), outside the tree.
     planes: Planes,
-    /// Per object id, which primitive it is.
+    /// Per object id, which primitive it is (for a triangle or a model,
+    /// only the kind: [`PacketHits::triangle`] says which triangle).
     slots: Vec<Slot>,
+    /// Per triangle key ([`PacketHits::triangle`]), its index in `triangles`.
+    triangle_at: Vec<u32>,
+    /// Per triangle key, the mesh instance and the triangle's index in its
+    /// mesh, for a mesh's triangle (`None` for a `<triangle>`); empty when
+    /// the world has no mesh.
+    from_mesh: Vec<Option<(u32, u32)>>,
+    /// How many primitives there are, planes included.
+    count: usize,
     /// With more than [`PacketShapes::BRUTE_FORCE_MAX`] primitives, the
     /// BVH that packets walk (the kinds then hold their primitives in its
     /// leaf order); `None`: every packet tests every primitive.
     tree: Option<Tree>,
+}
+
+/// A primitive to lay out: an object that is one (a box, a sphere, a plane,
+/// or a `<triangle>` when the world groups no triangles), or a triangle of
+/// [`World::grouped_triangles`] (by its index there, its key).
+#[derive(Clone, Copy, Debug)]
+enum Primitive {
+    /// Object id.
+    Object(u32),
+    /// Index among the grouped triangles.
+    Grouped(u32),
 }
 
 /// The running nearest hit of a packet while its primitives are tested.
@@ -88,6 +125,9 @@ pub(super) struct Nearest<F: FloatLanes> {
     pub(super) limit: F,
     /// Per lane, the object of the nearest hit so far (−1: none yet).
     pub(super) object: F::Ints,
+    /// Per lane, the key of the triangle hit nearest so far (−1: none, or
+    /// the nearest hit is no triangle).
+    pub(super) triangle: F::Ints,
 }
 
 impl<F: FloatLanes> Nearest<F> {
@@ -97,6 +137,7 @@ impl<F: FloatLanes> Nearest<F> {
         Self {
             limit: rays.t_max,
             object: F::Ints::splat(-1),
+            triangle: F::Ints::splat(-1),
         }
     }
 
@@ -108,6 +149,28 @@ impl<F: FloatLanes> Nearest<F> {
     pub(super) fn take(&mut self, hit: F::Mask, alpha: F, object: i32) {
         self.limit = hit.select(alpha, self.limit);
         self.object = F::Ints::select(hit, F::Ints::splat(object), self.object);
+        self.triangle = F::Ints::select(hit, F::Ints::splat(-1), self.triangle);
+    }
+
+    /// [`Nearest::take`] for the triangle of key `key`.
+    #[inline(always)]
+    pub(super) fn take_triangle(&mut self, hit: F::Mask, alpha: F, object: i32, key: i32) {
+        self.limit = hit.select(alpha, self.limit);
+        self.object = F::Ints::select(hit, F::Ints::splat(object), self.object);
+        self.triangle = F::Ints::select(hit, F::Ints::splat(key), self.triangle);
+    }
+
+    /// The limit the triangle of key `key` is tested below: `limit`, or
+    /// just above it in the lanes whose nearest hit is a triangle of a
+    /// higher key, so that at the same α the lowest key wins, as in the
+    /// group's BVH ([`crate::accel::MeshBvh::closest_hit`]) whatever the
+    /// order the triangles are met in. (There the nearest α is a hit's:
+    /// finite and positive, and its next float up is its bits plus one.)
+    #[inline(always)]
+    pub(super) fn triangle_limit(&self, key: i32) -> F {
+        let higher = self.triangle.simd_gt(F::Ints::splat(key));
+        let next_up = (self.limit.bits() + F::Ints::splat(1)).bits_to_floats();
+        higher.select(next_up, self.limit)
     }
 
     /// The hits found: α where an object was hit, +∞ elsewhere.
@@ -117,6 +180,7 @@ impl<F: FloatLanes> Nearest<F> {
         PacketHits {
             alpha: found.select(self.limit, F::INFINITY),
             object: self.object,
+            triangle: self.triangle,
         }
     }
 }
@@ -144,35 +208,62 @@ impl PacketShapes {
     /// 2.43 s, 1.22 against 2.51 s; 3,000 spheres scattered in the air
     /// 3.72 against 3.80 s; a sphere of 3,480 lone triangles 1.06 against
     /// 1.76 s; at 16 spp, a grid of 10,000 spheres 1.45 against 1.29 s and
-    /// 10,000 scattered 2.68 against 2.81 s.
-    pub const MAX_PRIMITIVES: usize = 4096;
+    /// 10,000 scattered 2.68 against 2.81 s. Meshes placed in world space
+    /// (glTF ducks of 4,212 triangles on a floor, under an area light):
+    /// one duck 1.34 against 1.79 s, two 2.27 against 2.47 s, three 2.67
+    /// against 2.62 s (through each instance's BVH, ray by ray).
+    pub const MAX_PRIMITIVES: usize = 8192;
 
-    /// `None` when `world` holds anything else (a model/mesh, a cylinder,
-    /// cone, torus, ...), more than
-    /// [`PacketShapes::MAX_PRIMITIVES`] primitives, or primitives so
+    /// `None` when `world` holds anything else (a cylinder, cone, torus,
+    /// a mesh too large to be placed among its lone triangles, ...), more
+    /// than [`PacketShapes::MAX_PRIMITIVES`] primitives, or primitives so
     /// unevenly spread that their tree would be deeper than its walk's stack
     /// (64 levels); such worlds are traced by the scalar lanes.
     pub fn new(world: &World) -> Option<Self> {
-        Self::laid_out(world, world.objects.len() > Self::BRUTE_FORCE_MAX)
+        let primitives = Self::primitives(world)?;
+        let with_tree = primitives.len() > Self::BRUTE_FORCE_MAX;
+        Self::laid_out(world, &primitives, with_tree)
+    }
+
+    /// The world's primitives, planes included: the grouped triangles when
+    /// there is a group, then every other object that is one; `None` when
+    /// an object has no packet test or there are too many.
+    fn primitives(world: &World) -> Option<Vec<Primitive>> {
+        let grouped = world.grouped_triangles();
+        let mut primitives: Vec<Primitive> = grouped
+            .map_or(0..0, |g| 0..g.len() as u32)
+            .map(Primitive::Grouped)
+            .collect();
+        for (id, object) in world.objects.iter().enumerate() {
+            match object {
+                Object::Shape(Shape::Triangle(_)) if grouped.is_some() => {}
+                Object::Shape(
+                    Shape::Triangle(_) | Shape::Box(_) | Shape::Sphere(_) | Shape::Plane(_),
+                ) => primitives.push(Primitive::Object(id as u32)),
+                // Its instances' triangles are among the grouped ones.
+                Object::Model { .. } if world.instances_grouped() && grouped.is_some() => {}
+                _ => return None,
+            }
+        }
+        (primitives.len() <= Self::MAX_PRIMITIVES).then_some(primitives)
     }
 
     /// [`PacketShapes::new`] with a tree or without, whatever the count.
-    fn laid_out(world: &World, with_tree: bool) -> Option<Self> {
-        let count = world.objects.len();
-        if count > Self::MAX_PRIMITIVES {
-            return None;
-        }
-        let lone = |object: &Object| {
-            matches!(
-                object,
-                Object::Shape(
-                    Shape::Triangle(_) | Shape::Box(_) | Shape::Sphere(_) | Shape::Plane(_)
-                )
-            )
-        };
-        if !world.objects.iter().all(lone) {
-            return None;
-        }
+    #[cfg(test)]
+    fn with_tree_or_not(world: &World, with_tree: bool) -> Option<Self> {
+        Self::laid_out(world, &Self::primitives(world)?, with_tree)
+    }
+
+    /// `world`'s `primitives` laid out, in a tree or not.
+    fn laid_out(world: &World, primitives: &[Primitive], with_tree: bool) -> Option<Self> {
+        let grouped = world.grouped_triangles().unwrap_or(&[]);
+        let keys = primitives
+            .iter()
+            .filter(|p| match **p {
+                Primitive::Grouped(_) => true,
+                Primitive::Object(id) => matches!(world.shape(id), Some(Shape::Triangle(_))),
+            })
+            .count();
         let mut shapes = PacketShapes {
             triangles: Triangles::default(),
             boxes: Boxes::default(),
@@ -183,31 +274,72 @@ impl PacketShapes {
                     kind: NO_KIND,
                     index: 0
                 };
-                count
+                world.objects.len()
             ],
+            triangle_at: vec![0; keys],
+            from_mesh: Vec::new(),
+            count: primitives.len(),
             tree: None,
         };
-        if !with_tree || count == 0 {
-            for id in 0..count as u32 {
-                shapes.push(world, id);
+        if grouped.iter().any(|t| t.from_mesh.is_some()) {
+            shapes.from_mesh = grouped.iter().map(|t| t.from_mesh).collect();
+        }
+        // Keys: a grouped triangle's index in the group; without a group,
+        // the `<triangle>`s numbered in object order.
+        let mut key_of = vec![-1i32; world.objects.len()];
+        let mut next_key = 0;
+        for p in primitives {
+            if let Primitive::Object(id) = *p
+                && matches!(world.shape(id), Some(Shape::Triangle(_)))
+            {
+                key_of[id as usize] = next_key;
+                next_key += 1;
+            }
+        }
+        let push = |shapes: &mut PacketShapes, p: Primitive| match p {
+            Primitive::Grouped(k) => {
+                let t = &grouped[k as usize];
+                let index = shapes.triangles.push(t.object as i32, &t.corners, k as i32);
+                shapes.triangle_at[k as usize] = index;
+                shapes.slots[t.object as usize] = Slot {
+                    kind: TRIANGLE,
+                    index: 0,
+                };
+            }
+            Primitive::Object(id) => shapes.push(world, id, key_of[id as usize]),
+        };
+        let is_plane = |p: &Primitive| match *p {
+            Primitive::Object(id) => matches!(world.shape(id), Some(Shape::Plane(_))),
+            Primitive::Grouped(_) => false,
+        };
+        if !with_tree || primitives.is_empty() {
+            for &p in primitives {
+                push(&mut shapes, p);
             }
             return Some(shapes);
         }
-        let is_plane = |id: u32| matches!(world.shape(id), Some(Shape::Plane(_)));
-        let items = (0..count as u32)
-            .filter(|&id| !is_plane(id))
-            .map(|id| Some((id, world.shape_bounds(id)?)))
+        let items = primitives
+            .iter()
+            .enumerate()
+            .filter(|(_, p)| !is_plane(p))
+            .map(|(k, p)| {
+                let bounds = match *p {
+                    Primitive::Grouped(g) => grouped[g as usize].bounds,
+                    Primitive::Object(id) => world.shape_bounds(id)?,
+                };
+                Some((k as u32, bounds))
+            })
             .collect::<Option<Vec<_>>>()?;
-        for id in (0..count as u32).filter(|&id| is_plane(id)) {
-            shapes.push(world, id);
+        for &p in primitives.iter().filter(|p| is_plane(p)) {
+            push(&mut shapes, p);
         }
         if items.is_empty() {
             return Some(shapes);
         }
-        let tree = Tree::build(&items, |ids| {
+        let tree = Tree::build(&items, |ks| {
             let before = shapes.counts();
-            for &id in ids {
-                shapes.push(world, id);
+            for &k in ks {
+                push(&mut shapes, primitives[k as usize]);
             }
             let after = shapes.counts();
             Leaf {
@@ -220,11 +352,16 @@ impl PacketShapes {
         Some(shapes)
     }
 
-    /// Adds object `id` of `world` (a lone triangle, box or sphere) to its kind.
-    fn push(&mut self, world: &World, id: u32) {
+    /// Adds object `id` of `world` (a lone triangle of key `key`, a box, a
+    /// sphere or a plane) to its kind.
+    fn push(&mut self, world: &World, id: u32, key: i32) {
         let object = id as i32;
         let (kind, index) = match &world.objects[id as usize] {
-            Object::Shape(Shape::Triangle(t)) => (TRIANGLE, self.triangles.push(object, t)),
+            Object::Shape(Shape::Triangle(t)) => {
+                let index = self.triangles.push(object, &[t.t0, t.t1, t.t2], key);
+                self.triangle_at[key as usize] = index;
+                (TRIANGLE, 0)
+            }
             Object::Shape(Shape::Box(b)) => (BOX, self.boxes.push(object, b)),
             Object::Shape(Shape::Sphere(s)) => (SPHERE, self.spheres.push(object, s)),
             Object::Shape(Shape::Plane(p)) => (PLANE, self.planes.push(object, p)),
@@ -240,12 +377,12 @@ impl PacketShapes {
 
     /// How many primitives there are.
     pub fn len(&self) -> usize {
-        self.slots.len()
+        self.count
     }
 
     /// True when the world has no primitive.
     pub fn is_empty(&self) -> bool {
-        self.slots.is_empty()
+        self.count == 0
     }
 
     /// The nearest hit of each lane's ray in (0, t_max). Adds to `tests`,
@@ -318,7 +455,74 @@ impl PacketShapes {
         }
     }
 
-    /// The hit point and unit outward geometric normal at each lane's hit, equal bit for bit to `world.surface(&ray, hit)` (i.e. `Shape::surface`) for lanes that hit; anything for the others.
+    /// Lane `k` of `hits` as the world's query gives it: with the mesh
+    /// triangle and its β and γ ([`World::intersect`]'s, bit for bit: the
+    /// watertight test again, on `ray`, lane `k`'s ray) where the lane hit a
+    /// mesh's triangle; `None` where it hit nothing.
+    pub fn lane_hit<F: FloatLanes>(
+        &self,
+        hits: &PacketHits<F>,
+        k: usize,
+        ray: &Ray,
+    ) -> Option<Hit> {
+        let alpha = hits.alpha.as_array()[k];
+        if alpha == f32::INFINITY {
+            return None;
+        }
+        let key = hits.triangle.to_array()[k];
+        let triangle =
+            self.from_mesh
+                .get(key as usize)
+                .copied()
+                .flatten()
+                .map(|(instance, triangle)| {
+                    let corners = self.triangles.corners(self.triangle_at[key as usize]);
+                    let hit =
+                        Triangle::new(corners[0], corners[1], corners[2]).hit(ray, Method::Robust);
+                    debug_assert_eq!(hit.map(|h| h.alpha), Some(alpha), "lane {k}: {ray:?}");
+                    let (beta, gamma) = hit.map_or((0.0, 0.0), |h| (h.beta, h.gamma));
+                    TriangleRef {
+                        instance,
+                        triangle,
+                        beta,
+                        gamma,
+                    }
+                });
+        Some(Hit {
+            object: hits.object.to_array()[k] as u32,
+            alpha,
+            triangle,
+        })
+    }
+
+    /// True when some triangle comes from a mesh, whose hits
+    /// [`PacketShapes::lane_hit`] completes.
+    pub fn has_meshes(&self) -> bool {
+        !self.from_mesh.is_empty()
+    }
+
+    /// The lanes of `hits` that hit a mesh's triangle.
+    #[inline(always)]
+    pub fn mesh_lanes<F: FloatLanes>(&self, hits: &PacketHits<F>) -> F::Mask {
+        if !self.has_meshes() {
+            return F::Mask::NONE;
+        }
+        let keys = hits.triangle.to_array();
+        F::Mask::from_bitmask((0..WIDTH).fold(0, |bits, k| {
+            let mesh = self
+                .from_mesh
+                .get(keys[k] as usize)
+                .is_some_and(Option::is_some);
+            bits | (u32::from(mesh) << k)
+        }))
+    }
+
+    /// The hit point and unit outward geometric normal at each lane's hit,
+    /// equal bit for bit to `world.surface(&ray, hit)` (i.e.
+    /// `Shape::surface`) for lanes that hit an analytic shape; for a mesh's
+    /// triangle, the point and normal of its plane as a `<triangle>` would
+    /// have them (not the mesh's: shade those lanes from
+    /// [`PacketShapes::lane_hit`]); anything for the others.
     #[inline(always)]
     pub fn surface<F: FloatLanes>(
         &self,
@@ -333,10 +537,14 @@ impl PacketShapes {
             kind: NO_KIND,
             index: 0,
         };
+        let keys = hits.triangle.to_array();
         for (lane, object) in hits.object.to_array().into_iter().enumerate() {
             // −1 (no hit) becomes usize::MAX, beyond every object.
             let slot = self.slots.get(object as usize).copied().unwrap_or(none);
-            index[slot.kind][lane] = slot.index;
+            index[slot.kind][lane] = match slot.kind {
+                TRIANGLE => self.triangle_at[keys[lane] as usize],
+                _ => slot.index,
+            };
             bits[slot.kind] |= 1 << lane;
         }
         let hit_bits = bits[TRIANGLE] | bits[BOX] | bits[SPHERE] | bits[PLANE];
@@ -695,6 +903,13 @@ pub(super) mod testing {
                 _ => {}
             }
         }
+        // Mesh triangles' corners, placed in world space.
+        let placed = world.grouped_triangles().unwrap_or(&[]).iter();
+        targets.extend(
+            placed
+                .filter(|t| t.from_mesh.is_some())
+                .flat_map(|t| t.corners),
+        );
         targets
     }
 
@@ -752,6 +967,34 @@ pub(super) mod testing {
             };
             found += 1;
             let object = u32::try_from(object).expect("a hit has an object");
+            // Among the grouped triangles a tie goes to the lowest index,
+            // in packets as in the group's BVH: the same triangle, and on a
+            // mesh the same β and γ.
+            let grouped = |id: u32| {
+                world.grouped_triangles().is_some()
+                    && matches!(
+                        world.objects[id as usize],
+                        Object::Model { .. } | Object::Shape(Shape::Triangle(_))
+                    )
+            };
+            if grouped(object) && grouped(want.object) {
+                assert_eq!(
+                    object, want.object,
+                    "lane {k}: a tie among triangles: {ray:?}"
+                );
+            }
+            let got = shapes.lane_hit(&hits, k, ray).expect("a lane that hit");
+            if object == want.object && (want.triangle.is_some() || got.triangle.is_some()) {
+                let bits = |h: Hit| {
+                    let t = h
+                        .triangle
+                        .map(|t| (t.instance, t.triangle, t.beta.to_bits(), t.gamma.to_bits()));
+                    (h.object, h.alpha.to_bits(), t)
+                };
+                assert_eq!(bits(got), bits(want), "lane {k}: a mesh's hit: {ray:?}");
+                // Its surface is the mesh's, which the scalar code shades.
+                continue;
+            }
             if object != want.object {
                 // A plane ties with nothing: it wins only when strictly nearer.
                 let plane = |id: u32| matches!(world.shape(id), Some(Shape::Plane(_)));
@@ -760,14 +1003,29 @@ pub(super) mod testing {
                     "lane {k}: object {object} instead of {} (a plane): {ray:?}",
                     want.object
                 );
-                let shape = world.shape(object).expect("an analytic shape");
-                let at = shape.intersect(ray, Method::Robust);
+                // Another object at exactly that α (a box standing on a
+                // mesh's floor, seen from below): the packet's object must
+                // lie there too.
+                let at = match got.triangle {
+                    Some(_) => {
+                        let key = hits.triangle.to_array()[k];
+                        let c = shapes.triangles.corners(shapes.triangle_at[key as usize]);
+                        Triangle::new(c[0], c[1], c[2]).intersect(ray, Method::Robust)
+                    }
+                    None => world
+                        .shape(object)
+                        .expect("an analytic shape")
+                        .intersect(ray, Method::Robust),
+                };
                 assert_eq!(
                     at.map(f32::to_bits),
                     Some(alpha.to_bits()),
                     "lane {k}: object {object} instead of {} without a tie: {ray:?}",
                     want.object
                 );
+                if got.triangle.is_some() {
+                    continue;
+                }
             }
             let hit = Hit {
                 object,
@@ -831,7 +1089,7 @@ pub(super) mod testing {
     /// other orders (a lane's answer must not depend on its neighbours).
     /// Returns how many lanes hit in the first pass.
     fn check_rays_with<F: FloatLanes>(world: &World, rays: &[Ray], tree: bool) -> usize {
-        let shapes = PacketShapes::laid_out(world, tree).expect("a packet world");
+        let shapes = PacketShapes::with_tree_or_not(world, tree).expect("a packet world");
         let bounded = shapes.counts().iter().sum::<usize>() > 0;
         assert_eq!(shapes.tree.is_some(), tree && bounded);
         let mut found = 0;
@@ -895,6 +1153,42 @@ mod tests {
         let rays = rays_for(&world, 1, 4000);
         let found = check_rays(&world, &rays);
         assert!(found > 2000, "too few hits to mean anything: {found}");
+    }
+
+    #[test]
+    fn small_meshes_among_shapes_give_the_scalar_worlds_hits_bit_for_bit() {
+        // A knot of ~1,500 triangles and its floor square (two mesh
+        // instances, placed among the lone triangles), with spheres, a
+        // box, two `<triangle>`s sharing an edge with nothing and the floor
+        // plane: the same α, object, triangle, β and γ as `World::intersect`.
+        let mut scene = scene::generate::knot_scene(1500);
+        let extra = scene::read_str(
+            r#"<scene>
+              <sphere center="2 1 1" radius="0.6"/>
+              <sphere center="-2.5 0.5 -1" radius="0.5"/>
+              <box center="0 0.4 2.5" size="1 0.8 0.6" rotate="0 30 0"/>
+              <triangle t0="-3 0 -3" t1="3 0 -3" t2="0 3 -3"/>
+              <triangle t0="-3 0 -3" t1="0 3 -3" t2="-3 3 -3"/>
+              <floor y="-0.01"/>
+            </scene>"#,
+            "extra.xml",
+        )
+        .expect("parses");
+        scene.objects.extend(extra.objects);
+        let world = World::from_scene(&scene).expect("valid");
+        assert!(world.instances_grouped(), "small meshes are placed");
+        let shapes = PacketShapes::new(&world).expect("a packet world");
+        assert!(shapes.has_meshes() && shapes.tree.is_some());
+        let rays = rays_for(&world, 5, 3000);
+        let found = check_rays(&world, &rays);
+        assert!(found > 1500, "too few hits to mean anything: {found}");
+    }
+
+    #[test]
+    fn meshes_too_large_to_place_stay_with_the_scalar_lanes() {
+        let world = World::from_scene(&scene::generate::knot_scene(9000)).expect("valid");
+        assert!(!world.instances_grouped());
+        assert!(PacketShapes::new(&world).is_none());
     }
 
     #[test]
@@ -1112,7 +1406,7 @@ mod tests {
         // the tree must not lose what the brute-force test finds.
         let world = reference_world("cornell.xml");
         assert!(
-            PacketShapes::laid_out(&world, true)
+            PacketShapes::with_tree_or_not(&world, true)
                 .expect("packets")
                 .tree
                 .is_some()

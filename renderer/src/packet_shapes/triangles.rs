@@ -22,6 +22,8 @@ struct PackedTriangle {
     corners: [[f32; 3]; 3],
     /// The object id.
     object: i32,
+    /// Its key: the lowest wins a tie ([`Nearest::triangle_limit`]).
+    key: i32,
     /// [`Triangle::normal`].
     normal: Vec3,
     /// What [`Triangle::barycentrics`] computes from the corners alone, in
@@ -38,16 +40,19 @@ pub(super) struct Triangles {
 }
 
 impl Triangles {
-    /// Adds object `object`, the triangle `t`; returns its index here.
-    pub(super) fn push(&mut self, object: i32, t: &Triangle) -> u32 {
+    /// Adds the triangle of `corners` (t0, t1, t2) of object `object`, key
+    /// `key`; returns its index here.
+    pub(super) fn push(&mut self, object: i32, corners: &[Vec3; 3], key: i32) -> u32 {
+        let t = Triangle::new(corners[0], corners[1], corners[2]);
         // Exactly `Triangle::barycentrics`' corner-only terms.
         let t0 = t.t0.as_dvec3();
         let v1 = t.t1.as_dvec3() - t0;
         let v2 = t.t2.as_dvec3() - t0;
         let (v11, v12, v22) = (v1.dot(v1), v1.dot(v2), v2.dot(v2));
         self.items.push(PackedTriangle {
-            corners: [t.t0, t.t1, t.t2].map(|c| c.to_array()),
+            corners: corners.map(|c| c.to_array()),
             object,
+            key,
             normal: t.normal(),
             solve: [
                 t0.x,
@@ -80,6 +85,11 @@ impl Triangles {
         self.items.len()
     }
 
+    /// The corners t0, t1, t2 of the triangle at `index`.
+    pub(super) fn corners(&self, index: u32) -> [Vec3; 3] {
+        self.items[index as usize].corners.map(Vec3::from_array)
+    }
+
     /// Takes the hits of the triangles `range` (indices here) that are
     /// nearer than `nearest`'s.
     #[inline(always)]
@@ -107,8 +117,9 @@ impl Triangles {
         nearest: &mut Nearest<F>,
     ) {
         for triangle in items {
-            let lanes = hit_with(&triangle.corners, r, permute, nearest.limit);
-            nearest.take(lanes.hit, lanes.alpha, triangle.object);
+            let limit = nearest.triangle_limit(triangle.key);
+            let lanes = hit_with(&triangle.corners, r, permute, limit);
+            nearest.take_triangle(lanes.hit, lanes.alpha, triangle.object, triangle.key);
         }
     }
 
@@ -212,14 +223,52 @@ mod tests {
     use crate::geometry::ray::Ray;
     use crate::integrator::sampler::Sampler;
     use crate::shapes::Method;
-    use crate::simd::{WithLanes, on_every_lane_type};
+    use crate::simd::{IntLanes, WithLanes, on_every_lane_type};
+
+    /// Among triangles hit at the same α the lowest key wins, whatever
+    /// the order they are tested in (the group's BVH's rule).
+    #[test]
+    fn at_the_same_alpha_the_lowest_key_wins_in_any_order() {
+        #[derive(Clone)]
+        struct Check;
+        impl WithLanes for Check {
+            type Output = ();
+            fn run<F: FloatLanes>(self) {
+                let corners = [
+                    Vec3::new(-1.0, -1.0, 0.0),
+                    Vec3::new(1.0, -1.0, 0.0),
+                    Vec3::Y,
+                ];
+                let lanes: [Ray; WIDTH] = std::array::from_fn(|k| {
+                    let x = k as f32 / WIDTH as f32 - 0.5;
+                    Ray::new(Vec3::new(x, 0.0, 3.0), Vec3::NEG_Z)
+                });
+                let rays = Rays::<F>::from_lanes(&lanes);
+                let sheared = ShearedRays::new(&rays, rays.t_max.simd_gt(F::ZERO));
+                for keys in [[5, 2, 9], [2, 9, 5], [9, 5, 2]] {
+                    let mut triangles = Triangles::default();
+                    for (object, key) in keys.into_iter().enumerate() {
+                        triangles.push(object as i32, &corners, key);
+                    }
+                    let mut nearest = Nearest::new(&rays);
+                    triangles.closest(&sheared, 0..3, &mut nearest);
+                    let hits = nearest.hits();
+                    let want = keys.iter().position(|&k| k == 2).expect("key 2") as i32;
+                    assert_eq!(hits.triangle.to_array(), [2; WIDTH], "keys {keys:?}");
+                    assert_eq!(hits.object.to_array(), [want; WIDTH], "keys {keys:?}");
+                    assert!(hits.alpha.to_array().iter().all(|&a| a == 3.0));
+                }
+            }
+        }
+        on_every_lane_type(Check);
+    }
 
     /// Each lane's α and hit against one triangle equal `Triangle::hit`'s
     /// with [`Method::Robust`], and its surface `Triangle::surface`'s, in
     /// lanes `F`.
     fn check_against_one_with<F: FloatLanes>(t: &Triangle, lanes: &[Ray; WIDTH]) -> usize {
         let mut triangles = Triangles::default();
-        triangles.push(7, t);
+        triangles.push(7, &[t.t0, t.t1, t.t2], 0);
         let rays = Rays::<F>::from_lanes(lanes);
         let live = rays.t_max.simd_gt(F::ZERO);
         let sheared = ShearedRays::new(&rays, live);

@@ -89,7 +89,14 @@ impl World {
                 }
             }
         }
-        let has_shapes = top.items.len() > self.meshes.len();
+        // Items other than instances (shapes, the grouped triangles and
+        // spheres) are met ray by ray through the top level.
+        let instances = top
+            .items
+            .iter()
+            .filter(|item| matches!(item, Item::Mesh(_)))
+            .count();
+        let has_shapes = top.items.len() > instances;
         let mut all_tests = 0usize;
         for (((ray, best), hit), ray_tests) in rays
             .iter()
@@ -98,7 +105,7 @@ impl World {
             .zip(tests.iter_mut())
         {
             crate::geometry::counters::count_ray();
-            let mut tests = self.meshes.len();
+            let mut tests = instances;
             if has_shapes {
                 let search = within(ray, best);
                 let shape =
@@ -106,25 +113,25 @@ impl World {
                         .closest_with(&search, |item, ray| match top.items[item as usize] {
                             Item::Shape(id) => {
                                 tests += 1;
-                                Some((self.analytic(id).intersect(ray, method)?, id))
+                                Some((self.analytic(id).intersect(ray, method)?, (id, None)))
                             }
                             Item::LoneTriangles => {
                                 tests += 1;
                                 let hit = self.top.lone_triangles().closest(ray)?;
-                                Some((hit.alpha, hit.object))
+                                Some((hit.alpha, (hit.object, hit.triangle)))
                             }
                             Item::LoneSpheres => {
                                 tests += 1;
                                 let hit = self.top.lone_spheres().closest(ray)?;
-                                Some((hit.alpha, hit.object))
+                                Some((hit.alpha, (hit.object, None)))
                             }
                             Item::Mesh(_) => None,
                         });
-                if let Some((item, alpha, object)) = shape {
+                if let Some((item, alpha, (object, triangle))) = shape {
                     let hit = Hit {
                         object,
                         alpha,
-                        triangle: None,
+                        triangle,
                     };
                     offer(best, item, hit);
                 }

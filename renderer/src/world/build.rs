@@ -6,7 +6,7 @@ use super::blas_cache;
 use super::emitters::Emitters;
 use super::light::Light;
 use super::placed_mesh::PlacedMesh;
-use super::top_level::{Lone, TopLevels};
+use super::top_level::{BAKED_TRIANGLES, GroupedTriangle, Lone, TopLevels};
 use super::{Item, Object, RenderError, World};
 use crate::accel::Aabb;
 use crate::camera::Camera;
@@ -20,6 +20,17 @@ use std::sync::Arc;
 /// grazing hit that the shape's own test rounds to just outside its exact
 /// box is still found.
 const BOX_PADDING: f32 = 1.0e-3;
+
+/// `b` padded as the top level holds an analytic shape: by [`BOX_PADDING`]
+/// of its largest extent and an ε of its largest coordinate magnitude.
+fn padded_bounds(b: Aabb) -> Aabb {
+    let magnitude = b.min.abs().max(b.max.abs()).max_element();
+    let pad = BOX_PADDING * (b.max - b.min).max_element() + f32::EPSILON * magnitude;
+    Aabb {
+        min: b.min - Vec3::splat(pad),
+        max: b.max + Vec3::splat(pad),
+    }
+}
 
 impl World {
     /// Resolves `scene`'s defaults and prepares it.
@@ -40,6 +51,8 @@ impl World {
             }
         }
         let meshes = place_meshes(&resolved.objects);
+        let mesh_triangles: usize = meshes.iter().map(|m| m.mesh.triangles.len()).sum();
+        let bake = mesh_triangles <= BAKED_TRIANGLES;
         let mut objects = Vec::with_capacity(resolved.objects.len());
         let (mut items, mut bounds, mut unbounded) = (Vec::new(), Vec::new(), Vec::new());
         let mut lone = Lone::default();
@@ -55,8 +68,27 @@ impl World {
                     .get(next_instance as usize)
                     .is_some_and(|m| m.object == id)
                 {
+                    let placed = &meshes[next_instance as usize];
                     items.push(Item::Mesh(next_instance));
-                    bounds.push(meshes[next_instance as usize].bounds);
+                    bounds.push(placed.bounds);
+                    if bake {
+                        lone.triangles
+                            .extend(placed.mesh.triangles.iter().enumerate().map(
+                                |(k, corners)| {
+                                    let corners = corners.map(|i| {
+                                        placed
+                                            .instance
+                                            .point_to_world(placed.mesh.positions[i as usize])
+                                    });
+                                    GroupedTriangle {
+                                        object: id,
+                                        corners,
+                                        bounds: padded_bounds(Aabb::around(corners)),
+                                        from_mesh: Some((next_instance, k as u32)),
+                                    }
+                                },
+                            ));
+                    }
                     next_instance += 1;
                 }
                 objects.push(Object::Model {
@@ -73,19 +105,18 @@ impl World {
             objects.push(Object::Shape(shape));
             match scene::layout::bounds(&object.geometry) {
                 Some(b) => {
-                    let magnitude = largest(b.min, b.max);
-                    magnitudes.push(magnitude);
-                    let pad =
-                        BOX_PADDING * (b.max - b.min).max_element() + f32::EPSILON * magnitude;
-                    let padded = Aabb {
-                        min: b.min - Vec3::splat(pad),
-                        max: b.max + Vec3::splat(pad),
-                    };
+                    magnitudes.push(largest(b.min, b.max));
+                    let padded = padded_bounds(b);
                     items.push(Item::Shape(id));
                     bounds.push(padded);
                     shape_bounds[id as usize] = Some(padded);
                     match shape {
-                        Shape::Triangle(t) => lone.triangles.push((id, [t.t0, t.t1, t.t2])),
+                        Shape::Triangle(t) => lone.triangles.push(GroupedTriangle {
+                            object: id,
+                            corners: [t.t0, t.t1, t.t2],
+                            bounds: padded,
+                            from_mesh: None,
+                        }),
                         Shape::Sphere(s) => lone.spheres.push((id, s, bounds[bounds.len() - 1])),
                         _ => {}
                     }

@@ -26,7 +26,7 @@ impl World {
                 Item::LoneTriangles => {
                     tests += 1;
                     let hit = self.top.lone_triangles().closest(ray)?;
-                    Some((hit.alpha, (hit.object, None)))
+                    Some((hit.alpha, (hit.object, hit.triangle)))
                 }
                 Item::LoneSpheres => {
                     tests += 1;

@@ -19,6 +19,7 @@ mod top_level;
 pub use batch::BATCHED_INSTANCES;
 pub use hit::{Hit, TriangleRef};
 pub use hit_surface::HitSurface;
+pub(crate) use top_level::GroupedTriangle;
 
 use crate::accel::Aabb;
 use crate::camera::{Camera, CameraError};
@@ -144,6 +145,24 @@ impl World {
     /// holds it); `None` for an infinite plane or a model.
     pub(crate) fn shape_bounds(&self, object: u32) -> Option<Aabb> {
         self.shape_bounds.get(object as usize).copied().flatten()
+    }
+
+    /// The triangles [`Method::Robust`] tests in one group, by their index
+    /// there (the lowest wins a tie): the `<triangle>` objects and, when
+    /// [`World::instances_grouped`], every mesh triangle placed in world
+    /// space; `None` when there is no group (fewer than four triangles).
+    ///
+    /// [`Method::Robust`]: crate::shapes::Method::Robust
+    pub(crate) fn grouped_triangles(&self) -> Option<&[GroupedTriangle]> {
+        self.top.lone_triangles.as_ref().map(|g| g.triangles())
+    }
+
+    /// True when [`Method::Robust`] meets every mesh instance's triangles
+    /// among [`World::grouped_triangles`] (true without instances).
+    ///
+    /// [`Method::Robust`]: crate::shapes::Method::Robust
+    pub(crate) fn instances_grouped(&self) -> bool {
+        self.top.instances_grouped
     }
 
     /// The largest coordinate magnitude of an object's geometry (its world

@@ -11,7 +11,7 @@
 //! [`Triangle::hit`]: crate::shapes::Triangle::hit
 
 use super::lone_spheres::LoneSpheres;
-use super::{Hit, Item};
+use super::{Hit, Item, TriangleRef};
 
 /// Lone triangles are grouped in a BVH of their own from this many on:
 /// below, preparing the ray for the packed test costs more than testing
@@ -41,39 +41,95 @@ impl TopLevel {
     }
 }
 
-/// The lone triangles of a world in one mesh BVH ([`Method::Robust`] only).
+/// A world's triangles that need no instance: its lone triangles and, when
+/// the mesh instances are small ([`BAKED_TRIANGLES`] in all), the
+/// instances' triangles placed in world space, all in one mesh BVH
+/// ([`Method::Robust`] only). A ray then walks one tree, prepared once,
+/// where it walked the top level and each instance it entered with a ray
+/// of its own (mapped into the instance's space, its walk set up again);
+/// and a world of such triangles, boxes, spheres and planes is traced in
+/// packets (`packet_shapes`), which test these same world-space corners.
 #[derive(Clone, Debug)]
 pub(super) struct LoneTriangles {
     bvh: MeshBvh,
-    /// The object id of each triangle, in the BVH's triangle order.
-    objects: Vec<u32>,
+    /// The triangles, by their index in the BVH (the lowest wins a tie).
+    triangles: Vec<GroupedTriangle>,
 }
 
+/// One triangle of [`LoneTriangles`]: its object, its corners in world
+/// space, its box as the top level would hold it, and the mesh instance and
+/// triangle it was placed from, if any.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct GroupedTriangle {
+    /// The object id: the `<triangle>` itself, or the model of the instance.
+    pub(crate) object: u32,
+    /// t0, t1, t2 in world space.
+    pub(crate) corners: [Vec3; 3],
+    /// The corners' box padded for the test's rounding, as a `<triangle>`'s
+    /// is in the top level.
+    pub(crate) bounds: Aabb,
+    /// The instance ([`World::meshes`] index) and the triangle's index in
+    /// its mesh; `None` for a `<triangle>` object.
+    ///
+    /// [`World::meshes`]: super::World::meshes
+    pub(crate) from_mesh: Option<(u32, u32)>,
+}
+
+/// Up to this many mesh triangles in all (every instance counted), a
+/// world's mesh instances are placed in world space among its lone
+/// triangles ([`LoneTriangles`]), where packets of rays can test them
+/// (`PacketShapes::MAX_PRIMITIVES`, the same number, says why there); with
+/// more, each stays an instance of its shared BVH, built once and kept
+/// across edits (a group is built again with every world; one ray at a time
+/// it gained only ~5% on a sphere of 3,480 triangles).
+pub(super) const BAKED_TRIANGLES: usize = 8192;
+
 impl LoneTriangles {
-    /// The BVH over `triangles`: (object id, corners t0, t1, t2) each;
+    /// The BVH over `triangles`, ties going to the lowest index;
     /// `None` when there are fewer than [`GROUPED_TRIANGLES`].
-    pub(super) fn new(triangles: &[(u32, [Vec3; 3])]) -> Option<Self> {
+    pub(super) fn new(triangles: &[GroupedTriangle]) -> Option<Self> {
         if triangles.len() < GROUPED_TRIANGLES {
             return None;
         }
-        let positions: Vec<Vec3> = triangles.iter().flat_map(|(_, c)| *c).collect();
+        let positions: Vec<Vec3> = triangles.iter().flat_map(|t| t.corners).collect();
         let indices: Vec<[u32; 3]> = (0..triangles.len() as u32)
             .map(|k| [3 * k, 3 * k + 1, 3 * k + 2])
             .collect();
         Some(Self {
             bvh: MeshBvh::build(&positions, &indices),
-            objects: triangles.iter().map(|&(object, _)| object).collect(),
+            triangles: triangles.to_vec(),
         })
     }
 
-    /// The nearest lone triangle hit in the ray's interval, as the object it is.
+    /// The nearest triangle hit in the ray's interval, as the object it is
+    /// (with the mesh triangle and its β and γ for a placed instance's).
     #[inline]
     pub(super) fn closest(&self, ray: &Ray) -> Option<Hit> {
-        self.bvh.closest_hit(ray).map(|h| Hit {
-            object: self.objects[h.triangle as usize],
-            alpha: h.alpha,
-            triangle: None,
+        self.bvh.closest_hit(ray).map(|h| {
+            let grouped = &self.triangles[h.triangle as usize];
+            Hit {
+                object: grouped.object,
+                alpha: h.alpha,
+                triangle: grouped.from_mesh.map(|(instance, triangle)| TriangleRef {
+                    instance,
+                    triangle,
+                    beta: h.beta,
+                    gamma: h.gamma,
+                }),
+            }
         })
+    }
+
+    /// The triangles, by index (the BVH's triangle ids).
+    pub(super) fn triangles(&self) -> &[GroupedTriangle] {
+        &self.triangles
+    }
+
+    /// True when the mesh instance `instance` was placed here.
+    fn holds_instance(&self, instance: u32) -> bool {
+        self.triangles
+            .iter()
+            .any(|t| t.from_mesh.is_some_and(|(i, _)| i == instance))
     }
 
     /// True when some lone triangle lies on the ray inside its interval.
@@ -101,14 +157,17 @@ pub(super) struct TopLevels {
     pub(super) lone_triangles: Option<LoneTriangles>,
     /// The grouped lone spheres ([`Item::LoneSpheres`]).
     pub(super) lone_spheres: Option<LoneSpheres>,
+    /// True when every mesh instance was placed among the lone triangles
+    /// (or there is none): the robust top level holds no instance.
+    pub(super) instances_grouped: bool,
 }
 
-/// The objects a world may group for [`Method::Robust`]: `<triangle>`s
-/// (object id and corners) and `<sphere>`s (object id, the sphere, and its
-/// box as the top level has it).
+/// The objects a world may group for [`Method::Robust`]: `<triangle>`s and
+/// small mesh instances' triangles ([`GroupedTriangle`]), and `<sphere>`s
+/// (object id, the sphere, and its box as the top level has it).
 #[derive(Default)]
 pub(super) struct Lone {
-    pub(super) triangles: Vec<(u32, [Vec3; 3])>,
+    pub(super) triangles: Vec<GroupedTriangle>,
     pub(super) spheres: Vec<(u32, Sphere, Aabb)>,
 }
 
@@ -123,42 +182,60 @@ impl TopLevels {
         let lone_spheres = LoneSpheres::new(&spheres, &sphere_bounds);
         let mut grouped_ids = Vec::new();
         if lone_triangles.is_some() {
-            grouped_ids.extend(lone.triangles.iter().map(|t| t.0));
+            grouped_ids.extend(
+                lone.triangles
+                    .iter()
+                    .filter(|t| t.from_mesh.is_none())
+                    .map(|t| t.object),
+            );
         }
+        let placed = |instance: u32| {
+            lone_triangles
+                .as_ref()
+                .is_some_and(|group| group.holds_instance(instance))
+        };
+        let any_placed = lone.triangles.iter().any(|t| t.from_mesh.is_some());
+        let instances_grouped = items.iter().all(|item| match *item {
+            Item::Mesh(instance) => placed(instance),
+            _ => true,
+        });
         if lone_spheres.is_some() {
             grouped_ids.extend(spheres.iter().map(|s| s.0));
         }
-        let robust = (!grouped_ids.is_empty()).then(|| {
-            let mut grouped = Vec::new();
-            for &id in &grouped_ids {
-                grouped.resize(grouped.len().max(id as usize + 1), false);
-                grouped[id as usize] = true;
-            }
-            let is_grouped = |item: &Item| match *item {
-                Item::Shape(id) => grouped.get(id as usize).copied().unwrap_or(false),
-                Item::Mesh(_) | Item::LoneTriangles | Item::LoneSpheres => false,
-            };
-            let (mut robust_items, mut robust_bounds): (Vec<Item>, Vec<Aabb>) = items
-                .iter()
-                .zip(bounds)
-                .filter(|(item, _)| !is_grouped(item))
-                .map(|(item, b)| (*item, *b))
-                .unzip();
-            if let Some(group) = &lone_triangles {
-                robust_items.push(Item::LoneTriangles);
-                robust_bounds.push(group.bounds());
-            }
-            if let Some(group) = &lone_spheres {
-                robust_items.push(Item::LoneSpheres);
-                robust_bounds.push(group.bounds());
-            }
-            TopLevel::new(robust_items, &robust_bounds)
-        });
+        let robust =
+            (!grouped_ids.is_empty() || (any_placed && lone_triangles.is_some())).then(|| {
+                let mut grouped = Vec::new();
+                for &id in &grouped_ids {
+                    grouped.resize(grouped.len().max(id as usize + 1), false);
+                    grouped[id as usize] = true;
+                }
+                let is_grouped = |item: &Item| match *item {
+                    Item::Shape(id) => grouped.get(id as usize).copied().unwrap_or(false),
+                    Item::Mesh(instance) => placed(instance),
+                    Item::LoneTriangles | Item::LoneSpheres => false,
+                };
+                let (mut robust_items, mut robust_bounds): (Vec<Item>, Vec<Aabb>) = items
+                    .iter()
+                    .zip(bounds)
+                    .filter(|(item, _)| !is_grouped(item))
+                    .map(|(item, b)| (*item, *b))
+                    .unzip();
+                if let Some(group) = &lone_triangles {
+                    robust_items.push(Item::LoneTriangles);
+                    robust_bounds.push(group.bounds());
+                }
+                if let Some(group) = &lone_spheres {
+                    robust_items.push(Item::LoneSpheres);
+                    robust_bounds.push(group.bounds());
+                }
+                TopLevel::new(robust_items, &robust_bounds)
+            });
         TopLevels {
             all: TopLevel::new(items, bounds),
             robust,
             lone_triangles,
             lone_spheres,
+            instances_grouped,
         }
     }
 

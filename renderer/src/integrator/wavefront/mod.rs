@@ -12,8 +12,8 @@
 //! lane, sees exactly the film's sample — and a test holds it to that over
 //! every pixel of the scenes it covers.
 //!
-//! Rays are tested in packets in worlds of lone triangles, boxes, spheres
-//! and planes ([`crate::packet_shapes::PacketShapes`]: against every
+//! Rays are tested in packets in worlds of lone triangles (small meshes'
+//! placed in world space included), boxes, spheres and planes ([`crate::packet_shapes::PacketShapes`]: against every
 //! primitive, or through a tree, then the planes), else traced lane by lane through the world's BVH
 //! (`tracing.rs`). Hits on analytic shapes with smooth lobes are shaded on
 //! lanes: Lambertian with a mirror lobe, rough conductors (`glossy.rs`) and

@@ -110,9 +110,10 @@ impl LaneBsdf {
 
 /// A world as the wavefront path tracer sees it.
 pub(crate) struct WavefrontScene {
-    /// Every primitive, for packet tests, when the world is lone triangles,
-    /// boxes and spheres, at most [`PacketShapes::MAX_PRIMITIVES`] (robust
-    /// formulas); `None`: each lane's rays go through the world's BVH.
+    /// Every primitive, for packet tests, when the world is lone triangles
+    /// (small meshes' included), boxes, spheres and planes, at most
+    /// [`PacketShapes::MAX_PRIMITIVES`] (robust formulas); `None`: each
+    /// lane's rays go through the world's BVH.
     pub(crate) shapes: Option<PacketShapes>,
     /// Shading data by object id.
     pub(crate) objects: ObjectTable,
@@ -178,8 +179,9 @@ fn has_textures(world: &World) -> bool {
 }
 
 /// `world`'s primitives for packet tests, when it has few enough lone
-/// triangles, boxes and spheres, any infinite planes, and nothing else, and `method` is the
-/// robust one (the packet tests are its formulas).
+/// triangles (small meshes' included), boxes and spheres, any infinite
+/// planes, and nothing else, and `method` is the robust one (the packet
+/// tests are its formulas).
 fn packet_shapes(world: &World, method: Method) -> Option<PacketShapes> {
     match method {
         Method::Robust => PacketShapes::new(world),

@@ -16,9 +16,9 @@ use glam::Vec3;
 pub(super) struct Closest<F: FloatLanes> {
     /// Each lane's α (+∞ on a miss) and object id (−1).
     pub(super) packet: PacketHits<F>,
-    /// Each lane's hit in full, when traced through the world (a mesh
-    /// triangle's barycentrics included); `None` for packet tests, whose
-    /// hits are analytic shapes (`PacketHits` says all).
+    /// Each lane's hit in full, when traced through the world or when a
+    /// packet lane hit a mesh (a mesh triangle's barycentrics included);
+    /// `None` where `PacketHits` says all (analytic shapes only).
     pub(super) hits: Option<[Option<Hit>; WIDTH]>,
     /// Lanes that hit a mesh triangle.
     pub(super) mesh: F::Mask,
@@ -55,11 +55,13 @@ pub(super) fn closest<F: FloatLanes>(
         let mut tested = F::Ints::splat(0);
         let packet = shapes.closest(rays, &mut tested);
         count::<F>(live, tested, tests);
-        return Closest {
-            packet,
-            hits: None,
-            mesh: F::Mask::NONE,
-        };
+        // Mesh triangles' lanes need the whole hit (β, γ) for the scalar
+        // shading.
+        let mesh = shapes.mesh_lanes(&packet);
+        let hits = mesh
+            .any()
+            .then(|| std::array::from_fn(|k| shapes.lane_hit(&packet, k, &rays.lane(k))));
+        return Closest { packet, hits, mesh };
     }
     let mut hits = [None; WIDTH];
     for (k, hit) in hits.iter_mut().enumerate() {
@@ -73,6 +75,7 @@ pub(super) fn closest<F: FloatLanes>(
         packet: PacketHits {
             alpha: F::from_array(hits.map(|h| h.map_or(f32::INFINITY, |h| h.alpha))),
             object: F::Ints::from_array(hits.map(|h| h.map_or(-1, |h| h.object as i32))),
+            triangle: F::Ints::splat(-1),
         },
         mesh: mask_from::<F>(|k| hits[k].is_some_and(|h| h.triangle.is_some())),
         hits: Some(hits),
