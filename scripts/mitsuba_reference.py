@@ -17,16 +17,20 @@ named `<material>`s derived from them (a shape's own parameters over its materia
 `roughness` (GGX α = roughness²: Mitsuba's roughconductor with material "none", i.e. Fresnel 1
 times `color`, and roughdielectric); emission as an area light on the front side. Colours are
 three linear floats or #rrggbb / #rgb (sRGB). An ambient light is left out: raylab's path tracer
-has no ambient term either (it lights Whitted's images only).
+has no ambient term either (it lights Whitted's images only). A `<mesh>` is placed by raylab
+itself (`raylab export-meshes`: each instance's world-space triangles and shading normals as OBJ,
+with the material raylab resolved for it), so Mitsuba sees raylab's very triangles.
 
 Anything else is refused with an error naming the element, never dropped: a comparison with a
-scene Mitsuba did not see would be meaningless. That includes `<mesh>` (raylab places models and
-maps their glTF materials itself), cylinders, cones and tori, plastic, metal and marble, CSS
+scene Mitsuba did not see would be meaningless. That includes textured `<mesh>`es, cylinders,
+cones and tori, plastic, metal and marble, CSS
 colour names, shapes without an explicit position (raylab stands them on the floor), and scenes with no
 light, emitter or sky (raylab then adds a key light of its own). See assets/reference/README.md
 for the conventions.
 """
+import json
 import os
+import subprocess
 import sys
 import xml.etree.ElementTree as ET
 
@@ -222,6 +226,24 @@ class Resolved:
         return self.attrib.get(name, default)
 
 
+def export_meshes(path, workdir):
+    """raylab's own placement of the scene's <mesh>es (`raylab export-meshes`: world-space OBJ
+    files and each instance's resolved material), one entry per <mesh> in file order. The
+    raylab binary is $RAYLAB, else this checkout's release build."""
+    raylab = os.environ.get("RAYLAB") or os.path.join(
+        os.path.dirname(os.path.abspath(__file__)), "..", "target", "release", "raylab")
+    try:
+        done = subprocess.run([raylab, "export-meshes", path, "--dir", workdir],
+                              capture_output=True, text=True)
+    except OSError as e:
+        raise Untranslated(f"<mesh> needs raylab to place it ({raylab}: {e}); "
+                           "build it with cargo build --release -p raylab or set RAYLAB") from None
+    if done.returncode != 0:
+        raise Untranslated(f"raylab export-meshes failed: {done.stderr.strip()}")
+    with open(os.path.join(workdir, "meshes.json")) as f:
+        return json.load(f)
+
+
 def load(path, workdir):
     """The Mitsuba scene of the raylab scene file `path` (OBJ files go to `workdir`); raises
     Untranslated, naming the element, for anything it cannot translate exactly."""
@@ -251,6 +273,7 @@ def load(path, workdir):
     # raylab resolves material names once the whole file is read: a shape may name a later one.
     named = {el.get("name"): el for el in root if el.tag == "material" and el.get("name")}
     lit = False
+    exported, meshes_seen = None, 0
     for n, raw in enumerate(root):
         el = raw
         try:
@@ -272,6 +295,27 @@ def load(path, workdir):
                 if light is not None:
                     scene[f"light{n}"] = light
                     lit = True
+                continue
+            if el.tag == "mesh":
+                if exported is None:
+                    exported = export_meshes(path, workdir)
+                if len(exported) <= meshes_seen:
+                    raise Untranslated("raylab exported fewer models than the file has <mesh>es")
+                model = exported[meshes_seen]
+                meshes_seen += 1
+                for k, inst in enumerate(model["instances"]):
+                    if inst["textured"]:
+                        raise Untranslated("a textured glTF material has no Mitsuba translation "
+                                           "here (the texture's colours and coordinates)")
+                    # The material raylab resolved for the instance, as an element's attributes.
+                    resolved = ET.Element("mesh", {k2: v for k2, v in inst["material"].items()})
+                    shape = {"type": "obj", "filename": os.path.join(workdir, inst["obj"]),
+                             "bsdf": bsdf(resolved)}
+                    light = emitter(resolved)
+                    if light:
+                        shape["emitter"] = light
+                        lit = True
+                    scene[f"mesh{n}_{k}"] = shape
                 continue
             el = Resolved(el, named)
             if el.tag == "triangle":

@@ -5,20 +5,26 @@ was not tuned on (issue 26: "it will be checked on scenes that are not in the re
   grid900.xml       a 30 × 30 grid of spheres (matte, mirror, glass) on a floor, lit by an area light;
   scatter3000.xml   3,000 spheres of random sizes scattered over the floor and in the air;
   tessellated.xml   a UV sphere of 3,480 lone triangles beside five spheres;
+  meshsphere.xml    the same sphere as a glTF mesh (meshsphere.gltf: shared vertices, smooth vertex
+                    normals) placed by `<mesh>`, beside the five spheres;
   lamps.xml         64 spheres and boxes on an infinite floor before a tilted wall, under a sky, lit by
                     three point lights and the sun (a directional light), with named materials (rough
                     mirrors, rough glass): no area light at all.
 
-Each is in the subset of raylab's format that scripts/mitsuba_reference.py translates, 512×384. The
-scenes are the same on every run (fixed seeds).
+Each is in the subset of raylab's format that scripts/mitsuba_reference.py translates, 512×384 (the
+mesh through `raylab export-meshes`, so that Mitsuba sees raylab's placed triangles). The scenes are
+the same on every run (fixed seeds).
 
     python3 scripts/unseen_scenes.py DIR
 
 scripts/bench-vs-mitsuba.sh --dir DIR --references SPP renders their references with Mitsuba and compares.
 """
+import base64
+import json
 import math
 import os
 import random
+import struct
 import sys
 
 HEAD = """<scene>
@@ -88,6 +94,55 @@ def tessellated(nu=60, nv=30, radius=2.5):
     return HEAD + body + "</scene>\n"
 
 
+def sphere_gltf(nu=60, nv=30, radius=2.5):
+    """The tessellated sphere as a glTF 2.0 mesh: shared vertices on the (nu + 1) × (nv + 1) grid,
+    each with its unit normal, and the same 3,480 triangles."""
+    positions, normals = [], []
+    for u in range(nu + 1):
+        for v in range(nv + 1):
+            theta, phi = 2 * math.pi * u / nu, math.pi * v / nv
+            n = (math.sin(phi) * math.cos(theta), math.cos(phi), math.sin(phi) * math.sin(theta))
+            normals.append(n)
+            positions.append((radius * n[0], radius + 0.1 + radius * n[1], radius * n[2]))
+    index = lambda u, v: u * (nv + 1) + v
+    triangles = []
+    for u in range(nu):
+        for v in range(nv):
+            a, b, c, d = index(u, v), index(u + 1, v), index(u + 1, v + 1), index(u, v + 1)
+            triangles += ([(a, b, c)] if v > 0 else []) + ([(a, c, d)] if v < nv - 1 else [])
+    pos = b"".join(struct.pack("<3f", *p) for p in positions)
+    nor = b"".join(struct.pack("<3f", *n) for n in normals)
+    idx = b"".join(struct.pack("<3I", *t) for t in triangles)
+    data = pos + nor + idx
+    lo = [min(p[k] for p in positions) for k in range(3)]
+    hi = [max(p[k] for p in positions) for k in range(3)]
+    gltf = {
+        "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 2}]}],
+        "buffers": [{"byteLength": len(data),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": len(pos)},
+                        {"buffer": 0, "byteOffset": len(pos), "byteLength": len(nor)},
+                        {"buffer": 0, "byteOffset": len(pos) + len(nor), "byteLength": len(idx)}],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": len(positions), "type": "VEC3",
+             "min": lo, "max": hi},
+            {"bufferView": 1, "componentType": 5126, "count": len(normals), "type": "VEC3"},
+            {"bufferView": 2, "componentType": 5125, "count": 3 * len(triangles), "type": "SCALAR"},
+        ],
+    }
+    return json.dumps(gltf)
+
+
+def meshsphere():
+    rng = random.Random(11)
+    body = ('  <mesh src="meshsphere.gltf" translate="0 0 0" material="matte" '
+            'color="0.7 0.5 0.3"/>\n')
+    for k in range(5):
+        body += sphere(-5 + 2.5 * k, 0.6, 4, 0.6, rng)
+    return HEAD + body + "</scene>\n"
+
+
 def lamps(n=64):
     rng = random.Random(5)
     body = """<scene>
@@ -122,8 +177,11 @@ def main():
         sys.exit(__doc__)
     out = sys.argv[1]
     os.makedirs(out, exist_ok=True)
+    with open(os.path.join(out, "meshsphere.gltf"), "w") as f:
+        f.write(sphere_gltf())
     for name, text in [("grid900", grid(900)), ("scatter3000", scatter(3000)),
-                       ("tessellated", tessellated()), ("lamps", lamps())]:
+                       ("tessellated", tessellated()), ("meshsphere", meshsphere()),
+                       ("lamps", lamps())]:
         path = os.path.join(out, name + ".xml")
         with open(path, "w") as f:
             f.write(text)

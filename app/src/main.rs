@@ -120,6 +120,9 @@ fn main() -> ExitCode {
         Some(Command::Inspect(args)) => finish(cli::inspect::run(&args), |json| println!("{json}")),
         Some(Command::Stability(args)) => finish(cli::stability::run(&args), report_written),
         Some(Command::Chart(args)) => finish(cli::chart::run(&args), report_written),
+        Some(Command::ExportMeshes(args)) => finish(cli::export_meshes::run(&args), |index| {
+            println!("wrote {}", index.display())
+        }),
         Some(Command::Render(args)) => {
             // The user named the file: replacing it is what they asked, said aloud.
             let replacing = args.output.is_file();

@@ -36,6 +36,19 @@ pub enum Command {
     Chart(ChartArgs),
     /// Run the suite of cases where numerical methods fail, lecture against robust (table, CSV and PNG).
     Stability(StabilityArgs),
+    /// Write the scene's mesh instances as placed in its world (OBJ files and meshes.json), for another renderer.
+    ExportMeshes(ExportMeshesArgs),
+}
+
+/// Arguments of `raylab export-meshes`.
+#[derive(Debug, clap::Args)]
+pub struct ExportMeshesArgs {
+    /// The scene file.
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// The directory to write meshK.obj and meshes.json into (created if needed).
+    #[arg(long)]
+    pub dir: PathBuf,
 }
 
 /// Arguments of `raylab stability`.

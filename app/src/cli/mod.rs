@@ -1,10 +1,11 @@
 //! The command line: the arguments (clap), what the commands share, and one
 //! module per command (`raylab render`, `chart`, `stability`, `inspect`,
-//! `bench`), each with a `run` that `main` calls.
+//! `bench`, `export-meshes`), each with a `run` that `main` calls.
 
 mod args;
 pub mod bench;
 pub mod chart;
+pub mod export_meshes;
 pub mod inspect;
 mod prepare;
 pub mod render;
