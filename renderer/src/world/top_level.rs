@@ -1,8 +1,9 @@
 //! The top level of a world's BVH as each intersection method sees it. With
 //! [`Method::Lecture`] every bounded object is an item of one [`SceneBvh`],
 //! each tested with its own formulas. With [`Method::Robust`], when there are
-//! at least [`GROUPED_TRIANGLES`] lone triangles (`<triangle>` objects), they
-//! leave it for one mesh BVH of their own, itself one item: its packed
+//! at least [`GROUPED_TRIANGLES`] lone triangles (`<triangle>` objects, and
+//! small mesh instances' triangles placed in world space: [`BAKED_TRIANGLES`]),
+//! they leave it for one mesh BVH of their own, itself one item: its packed
 //! watertight test is exactly [`Triangle::hit`] with `Method::Robust` (bit for
 //! bit the same α), four triangles at a time, and its 8-wide nodes cull
 //! them; a Cornell box of triangles then costs a few SIMD tests per ray
