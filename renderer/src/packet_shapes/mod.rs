@@ -257,13 +257,18 @@ impl PacketShapes {
     /// `world`'s `primitives` laid out, in a tree or not.
     fn laid_out(world: &World, primitives: &[Primitive], with_tree: bool) -> Option<Self> {
         let grouped = world.grouped_triangles().unwrap_or(&[]);
-        let keys = primitives
-            .iter()
-            .filter(|p| match **p {
-                Primitive::Grouped(_) => true,
-                Primitive::Object(id) => matches!(world.shape(id), Some(Shape::Triangle(_))),
-            })
-            .count();
+        // Keys: a grouped triangle's index in the group; without a group,
+        // the `<triangle>`s numbered in object order.
+        let mut key_of = vec![-1i32; world.objects.len()];
+        let mut next_key = 0;
+        for p in primitives {
+            if let Primitive::Object(id) = *p
+                && matches!(world.shape(id), Some(Shape::Triangle(_)))
+            {
+                key_of[id as usize] = next_key;
+                next_key += 1;
+            }
+        }
         let mut shapes = PacketShapes {
             triangles: Triangles::default(),
             boxes: Boxes::default(),
@@ -276,25 +281,13 @@ impl PacketShapes {
                 };
                 world.objects.len()
             ],
-            triangle_at: vec![0; keys],
+            triangle_at: vec![0; grouped.len() + next_key as usize],
             from_mesh: Vec::new(),
             count: primitives.len(),
             tree: None,
         };
         if grouped.iter().any(|t| t.from_mesh.is_some()) {
             shapes.from_mesh = grouped.iter().map(|t| t.from_mesh).collect();
-        }
-        // Keys: a grouped triangle's index in the group; without a group,
-        // the `<triangle>`s numbered in object order.
-        let mut key_of = vec![-1i32; world.objects.len()];
-        let mut next_key = 0;
-        for p in primitives {
-            if let Primitive::Object(id) = *p
-                && matches!(world.shape(id), Some(Shape::Triangle(_)))
-            {
-                key_of[id as usize] = next_key;
-                next_key += 1;
-            }
         }
         let push = |shapes: &mut PacketShapes, p: Primitive| match p {
             Primitive::Grouped(k) => {

@@ -126,13 +126,6 @@ impl LoneTriangles {
         &self.triangles
     }
 
-    /// True when the mesh instance `instance` was placed here.
-    fn holds_instance(&self, instance: u32) -> bool {
-        self.triangles
-            .iter()
-            .any(|t| t.from_mesh.is_some_and(|(i, _)| i == instance))
-    }
-
     /// True when some lone triangle lies on the ray inside its interval.
     #[inline]
     pub(super) fn any(&self, ray: &Ray) -> bool {
@@ -190,47 +183,41 @@ impl TopLevels {
                     .map(|t| t.object),
             );
         }
-        let placed = |instance: u32| {
-            lone_triangles
-                .as_ref()
-                .is_some_and(|group| group.holds_instance(instance))
-        };
-        let any_placed = lone.triangles.iter().any(|t| t.from_mesh.is_some());
-        let instances_grouped = items.iter().all(|item| match *item {
-            Item::Mesh(instance) => placed(instance),
-            _ => true,
-        });
+        // The world places every instance among the lone triangles or none
+        // (`BAKED_TRIANGLES`); they are in the group when it exists.
+        let placed =
+            lone_triangles.is_some() && lone.triangles.iter().any(|t| t.from_mesh.is_some());
+        let instances_grouped = placed || !items.iter().any(|item| matches!(item, Item::Mesh(_)));
         if lone_spheres.is_some() {
             grouped_ids.extend(spheres.iter().map(|s| s.0));
         }
-        let robust =
-            (!grouped_ids.is_empty() || (any_placed && lone_triangles.is_some())).then(|| {
-                let mut grouped = Vec::new();
-                for &id in &grouped_ids {
-                    grouped.resize(grouped.len().max(id as usize + 1), false);
-                    grouped[id as usize] = true;
-                }
-                let is_grouped = |item: &Item| match *item {
-                    Item::Shape(id) => grouped.get(id as usize).copied().unwrap_or(false),
-                    Item::Mesh(instance) => placed(instance),
-                    Item::LoneTriangles | Item::LoneSpheres => false,
-                };
-                let (mut robust_items, mut robust_bounds): (Vec<Item>, Vec<Aabb>) = items
-                    .iter()
-                    .zip(bounds)
-                    .filter(|(item, _)| !is_grouped(item))
-                    .map(|(item, b)| (*item, *b))
-                    .unzip();
-                if let Some(group) = &lone_triangles {
-                    robust_items.push(Item::LoneTriangles);
-                    robust_bounds.push(group.bounds());
-                }
-                if let Some(group) = &lone_spheres {
-                    robust_items.push(Item::LoneSpheres);
-                    robust_bounds.push(group.bounds());
-                }
-                TopLevel::new(robust_items, &robust_bounds)
-            });
+        let robust = (!grouped_ids.is_empty() || placed).then(|| {
+            let mut grouped = Vec::new();
+            for &id in &grouped_ids {
+                grouped.resize(grouped.len().max(id as usize + 1), false);
+                grouped[id as usize] = true;
+            }
+            let is_grouped = |item: &Item| match *item {
+                Item::Shape(id) => grouped.get(id as usize).copied().unwrap_or(false),
+                Item::Mesh(_) => placed,
+                Item::LoneTriangles | Item::LoneSpheres => false,
+            };
+            let (mut robust_items, mut robust_bounds): (Vec<Item>, Vec<Aabb>) = items
+                .iter()
+                .zip(bounds)
+                .filter(|(item, _)| !is_grouped(item))
+                .map(|(item, b)| (*item, *b))
+                .unzip();
+            if let Some(group) = &lone_triangles {
+                robust_items.push(Item::LoneTriangles);
+                robust_bounds.push(group.bounds());
+            }
+            if let Some(group) = &lone_spheres {
+                robust_items.push(Item::LoneSpheres);
+                robust_bounds.push(group.bounds());
+            }
+            TopLevel::new(robust_items, &robust_bounds)
+        });
         TopLevels {
             all: TopLevel::new(items, bounds),
             robust,
