@@ -34,10 +34,10 @@ pub mod scene;
 mod simd;
 pub mod slab;
 pub mod sphere_pack;
-mod stack;
+pub(crate) mod stack;
 pub mod triangle_pack;
 pub mod wide;
-mod wide_build;
+pub(crate) mod wide_build;
 
 #[cfg(test)]
 mod tests;
