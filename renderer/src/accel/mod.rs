@@ -34,10 +34,10 @@ pub mod scene;
 mod simd;
 pub mod slab;
 pub mod sphere_pack;
-pub(crate) mod stack;
+mod stack;
 pub mod triangle_pack;
 pub mod wide;
-pub(crate) mod wide_build;
+mod wide_build;
 
 #[cfg(test)]
 mod tests;

@@ -8,7 +8,6 @@
 //! incoherent rays it rarely could skip a box anyway.
 
 use super::{FloatLanes, MaskLanes, Nearest, Rays, Vec3s, WIDTH, coordinate, gather3};
-use crate::geometry::ray::Ray;
 use crate::shapes::Cuboid;
 use glam::Vec3;
 use std::ops::Range;
@@ -33,8 +32,6 @@ struct PackedBox {
 pub(super) struct Boxes {
     /// In the order they were pushed.
     items: Vec<PackedBox>,
-    /// The same boxes as the scalar code holds them, for one ray alone.
-    shapes: Vec<Cuboid>,
 }
 
 /// `m v` lane by lane for a matrix given by its columns, summed as glam's
@@ -101,21 +98,7 @@ impl Boxes {
             half: b.half(),
             object,
         });
-        self.shapes.push(*b);
         self.items.len() as u32 - 1
-    }
-
-    /// The object id of the box at `index`.
-    #[inline(always)]
-    pub(super) fn object(&self, index: usize) -> i32 {
-        self.items[index].object
-    }
-
-    /// α of the box at `index` on `ray` alone, in its interval: the scalar
-    /// [`Cuboid::intersect`], whose α the lanes give bit for bit.
-    #[inline(always)]
-    pub(super) fn alone(&self, index: usize, ray: &Ray) -> Option<f32> {
-        self.shapes[index].intersect(ray)
     }
 
     /// How many there are.

@@ -25,7 +25,6 @@
 //!
 //! [`Method::Robust`]: crate::shapes::Method::Robust
 
-mod alone;
 mod boxes;
 mod planes;
 mod spheres;
@@ -37,7 +36,6 @@ use crate::packet::ShearedRays;
 use crate::packet::{FloatLanes, IntLanes, MaskLanes, Rays, Vec3s, WIDTH};
 use crate::shapes::{Method, Shape, Triangle};
 use crate::world::{Hit, Object, TriangleRef, World};
-use alone::{ClosestLane, LaneRay, OccludedLane};
 use boxes::Boxes;
 use planes::Planes;
 use spheres::{SphereRays, Spheres};
@@ -337,14 +335,12 @@ impl PacketShapes {
                 push(&mut shapes, primitives[k as usize]);
             }
             let after = shapes.counts();
-            let triangles = before[TRIANGLE]..after[TRIANGLE];
             Leaf {
-                pack: shapes.triangles.pack(triangles.clone()),
-                triangles,
+                triangles: before[TRIANGLE]..after[TRIANGLE],
                 boxes: before[BOX]..after[BOX],
                 spheres: before[SPHERE]..after[SPHERE],
             }
-        });
+        })?;
         shapes.tree = Some(tree);
         Some(shapes)
     }
@@ -449,7 +445,6 @@ impl PacketShapes {
             triangles: 0..triangles,
             boxes: 0..boxes,
             spheres: 0..spheres,
-            pack: None,
         }
     }
 
@@ -604,9 +599,7 @@ struct Closest<'a, F: FloatLanes> {
     live: F::Mask,
 }
 
-impl<'a, F: FloatLanes> Visitor<F> for Closest<'a, F> {
-    type Lane = ClosestLane<'a>;
-
+impl<F: FloatLanes> Visitor<F> for Closest<'_, F> {
     #[inline(always)]
     fn limit(&self) -> F {
         self.nearest.limit
@@ -636,30 +629,6 @@ impl<'a, F: FloatLanes> Visitor<F> for Closest<'a, F> {
         p.tests = p.tests + count::<F>(entered, leaf.len());
         false
     }
-
-    #[inline(always)]
-    fn lane(&self, k: usize) -> ClosestLane<'a> {
-        let n = &self.nearest;
-        ClosestLane {
-            shapes: self.prepared.shapes,
-            ray: LaneRay::new(lane_ray(self.prepared.rays, k)),
-            limit: n.limit.as_array()[k],
-            object: n.object.to_array()[k],
-            triangle: n.triangle.to_array()[k],
-            tests: 0,
-        }
-    }
-
-    #[inline(always)]
-    fn put_lane(&mut self, k: usize, lane: ClosestLane<'a>) -> bool {
-        let n = &mut self.nearest;
-        n.limit.as_mut_array()[k] = lane.limit;
-        n.object = set_lane(n.object, k, lane.object);
-        n.triangle = set_lane(n.triangle, k, lane.triangle);
-        let p = &mut self.prepared;
-        p.tests = set_lane(p.tests, k, p.tests.to_array()[k] + lane.tests);
-        false
-    }
 }
 
 /// An any-hit search: the prepared rays and the lanes settled so far.
@@ -669,9 +638,7 @@ struct Occluded<'a, F: FloatLanes> {
     settled: F::Mask,
 }
 
-impl<'a, F: FloatLanes> Visitor<F> for Occluded<'a, F> {
-    type Lane = OccludedLane<'a>;
-
+impl<F: FloatLanes> Visitor<F> for Occluded<'_, F> {
     #[inline(always)]
     fn limit(&self) -> F {
         self.prepared.rays.t_max
@@ -704,45 +671,6 @@ impl<'a, F: FloatLanes> Visitor<F> for Occluded<'a, F> {
             .spheres
             .occluded(&p.spheres, leaf.spheres.clone(), t_max, settled)
     }
-
-    #[inline(always)]
-    fn lane(&self, k: usize) -> OccludedLane<'a> {
-        OccludedLane {
-            shapes: self.prepared.shapes,
-            ray: LaneRay::new(lane_ray(self.prepared.rays, k)),
-            blocked: false,
-            tests: 0,
-        }
-    }
-
-    #[inline(always)]
-    fn put_lane(&mut self, k: usize, lane: OccludedLane<'a>) -> bool {
-        let p = &mut self.prepared;
-        p.tests = set_lane(p.tests, k, p.tests.to_array()[k] + lane.tests);
-        if lane.blocked {
-            self.settled = self.settled | F::Mask::from_bitmask(1 << k);
-        }
-        self.settled.all()
-    }
-}
-
-/// Lane `k` of `rays`, over (0, its t_max).
-#[inline(always)]
-fn lane_ray<F: FloatLanes>(rays: &Rays<F>, k: usize) -> Ray {
-    Ray {
-        origin: rays.origin.lane(k),
-        dir: rays.dir.lane(k),
-        t_min: 0.0,
-        t_max: rays.t_max.as_array()[k],
-    }
-}
-
-/// `lanes` with lane `k` set to `value`.
-#[inline(always)]
-fn set_lane<I: IntLanes>(lanes: I, k: usize, value: i32) -> I {
-    let mut a = lanes.to_array();
-    a[k] = value;
-    I::from_array(a)
 }
 
 /// `n` in the lanes of `lanes`, 0 elsewhere.
@@ -1153,16 +1081,8 @@ pub(super) mod testing {
     /// again in lane `k % 8` among dead lanes and among other rays in
     /// other orders (a lane's answer must not depend on its neighbours).
     /// Returns how many lanes hit in the first pass.
-    fn check_rays_with<F: FloatLanes>(
-        world: &World,
-        rays: &[Ray],
-        tree: bool,
-        alone_max: u32,
-    ) -> usize {
-        let mut shapes = PacketShapes::with_tree_or_not(world, tree).expect("a packet world");
-        if let Some(tree) = &mut shapes.tree {
-            tree.alone_max = alone_max;
-        }
+    fn check_rays_with<F: FloatLanes>(world: &World, rays: &[Ray], tree: bool) -> usize {
+        let shapes = PacketShapes::with_tree_or_not(world, tree).expect("a packet world");
         let bounded = shapes.counts().iter().sum::<usize>() > 0;
         assert_eq!(shapes.tree.is_some(), tree && bounded);
         let mut found = 0;
@@ -1197,22 +1117,15 @@ pub(super) mod testing {
     impl WithLanes for CheckRays<'_> {
         type Output = usize;
         fn run<F: FloatLanes>(self) -> usize {
-            let (world, rays) = (self.world, self.rays);
-            let with_tree = check_rays_with::<F>(world, rays, true, tree::ALONE_MAX);
-            let without = check_rays_with::<F>(world, rays, false, tree::ALONE_MAX);
+            let with_tree = check_rays_with::<F>(self.world, self.rays, true);
+            let without = check_rays_with::<F>(self.world, self.rays, false);
             assert_eq!(with_tree, without, "hits with and without the tree");
-            // Packets only, and every lane alone from the root.
-            for alone_max in [0, WIDTH as u32] {
-                let found = check_rays_with::<F>(world, rays, true, alone_max);
-                assert_eq!(found, with_tree, "hits with lanes alone up to {alone_max}");
-            }
             with_tree
         }
     }
 
     /// [`check_rays_with`] with every lane type, each with the tree and
-    /// without, and through the tree by packets only and by lanes alone
-    /// only (each must pass, and find as many hits). Returns how many
+    /// without (each must pass, and find as many hits). Returns how many
     /// lanes hit in the first pass.
     pub fn check_rays(world: &World, rays: &[Ray]) -> usize {
         same_everywhere(on_every_lane_type(CheckRays { world, rays }))

@@ -2,8 +2,7 @@
 //! (Ray Tracing Gems ch. 7) and [`Sphere::surface`], lane by lane.
 
 use super::{FloatLanes, MaskLanes, Nearest, Rays, Vec3s, WIDTH, gather, gather3};
-use crate::geometry::ray::Ray;
-use crate::shapes::{Method, Sphere};
+use crate::shapes::Sphere;
 use glam::Vec3;
 use std::ops::Range;
 
@@ -25,8 +24,6 @@ struct PackedSphere {
 pub(super) struct Spheres {
     /// In the order they were pushed.
     items: Vec<PackedSphere>,
-    /// The same spheres as the scalar code holds them, for one ray alone.
-    shapes: Vec<Sphere>,
 }
 
 /// Sixteen rays prepared for the sphere test: what depends on the rays only.
@@ -61,22 +58,7 @@ impl Spheres {
             radius_sq: s.radius * s.radius,
             object,
         });
-        self.shapes.push(*s);
         self.items.len() as u32 - 1
-    }
-
-    /// The object id of the sphere at `index`.
-    #[inline(always)]
-    pub(super) fn object(&self, index: usize) -> i32 {
-        self.items[index].object
-    }
-
-    /// α of the sphere at `index` on `ray` alone, in its interval: the
-    /// scalar robust quadratic ([`Sphere::intersect`]), whose α the lanes
-    /// give bit for bit.
-    #[inline(always)]
-    pub(super) fn alone(&self, index: usize, ray: &Ray) -> Option<f32> {
-        self.shapes[index].intersect(ray, Method::Robust)
     }
 
     /// How many there are.

@@ -1,40 +1,45 @@
-//! An 8-wide BVH over a world's primitives, walked as Embree's hybrid
-//! traversal walks its BVH8 for a packet of sixteen rays (Benthin, Wald,
-//! Woop, Ernst and Mark, "Combining Single and Packet-Ray Tracing for
-//! Arbitrary Ray Distributions on the Intel MIC Architecture", 2012): a node
-//! is visited once for the whole packet, each of its eight children's boxes
-//! tested against the sixteen rays at once; and once a subtree is entered by
-//! only a few of the packet's rays ([`ALONE_MAX`]), each of them walks it
-//! alone, eight children per box test, while the others wait. A leaf's
-//! primitives are tested against every lane with the packet tests of their
-//! kinds, or against the one ray walking alone with the scalar tests, which
-//! give the same α bit for bit; so each lane's answer is the one the
-//! brute-force packet test gives: the tree only leaves out primitives a lane
-//! cannot hit.
+//! A binary BVH over a world's primitives, walked by whole packets (Wald,
+//! Slusallek, Benthin and Wagner, "Interactive Rendering with Coherent Ray
+//! Tracing", 2001): a node is visited once for the sixteen rays, its box
+//! tested against all of them in one go, and skipped only when no lane
+//! still searching enters it. A leaf's few primitives are then tested
+//! against every lane with the packet tests of their kinds, so each lane's
+//! answer is the one the brute-force packet test gives: the tree only
+//! leaves out primitives a lane cannot hit.
 //!
-//! Children go in a fixed order (the order the builder gave them), in
-//! packets and alone alike: so which of two primitives at exactly the same α
-//! a lane finds never depends on the other rays of its packet, nor on
-//! whether it walked part of the tree alone. (Visiting the side most of the
-//! packet's rays reach first measured no faster with the binary tree this
-//! one replaced: spheres.xml path-traced 1.458 against 1.457 s.)
+//! The box test is Ize's conservative slab test of `accel/slab.rs`
+//! ([`crate::accel::slab::box_entry`]) lane by lane, and a primitive's box
+//! is the one the world's own top level holds it in
+//! ([`World::shape_bounds`], padded for its test's rounding), so no hit is
+//! lost that the scalar BVH finds.
 //!
-//! The box test is Ize's conservative slab test of `accel/slab.rs` lane by
-//! lane, and a primitive's box is the one the world's own top level holds it
-//! in ([`World::shape_bounds`], padded for its test's rounding), so no hit
-//! is lost that the scalar BVH finds.
+//! Embree's hybrid scheme in its place measured slower (commit 8608396,
+//! reverted): 8-wide nodes whose eight boxes are tested against the sixteen
+//! rays, and once at most n lanes enter a subtree each walks it alone, eight
+//! boxes per test, leaves by the scalar tests (four triangles at once). The
+//! path tracer at 16 spp, 512×384, 2 threads, two alternated rounds, this
+//! tree against the hybrid for n = 0 (packets only), 2, 4, 8 and 16 (every
+//! lane alone):
+//!
+//! | scene | this tree | n = 0 | 2 | 4 | 8 | 16 |
+//! |---|---|---|---|---|---|---|
+//! | mesh sphere, 3,480 triangles | 0.66 s | 0.69 | 0.69 | 0.72 | 0.86 | 1.14 |
+//! | tessellated sphere and five spheres | 0.57 | 0.65 | 0.61 | 0.61 | 0.74 | 1.04 |
+//! | 900 spheres on a floor | 0.64 | 0.62 | 0.66 | 0.71 | 0.93 | 1.42 |
+//! | 3,000 scattered spheres | 2.02 | 2.08 | 2.05 | 2.22 | 2.98 | 3.21 |
+//! | spheres.xml | 0.50 | 0.53 | 0.52 | 0.55 | 0.66 | 1.13 |
+//!
+//! Lanes alone visiting children nearest first (which could change a
+//! cross-kind tie) did no better: 16 alone took 1.04–1.46 s. Sixteen
+//! incoherent bounce rays share enough of these small trees that a packet
+//! costs less than a few rays walked alone.
 //!
 //! [`World::shape_bounds`]: crate::world::World::shape_bounds
 
-use super::{FloatLanes, MaskLanes, Rays, Vec3s};
+use super::{FloatLanes, MaskLanes, Rays, Vec3s, coordinate};
 use crate::accel::Aabb;
-use crate::accel::binned_sah::PrimRef;
-use crate::accel::slab::{widen_up, widen_up_lanes};
-use crate::accel::stack::Stack;
-use crate::accel::triangle_pack::TrianglePack;
-use crate::accel::wide::{ChildRef, WIDTH as CHILDREN, WideNode, WideRay, pop_within};
-use crate::accel::wide_build::build_wide_refs;
-use crate::geometry::ray::Ray;
+use crate::accel::binned_sah::{PrimRef, Span, split};
+use crate::accel::slab::widen_up_lanes;
 use glam::Vec3A;
 use std::ops::Range;
 
@@ -43,12 +48,11 @@ use std::ops::Range;
 /// small.
 const LEAF_MAX: usize = 4;
 
-/// A subtree entered by at most this many of a packet's rays is walked by
-/// each of them alone.
-pub(super) const ALONE_MAX: u32 = 4;
+/// The deepest tree [`Tree::build`] accepts (the traversal's stack).
+pub(super) const MAX_DEPTH: usize = 64;
 
 /// A leaf's primitives: a range of each kind's list (the kinds store their
-/// primitives in leaf order), and its triangles packed for one ray.
+/// primitives in leaf order).
 #[derive(Clone, Debug, Default)]
 pub(super) struct Leaf {
     /// Indices among the triangles.
@@ -57,9 +61,6 @@ pub(super) struct Leaf {
     pub(super) boxes: Range<usize>,
     /// Indices among the spheres.
     pub(super) spheres: Range<usize>,
-    /// The triangles again, for one ray at a time, each by its key; `None`
-    /// when the leaf has none.
-    pub(super) pack: Option<TrianglePack>,
 }
 
 impl Leaf {
@@ -70,16 +71,25 @@ impl Leaf {
     }
 }
 
-/// The tree: 8-wide nodes (node 0 the root) and their leaves.
+/// A node: its box and either two children or a leaf.
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    /// The box's low corner.
+    lo: [f32; 3],
+    /// The box's high corner.
+    hi: [f32; 3],
+    /// An inner node's second child (its first follows it in
+    /// [`Tree::nodes`]); a leaf's index in [`Tree::leaves`].
+    link: u32,
+    /// Whether it is a leaf.
+    leaf: bool,
+}
+
+/// The tree: nodes in depth-first order, node 0 the root.
 #[derive(Clone, Debug)]
 pub(super) struct Tree {
-    nodes: Vec<WideNode>,
-    /// Indexed by the first (and only) pack of a leaf's [`ChildRef`].
+    nodes: Vec<Node>,
     leaves: Vec<Leaf>,
-    /// A subtree entered by at most this many of a packet's lanes is
-    /// walked by each of them alone: [`ALONE_MAX`] (tests try 0, packets
-    /// only, and 16, every lane alone from the root).
-    pub(super) alone_max: u32,
 }
 
 /// Sixteen rays prepared for box tests: origins, reciprocal directions and
@@ -118,18 +128,16 @@ impl<F: FloatLanes> BoxRays<F> {
         }
     }
 
-    /// Per lane, the entry distance into child `slot` of `node`, and the
-    /// lanes whose ray may meet that box in (0, limit): Ize's test lane by
-    /// lane, exactly `slab::box_entry` with t_min = 0, whose maximum and
-    /// minimum ignore a NaN distance (a ray lying in a face with a zero
-    /// direction component: 0 · ∞).
+    /// The lanes whose ray may meet `node`'s box in (0, limit): Ize's test
+    /// lane by lane, exactly `slab::box_entry` with t_min = 0, whose
+    /// maximum and minimum ignore a NaN distance (a ray lying in a face
+    /// with a zero direction component: 0 · ∞).
     #[inline(always)]
-    fn enter(&self, node: &WideNode, slot: usize, limit: F) -> (F, F::Mask) {
+    fn enter(&self, node: &Node, limit: F) -> F::Mask {
         let mut entry = F::ZERO;
         let mut exit = limit;
         for axis in 0..3 {
-            let lo = F::splat(node.plane(2 * axis, slot));
-            let hi = F::splat(node.plane(2 * axis + 1, slot));
+            let (lo, hi) = (F::splat(node.lo[axis]), F::splat(node.hi[axis]));
             let negative = self.negative[axis];
             let (near, far) = (negative.select(hi, lo), negative.select(lo, hi));
             let o = coordinate(&self.origin, axis);
@@ -141,24 +149,12 @@ impl<F: FloatLanes> BoxRays<F> {
             let t_far = (far - o) * inv;
             exit = t_far.fast_min(exit);
         }
-        (entry, entry.simd_le(widen_up_lanes(exit)))
+        entry.simd_le(widen_up_lanes(exit))
     }
 }
 
-/// Coordinate `axis` (0, 1, 2: x, y, z) of sixteen vectors.
-#[inline(always)]
-fn coordinate<F: FloatLanes>(v: &Vec3s<F>, axis: usize) -> F {
-    match axis {
-        0 => v.x,
-        1 => v.y,
-        _ => v.z,
-    }
-}
-
-/// What a walk through the tree does at the leaves a packet reaches.
+/// What a walk through the tree does at the leaves it reaches.
 pub(super) trait Visitor<F: FloatLanes> {
-    /// One lane's search, walking part of the tree alone.
-    type Lane: LaneVisitor;
     /// Per lane, hits must lie below this (the ray's t_max, or the nearest
     /// hit so far): boxes entered beyond it are skipped.
     fn limit(&self) -> F;
@@ -167,151 +163,104 @@ pub(super) trait Visitor<F: FloatLanes> {
     /// Tests `leaf`'s primitives, which the lanes `entered` may hit; true
     /// ends the walk.
     fn leaf(&mut self, leaf: &Leaf, entered: F::Mask) -> bool;
-    /// Lane `k`'s search as it stands, to go on alone.
-    fn lane(&self, k: usize) -> Self::Lane;
-    /// Takes back lane `k`'s search after it went on alone; true ends the
-    /// walk.
-    fn put_lane(&mut self, k: usize, lane: Self::Lane) -> bool;
-}
-
-/// What one lane walking alone does at the leaves it reaches.
-pub(super) trait LaneVisitor {
-    /// Its ray, over (0, its limit).
-    fn ray(&self) -> Ray;
-    /// Hits must lie below this: boxes entered beyond it are skipped.
-    fn limit(&self) -> f32;
-    /// Tests `leaf`'s primitives; true ends this lane's walk.
-    fn leaf(&mut self, leaf: &Leaf) -> bool;
-}
-
-/// A subtree waiting on the packet's stack: its root, and per lane the
-/// distance at which the lane's ray enters it (+∞ for a lane that does not).
-#[derive(Clone, Copy)]
-struct Waiting<F: FloatLanes> {
-    child: ChildRef,
-    entry: F,
 }
 
 impl Tree {
-    /// The tree over `items` (object id and box each). `push_leaf` is
-    /// called once per leaf with the leaf's object ids; it stores them and
-    /// says where.
-    pub(super) fn build(items: &[(u32, Aabb)], mut push_leaf: impl FnMut(&[u32]) -> Leaf) -> Tree {
+    /// The tree over `items` (object id and box each), or `None` when it
+    /// would be deeper than [`MAX_DEPTH`]. `push_leaf` is called once per
+    /// leaf, in depth-first order, with the leaf's object ids; it stores
+    /// them and says where.
+    pub(super) fn build(
+        items: &[(u32, Aabb)],
+        mut push_leaf: impl FnMut(&[u32]) -> Leaf,
+    ) -> Option<Tree> {
         let mut refs: Vec<PrimRef> = items
             .iter()
             .map(|&(id, b)| PrimRef::new(id, Vec3A::from(b.min), Vec3A::from(b.max)))
             .collect();
-        let (nodes, runs, _) = build_wide_refs(&mut refs, LEAF_MAX);
-        // With leaves of at most LEAF_MAX = PACK primitives, each leaf is
-        // one run.
-        let leaves = runs
-            .iter()
-            .map(|&(first, count)| {
-                let ids: Vec<u32> = refs[first as usize..(first + count) as usize]
-                    .iter()
-                    .map(PrimRef::id)
-                    .collect();
-                push_leaf(&ids)
-            })
-            .collect();
-        Tree {
-            nodes,
-            leaves,
-            alone_max: ALONE_MAX,
+        let mut tree = Tree {
+            nodes: Vec::with_capacity(2 * items.len() / LEAF_MAX + 1),
+            leaves: Vec::new(),
+        };
+        if refs.is_empty() {
+            return None;
         }
+        let span = Span::around(&refs, 0);
+        tree.grow(&mut refs, span, 1, &mut push_leaf)?;
+        Some(tree)
     }
 
-    /// The leaf `child` refers to, or `None` for an inner node.
-    #[inline(always)]
-    fn leaf(&self, child: ChildRef) -> Option<&Leaf> {
-        child.packs().map(|packs| &self.leaves[packs.start])
+    /// Appends the subtree of `span` (at `depth`, the root's being 1).
+    fn grow(
+        &mut self,
+        refs: &mut [PrimRef],
+        span: Span,
+        depth: usize,
+        push_leaf: &mut impl FnMut(&[u32]) -> Leaf,
+    ) -> Option<()> {
+        if depth > MAX_DEPTH {
+            return None;
+        }
+        let own = &refs[span.begin..span.end];
+        let (lo, hi) = own.iter().fold(
+            (Vec3A::splat(f32::INFINITY), Vec3A::splat(f32::NEG_INFINITY)),
+            |(lo, hi), r| (lo.min(r.lo()), hi.max(r.hi())),
+        );
+        let index = self.nodes.len();
+        self.nodes.push(Node {
+            lo: lo.to_array(),
+            hi: hi.to_array(),
+            link: 0,
+            leaf: true,
+        });
+        if span.len() <= LEAF_MAX {
+            let ids: Vec<u32> = own.iter().map(PrimRef::id).collect();
+            self.nodes[index].link = self.leaves.len() as u32;
+            self.leaves.push(push_leaf(&ids));
+            return Some(());
+        }
+        let (left, right) = split(&mut refs[span.begin..span.end], &span);
+        self.grow(refs, left, depth + 1, push_leaf)?;
+        let second = self.nodes.len() as u32;
+        self.grow(refs, right, depth + 1, push_leaf)?;
+        self.nodes[index].link = second;
+        self.nodes[index].leaf = false;
+        Some(())
     }
 
     /// Walks the tree for the packet `rays`: each node whose box some
-    /// searching lane enters below its limit, each leaf handed to
-    /// `visitor`; a subtree entered by at most [`ALONE_MAX`] lanes is
-    /// walked by each of them alone ([`Tree::walk_alone`]).
+    /// searching lane enters below its limit, each leaf handed to `visitor`.
+    /// Children go in a fixed order (the SAH split's first side first),
+    /// whatever the rays:
+    /// so a lane's answer, which of two primitives at exactly the same α
+    /// included, never depends on the other rays of its packet. (Visiting
+    /// the side most of the packet's rays reach first measured no faster:
+    /// spheres.xml path-traced 1.458 against 1.457 s, a grid of 500
+    /// spheres 0.577 against 0.539 s.)
     #[inline(always)]
-    pub(super) fn walk<F: FloatLanes, V: Visitor<F>>(&self, rays: &BoxRays<F>, visitor: &mut V) {
-        let mut stack: Stack<Waiting<F>, 64> = Stack::new();
-        stack.push(Waiting {
-            child: ChildRef::node(0),
-            entry: F::ZERO,
-        });
-        while let Some(Waiting { child, entry }) = stack.pop() {
-            let limit = visitor.limit();
-            let active = entry.simd_le(widen_up_lanes(limit)) & visitor.searching();
-            let mut bits = active.to_bitmask();
-            if bits == 0 {
-                continue;
-            }
-            if bits.count_ones() <= self.alone_max {
-                while bits != 0 {
-                    let k = bits.trailing_zeros() as usize;
-                    bits &= bits - 1;
-                    let mut lane = visitor.lane(k);
-                    self.walk_alone(child, &mut lane);
-                    if visitor.put_lane(k, lane) {
-                        return;
-                    }
-                }
-                continue;
-            }
-            if let Some(leaf) = self.leaf(child) {
-                if visitor.leaf(leaf, active) {
-                    return;
-                }
-                continue;
-            }
-            let node = &self.nodes[child.0 as usize];
-            // Last child pushed first, so that they are popped in order.
-            for slot in (0..CHILDREN).rev() {
-                let child = node.children[slot];
-                if child == ChildRef::EMPTY {
+    pub(super) fn walk<F: FloatLanes>(&self, rays: &BoxRays<F>, visitor: &mut impl Visitor<F>) {
+        let mut stack = [0u32; MAX_DEPTH];
+        let mut top = 0;
+        let mut node = 0u32;
+        loop {
+            let n = &self.nodes[node as usize];
+            let entered = rays.enter(n, visitor.limit()) & visitor.searching();
+            if entered.any() {
+                if !n.leaf {
+                    stack[top] = n.link;
+                    top += 1;
+                    node += 1;
                     continue;
                 }
-                let (entry, entered) = rays.enter(node, slot, limit);
-                let entered = entered & active;
-                if entered.any() {
-                    stack.push(Waiting {
-                        child,
-                        entry: entered.select(entry, F::INFINITY),
-                    });
-                }
-            }
-        }
-    }
-
-    /// Walks the subtree of `start` for one lane alone: the children of a
-    /// node tested eight at once ([`WideRay::child_hits`]) and visited in
-    /// their fixed order, each leaf handed to `lane`.
-    #[inline(always)]
-    fn walk_alone(&self, start: ChildRef, lane: &mut impl LaneVisitor) {
-        let mut ray = WideRay::new(&lane.ray());
-        let mut stack: Stack<(ChildRef, f32), 64> = Stack::new();
-        let mut child = start;
-        loop {
-            if let Some(leaf) = self.leaf(child) {
-                if lane.leaf(leaf) {
+                if visitor.leaf(&self.leaves[n.link as usize], entered) {
                     return;
                 }
-            } else {
-                let node = &self.nodes[child.0 as usize];
-                let limit = lane.limit();
-                ray.slab.t_max = limit;
-                ray.slab.t_max_wide = widen_up(limit);
-                let (mut mask, entry) = ray.child_hits(node);
-                // Last child pushed first, so that they are popped in order.
-                while mask != 0 {
-                    let slot = 31 - mask.leading_zeros() as usize;
-                    mask &= !(1 << slot);
-                    stack.push((node.children[slot], entry[slot]));
-                }
             }
-            match pop_within(&mut stack, widen_up(lane.limit())) {
-                Some(next) => child = next,
-                None => return,
+            if top == 0 {
+                return;
             }
+            top -= 1;
+            node = stack[top];
         }
     }
 }

@@ -6,7 +6,6 @@
 //! [`WatertightRay`]: crate::shapes::WatertightRay
 
 use super::{FloatLanes, MaskLanes, Nearest, Rays, Vec3s, WIDTH, gather3};
-use crate::accel::triangle_pack::TrianglePack;
 use crate::packet::triangle::{Frame, MixedAxes, Permutation, SameAxes, ShearedRays, hit_with};
 use crate::shapes::Triangle;
 use glam::Vec3;
@@ -84,23 +83,6 @@ impl Triangles {
     #[inline(always)]
     pub(super) fn len(&self) -> usize {
         self.items.len()
-    }
-
-    /// The object id and key of the triangle at `index`.
-    #[inline(always)]
-    pub(super) fn object_and_key(&self, index: usize) -> (i32, i32) {
-        let t = &self.items[index];
-        (t.object, t.key)
-    }
-
-    /// The triangles `range` (at most four) packed for one ray at a time,
-    /// each by its key; `None` for none.
-    pub(super) fn pack(&self, range: Range<usize>) -> Option<TrianglePack> {
-        let triangles: Vec<(u32, [Vec3; 3])> = self.items[range]
-            .iter()
-            .map(|t| (t.key as u32, t.corners.map(Vec3::from_array)))
-            .collect();
-        (!triangles.is_empty()).then(|| TrianglePack::new(&triangles))
     }
 
     /// The corners t0, t1, t2 of the triangle at `index`.
