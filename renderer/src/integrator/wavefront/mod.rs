@@ -1,8 +1,11 @@
 //! The wavefront path tracer: sixteen paths at once, one per SIMD lane, every
 //! stage of a bounce — the closest hit, the surface, emission, the light
 //! sample and its shadow ray, the BSDF sample, roulette — done for the
-//! sixteen together on structures of arrays ([`crate::packet`]). A finished
-//! lane takes the next sample at once, so the lanes stay full.
+//! sixteen together on structures of arrays ([`crate::packet`]). Finished
+//! lanes take the next samples at once, so the lanes stay full, or once
+//! half of them have finished, so that their new paths trace coherent rays
+//! together: each thread measures which is faster on the scene
+//! (`refill.rs`).
 //!
 //! It computes exactly what the scalar path tracer ([`super::path`], a
 //! `PathLane`) computes, in the same order, lane by lane: the same random
@@ -37,6 +40,7 @@ mod group;
 mod handover;
 mod lane_math;
 mod paths;
+mod refill;
 mod rough_glass;
 mod scene;
 mod surfaces;
@@ -49,6 +53,8 @@ use super::lanes::{SampleRef, SampleResult};
 use crate::packet::{FloatLanes, WIDTH, WithLanes, dispatch};
 use crate::world::World;
 use group::PathGroup;
+use refill::{COHORTS, Plan};
+use std::time::Instant;
 
 /// Traces every sample of `samples` with the wavefront path tracer over
 /// `scene` (prepared from `world`) and writes each one's result to
@@ -62,13 +68,32 @@ pub(crate) fn trace_wavefront(
     results: &mut [SampleResult],
 ) {
     assert_eq!(samples.len(), results.len(), "one result per sample");
-    dispatch(Trace {
-        world,
-        scene,
-        options,
-        samples,
-        results,
-    });
+    let trace = |samples: &[SampleRef], results: &mut [SampleResult], way: usize| {
+        dispatch(Trace {
+            world,
+            scene,
+            options,
+            samples,
+            results,
+            cohort: COHORTS[way],
+        });
+    };
+    match scene.refill.plan() {
+        Plan::Way(way) => trace(samples, results, way),
+        Plan::Trial => {
+            // The even samples one way, the odd ones the other, timed.
+            for way in 0..2 {
+                let half: Vec<SampleRef> = samples.iter().copied().skip(way).step_by(2).collect();
+                let mut traced = vec![SampleResult::default(); half.len()];
+                let start = Instant::now();
+                trace(&half, &mut traced, way);
+                scene.refill.record(way, half.len(), start.elapsed());
+                for (result, t) in results.iter_mut().skip(way).step_by(2).zip(traced) {
+                    *result = t;
+                }
+            }
+        }
+    }
 }
 
 /// A call of [`trace_wavefront`], to run with some lane type.
@@ -78,13 +103,15 @@ struct Trace<'a> {
     options: &'a RenderOptions,
     samples: &'a [SampleRef],
     results: &'a mut [SampleResult],
+    /// Finished lanes a group waits for before refilling them (`refill.rs`).
+    cohort: u32,
 }
 
 impl WithLanes for Trace<'_> {
     type Output = ();
 
-    /// Fills the lanes, steps them all, refills the finished ones, until
-    /// every sample is done.
+    /// Fills the lanes, steps them all, refills the finished ones (once
+    /// `cohort` of them have finished), until every sample is done.
     #[inline(always)]
     fn run<F: FloatLanes>(self) {
         let Trace {
@@ -93,23 +120,32 @@ impl WithLanes for Trace<'_> {
             options,
             samples,
             results,
+            cohort,
         } = self;
         let mut queue = samples.iter().copied().enumerate();
         let mut group = PathGroup::<F>::new();
-        for lane in 0..WIDTH {
-            if let Some((index, s)) = queue.next() {
-                group.start(options, lane, index, s);
+        // The lanes without a sample (bit k for lane k).
+        let mut idle = u32::MAX >> (32 - WIDTH);
+        loop {
+            if idle.count_ones() >= cohort {
+                while idle != 0 {
+                    let lane = idle.trailing_zeros() as usize;
+                    let Some((index, s)) = queue.next() else {
+                        break;
+                    };
+                    group.start(options, lane, index, s);
+                    idle &= idle - 1;
+                }
             }
-        }
-        while group.any_live() {
+            if !group.any_live() {
+                return;
+            }
             let finished = group.step(world, scene, options);
             for lane in (0..WIDTH).filter(|lane| finished & (1 << lane) != 0) {
                 let (index, result) = group.take(lane);
                 results[index] = result;
-                if let Some((index, s)) = queue.next() {
-                    group.start(options, lane, index, s);
-                }
             }
+            idle |= finished;
         }
     }
 }

@@ -1,6 +1,7 @@
 //! What the wavefront path tracer needs of a world, laid out for lanes.
 
 use super::emitter_table::EmitterTable;
+use super::refill::RefillChoice;
 use crate::packet_shapes::PacketShapes;
 use crate::shading::bsdf::PreparedBsdf;
 use crate::shapes::Method;
@@ -119,6 +120,8 @@ pub(crate) struct WavefrontScene {
     pub(crate) objects: ObjectTable,
     /// The emitters, for light samples on lanes.
     pub(crate) emitters: EmitterTable,
+    /// How groups refill their lanes, measured on this thread.
+    pub(crate) refill: RefillChoice,
 }
 
 impl WavefrontScene {
@@ -135,6 +138,7 @@ impl WavefrontScene {
             shapes: packet_shapes(world, method),
             objects: ObjectTable::new(world),
             emitters: EmitterTable::new(&world.emitters),
+            refill: RefillChoice::default(),
         }
     }
 
@@ -161,6 +165,7 @@ impl WavefrontScene {
             shapes,
             objects: ObjectTable::new(world),
             emitters: EmitterTable::new(&world.emitters),
+            refill: RefillChoice::default(),
         })
     }
 }

@@ -53,18 +53,25 @@ fn assert_wavefront_equals_scalar(world: &World, options: &RenderOptions, sample
     let scene = WavefrontScene::new(world, options.method);
     let mut results = vec![SampleResult::default(); samples.len()];
     // The widest lanes this CPU has, as a render runs them, then every
-    // narrower lane type: all give the same samples.
+    // narrower lane type, each refilling lanes at once and by cohorts: all
+    // give the same samples.
     trace_wavefront(world, &scene, options, samples, &mut results);
     for lanes in crate::simd::LaneType::available() {
-        let mut narrower = vec![SampleResult::default(); samples.len()];
-        lanes.run(Trace {
-            world,
-            scene: &scene,
-            options,
-            samples,
-            results: &mut narrower,
-        });
-        assert_eq!(narrower, results, "{lanes:?} lanes and the widest agree");
+        for cohort in COHORTS {
+            let mut narrower = vec![SampleResult::default(); samples.len()];
+            lanes.run(Trace {
+                world,
+                scene: &scene,
+                options,
+                samples,
+                results: &mut narrower,
+                cohort,
+            });
+            assert_eq!(
+                narrower, results,
+                "{lanes:?} lanes refilled by {cohort} and the widest agree"
+            );
+        }
     }
     let mut nonzero = 0;
     for (s, result) in samples.iter().zip(&results) {
