@@ -174,20 +174,33 @@ impl<F: FloatLanes> PathGroup<F> {
             return finished;
         }
 
-        let at = Surfaces::<F>::gather(&scene.objects, hit, hits.object);
-        // Hits on materials the lanes do not shade, and on mesh triangles
-        // (interpolated normals, textures), go to the scalar code.
-        let on_lanes = at.on_lanes & !closest.mesh;
-        let scalar = hit & !on_lanes;
-        let hit = hit & on_lanes;
+        let mut at = Surfaces::<F>::gather(&scene.objects, hit, closest.rows(&scene.objects));
+        // Hits on materials the lanes do not shade (a highlight, marble,
+        // an emitting mesh triangle) go to the scalar code.
+        let scalar = hit & !at.on_lanes;
+        let hit = hit & at.on_lanes;
         self.handover
             .shade(&mut self.paths, world, options, scalar, &closest);
-        let (point, normal) = tracing::surfaces(world, scene, &self.paths.rays, &closest, hit);
+        let mesh = hit & closest.mesh;
+        let (mut point, mut normal) =
+            tracing::surfaces(world, scene, &self.paths.rays, &closest, hit & !mesh);
+        // The shading normal: the geometric one, but on a mesh triangle
+        // the normals interpolated, with its point, geometric normal and
+        // colour (a texture's included) as the scalar code finds them.
+        let mut shading = normal;
+        for k in (0..WIDTH).filter(|&k| lane_set(mesh, k)) {
+            let s = world.hit_surface(&self.paths.rays.lane(k), &closest.hit(k));
+            point.set_lane(k, s.surface.point);
+            normal.set_lane(k, s.surface.normal);
+            shading.set_lane(k, s.shading_normal);
+            at.color.set_lane(k, s.color);
+        }
         let dir = self.paths.rays.dir;
         let front = dir.dot(normal).simd_lt(F::ZERO);
-        // The geometric normal turned toward the ray; on these shapes it
-        // is also the shading normal.
+        // Both normals turned to the side the ray came from: the geometric
+        // one decides sides and offsets, the shading one is the BSDF's frame.
         let n = Vec3s::select(front, normal, -normal);
+        let ns = Vec3s::select(front, shading, -shading);
 
         // Emission seen from the front, weighted against light sampling.
         let emitting = hit & front & at.emission.nonzero();
@@ -218,7 +231,7 @@ impl<F: FloatLanes> PathGroup<F> {
         finished |= last.to_bitmask();
         let go = hit & !last;
 
-        let frame = Frame::new(n);
+        let frame = Frame::new(ns);
         let wo = frame.to_local(-dir);
         let above = offset_origins(point, n, at.magnitude);
         // Lights are sampled where a lobe is not a delta: a Lambertian, a

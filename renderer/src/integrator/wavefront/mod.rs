@@ -18,11 +18,14 @@
 //! Rays are tested in packets in worlds of lone triangles (small meshes'
 //! placed in world space included), boxes, spheres and planes ([`crate::packet_shapes::PacketShapes`]: against every
 //! primitive, or through a tree, then the planes), else traced lane by lane through the world's BVH
-//! (`tracing.rs`). Hits on analytic shapes with smooth lobes are shaded on
+//! (`tracing.rs`). Hits on surfaces with smooth lobes are shaded on
 //! lanes: Lambertian with a mirror lobe, rough conductors (`glossy.rs`) and
 //! rough glass (`rough_glass.rs`), point and directional lights included,
-//! mirror, metal and smooth glass (`delta.rs`); any other hit (a highlight,
-//! marble, a mesh triangle) is shaded by the scalar `PathLane` itself
+//! mirror, metal and smooth glass (`delta.rs`). Mesh triangles among them
+//! too: each lane's point, interpolated normal and texture colour are found
+//! by the scalar code (`World::hit_surface`), the rest on lanes in the
+//! shading normal's frame. Any other hit (a highlight, marble, an emitting
+//! mesh triangle) is shaded by the scalar `PathLane` itself
 //! (`handover.rs`).
 //!
 //! Lane code is written in `#[inline(always)]` functions and methods, not

@@ -6,7 +6,8 @@ use crate::packet_shapes::PacketShapes;
 use crate::shading::bsdf::PreparedBsdf;
 use crate::shapes::Method;
 use crate::world::{Hit, World};
-use scene::BaseMaterial;
+use glam::Vec3;
+use scene::{BaseMaterial, Material};
 
 /// Which BSDF the lanes evaluate for an object (`Bsdf` without the
 /// per-hit parts), or none.
@@ -37,12 +38,16 @@ pub(crate) enum LaneBsdf {
 }
 
 /// Per object, what shading a hit on it takes: one row of [`Column`]s per
-/// object id, laid out so that a lane's hit reads one cache line, and a
-/// last row for lanes that hit nothing (no BSDF on lanes, no emitter).
+/// object id, then one per mesh instance ([`ObjectTable::mesh_row`]; an
+/// emitting one is shaded by the scalar code), laid out so that a lane's
+/// hit reads one cache line, and a last row for lanes that hit nothing (no
+/// BSDF on lanes, no emitter).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct ObjectTable {
     /// The rows, [`ROW`] numbers each.
     rows: Vec<f32>,
+    /// The row of the first mesh instance ([`ObjectTable::mesh_row`]).
+    meshes: usize,
 }
 
 /// The numbers in a row of an [`ObjectTable`].
@@ -126,9 +131,9 @@ pub(crate) struct WavefrontScene {
 
 impl WavefrontScene {
     /// The wavefront view of `world` traced with the formulas of `method`.
-    /// Every world is covered: hits on analytic shapes with smooth lobes
+    /// Every world is covered: hits on surfaces with smooth lobes
     /// ([`LaneBsdf`]) are shaded on lanes, the others (a highlight,
-    /// marble's texture, mesh triangles) by the scalar code,
+    /// marble's texture, emitting mesh triangles) by the scalar code,
     /// lane by lane; rays are tested in packets when the world allows it
     /// ([`PacketShapes::new`]), else lane by lane through its BVH. The
     /// tests trace any world with it; the film asks [`WavefrontScene::for_film`].
@@ -219,46 +224,11 @@ impl ObjectTable {
         self.rows.len() / ROW - 1
     }
 
-    /// The table of every object of `world`.
+    /// The table of every object of `world`, then of every mesh instance
+    /// (whose material may be its model file's, not its object's).
     fn new(world: &World) -> Self {
         let mut objects = ObjectTable::default();
         for (id, material) in world.materials.iter().enumerate() {
-            // No highlight, no texture.
-            let mut alpha = 1.0;
-            let (bsdf, diffuse, mirror, eta) = match *world.prepared_bsdf(id as u32) {
-                PreparedBsdf::Layered {
-                    diffuse,
-                    glossy: 0.0,
-                    mirror,
-                    ..
-                } if material.base != BaseMaterial::Marble => {
-                    (LaneBsdf::Layered, diffuse, mirror, (1.0, 1.0))
-                }
-                PreparedBsdf::Conductor { schlick, ggx: None } => {
-                    (LaneBsdf::Conductor { schlick }, 0.0, 0.0, (1.0, 1.0))
-                }
-                PreparedBsdf::Conductor {
-                    schlick,
-                    ggx: Some(ggx),
-                } => {
-                    alpha = ggx.alpha;
-                    (LaneBsdf::RoughConductor { schlick }, 0.0, 0.0, (1.0, 1.0))
-                }
-                PreparedBsdf::Dielectric {
-                    eta_front,
-                    eta_back,
-                    ggx: None,
-                } => (LaneBsdf::Dielectric, 0.0, 0.0, (eta_front, eta_back)),
-                PreparedBsdf::Dielectric {
-                    eta_front,
-                    eta_back,
-                    ggx: Some(ggx),
-                } => {
-                    alpha = ggx.alpha;
-                    (LaneBsdf::RoughDielectric, 0.0, 0.0, (eta_front, eta_back))
-                }
-                _ => (LaneBsdf::Scalar, 0.0, 0.0, (1.0, 1.0)),
-            };
             let hit = Hit {
                 object: id as u32,
                 alpha: 0.0,
@@ -268,24 +238,85 @@ impl ObjectTable {
                 .emitters
                 .index_of(&hit)
                 .map_or(-1, |index| index as i32);
-            let mut row = [0.0f32; ROW];
-            let color = Column::Color as usize;
-            row[color..color + 3].copy_from_slice(&material.color.to_array());
-            row[Column::Diffuse as usize] = diffuse;
-            row[Column::Mirror as usize] = mirror;
-            (
-                row[Column::EtaFront as usize],
-                row[Column::EtaBack as usize],
-            ) = eta;
-            row[Column::Alpha as usize] = alpha;
-            let emission = Column::Emission as usize;
-            row[emission..emission + 3].copy_from_slice(&material.emission.to_array());
-            row[Column::Magnitude as usize] = world.magnitude(id as u32);
-            row[Column::Flags as usize] = f32::from_bits(bsdf.flags() as u32);
-            row[Column::Emitter as usize] = f32::from_bits(emitter as u32);
-            objects.rows.extend_from_slice(&row);
+            let bsdf = world.prepared_bsdf(id as u32);
+            let magnitude = world.magnitude(id as u32);
+            objects.push_row(material, bsdf, magnitude, emitter);
+        }
+        objects.meshes = objects.rows.len() / ROW;
+        for mesh in &world.meshes {
+            let magnitude = world.magnitude(mesh.object);
+            if mesh.material.emission == Vec3::ZERO {
+                objects.push_row(&mesh.material, &mesh.bsdf, magnitude, -1);
+            } else {
+                // A mesh's emitters are its triangles, one index each: the
+                // scalar code finds which.
+                objects.rows.extend_from_slice(&Self::miss_row());
+            }
         }
         objects.rows.extend_from_slice(&Self::miss_row());
         objects
+    }
+
+    /// The row of mesh instance `instance` (an index into `World::meshes`).
+    #[inline(always)]
+    pub(crate) fn mesh_row(&self, instance: u32) -> usize {
+        self.meshes + instance as usize
+    }
+
+    /// Appends the row of a surface of `material` with the prepared `bsdf`,
+    /// the object's `magnitude` and its index among the emitters (−1: none).
+    fn push_row(&mut self, material: &Material, bsdf: &PreparedBsdf, magnitude: f32, emitter: i32) {
+        // No highlight, no texture.
+        let mut alpha = 1.0;
+        let (bsdf, diffuse, mirror, eta) = match *bsdf {
+            PreparedBsdf::Layered {
+                diffuse,
+                glossy: 0.0,
+                mirror,
+                ..
+            } if material.base != BaseMaterial::Marble => {
+                (LaneBsdf::Layered, diffuse, mirror, (1.0, 1.0))
+            }
+            PreparedBsdf::Conductor { schlick, ggx: None } => {
+                (LaneBsdf::Conductor { schlick }, 0.0, 0.0, (1.0, 1.0))
+            }
+            PreparedBsdf::Conductor {
+                schlick,
+                ggx: Some(ggx),
+            } => {
+                alpha = ggx.alpha;
+                (LaneBsdf::RoughConductor { schlick }, 0.0, 0.0, (1.0, 1.0))
+            }
+            PreparedBsdf::Dielectric {
+                eta_front,
+                eta_back,
+                ggx: None,
+            } => (LaneBsdf::Dielectric, 0.0, 0.0, (eta_front, eta_back)),
+            PreparedBsdf::Dielectric {
+                eta_front,
+                eta_back,
+                ggx: Some(ggx),
+            } => {
+                alpha = ggx.alpha;
+                (LaneBsdf::RoughDielectric, 0.0, 0.0, (eta_front, eta_back))
+            }
+            _ => (LaneBsdf::Scalar, 0.0, 0.0, (1.0, 1.0)),
+        };
+        let mut row = [0.0f32; ROW];
+        let color = Column::Color as usize;
+        row[color..color + 3].copy_from_slice(&material.color.to_array());
+        row[Column::Diffuse as usize] = diffuse;
+        row[Column::Mirror as usize] = mirror;
+        (
+            row[Column::EtaFront as usize],
+            row[Column::EtaBack as usize],
+        ) = eta;
+        row[Column::Alpha as usize] = alpha;
+        let emission = Column::Emission as usize;
+        row[emission..emission + 3].copy_from_slice(&material.emission.to_array());
+        row[Column::Magnitude as usize] = magnitude;
+        row[Column::Flags as usize] = f32::from_bits(bsdf.flags() as u32);
+        row[Column::Emitter as usize] = f32::from_bits(emitter as u32);
+        self.rows.extend_from_slice(&row);
     }
 }

@@ -335,13 +335,20 @@ fn floors_and_walls_go_in_packets_with_the_tree_and_match_too() {
 }
 
 #[test]
-fn mesh_hits_handed_to_the_scalar_code_match_too() {
+fn mesh_hits_on_lanes_and_handed_over_match_too() {
+    use super::scene::{Column, LaneBsdf};
+    use ::scene::materials::builtin;
     use ::scene::{
-        MeshInstance, MeshSource, ModelFile, ModelMaterial, Object, Shape, TriangleMesh,
+        BaseMaterial, MeshInstance, MeshSource, ModelFile, ModelMaterial, Object, Shape, Texture,
+        TriangleMesh, Wrap,
     };
     use glam::{Mat4, Vec2, Vec3};
     use std::sync::Arc;
-    // A bent quad with interpolated normals, twice, beside lone shapes.
+    // A bent quad whose vertex normals lean far from its faces' (so that
+    // some rays meet the shading frame from below), placed once per
+    // material of the model file beside lone shapes: on lanes a textured
+    // matte, a matte with a mirror lobe, smooth and rough metal, smooth and
+    // rough glass; handed over a plastic (highlight) and an emitting matte.
     let positions = vec![
         Vec3::new(0.0, 0.0, 0.0),
         Vec3::new(1.0, 0.0, 0.3),
@@ -349,36 +356,73 @@ fn mesh_hits_handed_to_the_scalar_code_match_too() {
         Vec3::new(0.0, 1.0, 0.2),
     ];
     let triangles = vec![[0, 1, 2], [0, 2, 3]];
+    let leaning = [(0.7, 0.0), (-0.6, 0.3), (0.2, -0.8), (-0.4, -0.5)];
+    let normals = TriangleMesh::face_normals_per_vertex(&positions, &triangles)
+        .iter()
+        .zip(leaning)
+        .map(|(n, (x, y))| (*n + Vec3::new(x, y, 0.0)).normalize())
+        .collect();
     let mesh = TriangleMesh {
-        normals: TriangleMesh::face_normals_per_vertex(&positions, &triangles),
+        normals,
         uvs: positions.iter().map(|p| Vec2::new(p.x, p.y)).collect(),
         positions,
         triangles,
     };
+    let with = |base, f: &dyn Fn(&mut ::scene::Material)| {
+        let mut m = builtin(base);
+        f(&mut m);
+        m
+    };
+    let materials = [
+        builtin(BaseMaterial::Matte),
+        with(BaseMaterial::Matte, &|m| m.reflectivity = 0.3),
+        builtin(BaseMaterial::Metal),
+        with(BaseMaterial::Metal, &|m| m.roughness = 0.3),
+        builtin(BaseMaterial::Glass),
+        with(BaseMaterial::Glass, &|m| m.roughness = 0.2),
+        builtin(BaseMaterial::Plastic),
+        with(BaseMaterial::Matte, &|m| m.emission = Vec3::splat(2.0)),
+    ];
     let mut model = ModelFile::default();
     model.meshes = vec![Arc::new(mesh)];
-    model.materials = vec![ModelMaterial {
-        material: ::scene::materials::builtin(::scene::BaseMaterial::Matte),
-        base_color_texture: None,
-    }];
-    model.instances = [
-        Mat4::IDENTITY,
-        Mat4::from_translation(Vec3::new(-1.3, -0.2, -0.5)),
-    ]
-    .iter()
-    .enumerate()
-    .map(|(k, &t)| MeshInstance {
-        mesh: 0,
-        material: 0,
-        model_from_mesh: t,
-        name: format!("instance {k}"),
-    })
-    .collect();
+    model.textures = vec![Arc::new(Texture {
+        width: 2,
+        height: 2,
+        texels: Arc::from(vec![
+            [255, 40, 40, 255],
+            [40, 255, 40, 255],
+            [40, 40, 255, 255],
+            [250, 250, 60, 255],
+        ]),
+        wrap_u: Wrap::Repeat,
+        wrap_v: Wrap::Repeat,
+    })];
+    model.materials = materials
+        .iter()
+        .enumerate()
+        .map(|(k, &material)| ModelMaterial {
+            material,
+            base_color_texture: (k == 0).then_some(0),
+        })
+        .collect();
+    model.instances = (0..materials.len())
+        .map(|k| MeshInstance {
+            mesh: 0,
+            material: k as u32,
+            model_from_mesh: Mat4::from_translation(Vec3::new(
+                (k % 4) as f32 * 1.1 - 2.2,
+                (k / 4) as f32 * 1.1 - 1.1,
+                -0.3 * (k % 3) as f32,
+            )),
+            name: format!("instance {k}"),
+        })
+        .collect();
     let mut scene = ::scene::read_str(
-        r#"<scene><camera eye="0 0.5 5" toward="0 0 -1" theta="20" width="14" height="14"/>
+        r#"<scene><camera eye="0 0.3 6" toward="0 0 -1" theta="24" width="20" height="20"/>
            <sky color="0.4 0.4 0.5"/><light position="1 2 3" intensity="6"/>
-           <sphere center="1.2 0.2 -0.5" radius="0.3" material="matte" color="0.8 0.3 0.3"/>
-           <triangle t0="-3 -1 3" t1="3 -1 3" t2="0 -1 -3" material="matte" color="0.6 0.6 0.6"/></scene>"#,
+           <sphere center="1.2 0.2 0.5" radius="0.3" material="matte" color="0.8 0.3 0.3"/>
+           <triangle t0="-3 1.5 -1" t1="-1 1.5 -1" t2="-2 2.5 -1" material="matte" emission="3 3 3"/>
+           <triangle t0="-4 -1.2 4" t1="4 -1.2 4" t2="0 -1.2 -4" material="matte" color="0.6 0.6 0.6"/></scene>"#,
         "mesh.xml",
     )
     .expect("parses");
@@ -397,8 +441,20 @@ fn mesh_hits_handed_to_the_scalar_code_match_too() {
         params: Default::default(),
     });
     let world = World::from_scene(&scene).expect("valid");
-    assert!(world.triangle_count() > 0, "the model is in the world");
-    assert_every_pixel_matches(&world, &[(8, 21)], 2);
+    assert_eq!(
+        world.meshes.len(),
+        materials.len(),
+        "one instance per material"
+    );
+    let table = WavefrontScene::new(&world, Method::Robust).objects;
+    let on_lanes = |instance: u32| {
+        let flags = table.row(table.mesh_row(instance))[Column::Flags as usize].to_bits();
+        flags as i32 & LaneBsdf::ON_LANES != 0
+    };
+    let expected: Vec<bool> = (0..materials.len()).map(|k| k < 6).collect();
+    let shaded: Vec<bool> = (0..materials.len() as u32).map(on_lanes).collect();
+    assert_eq!(shaded, expected, "which instances the lanes shade");
+    assert_every_pixel_matches(&world, &[(8, 21), (3, 5)], 2);
 }
 
 #[test]

@@ -4,7 +4,7 @@
 //! (`World::intersect` and `World::occluded`, the scalar path tracer's own
 //! queries). Either way a lane's hit is the scalar one bit for bit.
 
-use super::scene::WavefrontScene;
+use super::scene::{ObjectTable, WavefrontScene};
 use crate::geometry::counters::{count_ray, count_shape_tests, shape_tests_on_this_thread};
 use crate::packet::{FloatLanes, IntLanes, MaskLanes, Rays, Vec3s, WIDTH, lane_set, mask_from};
 use crate::packet_shapes::PacketHits;
@@ -25,6 +25,24 @@ pub(super) struct Closest<F: FloatLanes> {
 }
 
 impl<F: FloatLanes> Closest<F> {
+    /// Each lane's row of `table`: its object's, or a mesh triangle's
+    /// instance's (−1 on a miss, past every row).
+    #[inline(always)]
+    pub(super) fn rows(&self, table: &ObjectTable) -> F::Ints {
+        match &self.hits {
+            Some(hits) if self.mesh.any() => {
+                let mut rows = self.packet.object.to_array();
+                for (row, hit) in rows.iter_mut().zip(hits) {
+                    if let Some(t) = hit.and_then(|h| h.triangle) {
+                        *row = table.mesh_row(t.instance) as i32;
+                    }
+                }
+                F::Ints::from_array(rows)
+            }
+            _ => self.packet.object,
+        }
+    }
+
     /// Lane `k`'s hit (it hit something).
     #[inline(always)]
     pub(super) fn hit(&self, k: usize) -> Hit {
@@ -55,8 +73,8 @@ pub(super) fn closest<F: FloatLanes>(
         let mut tested = F::Ints::splat(0);
         let packet = shapes.closest(rays, &mut tested);
         count::<F>(live, tested, tests);
-        // Mesh triangles' lanes need the whole hit (β, γ) for the scalar
-        // shading.
+        // Mesh triangles' lanes need the whole hit (β, γ) for their
+        // surface (`World::hit_surface`).
         let mesh = shapes.mesh_lanes(&packet);
         let hits = mesh
             .any()
