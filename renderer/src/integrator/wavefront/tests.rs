@@ -422,7 +422,8 @@ fn mesh_hits_on_lanes_and_handed_over_match_too() {
            <sky color="0.4 0.4 0.5"/><light position="1 2 3" intensity="6"/>
            <sphere center="1.2 0.2 0.5" radius="0.3" material="matte" color="0.8 0.3 0.3"/>
            <triangle t0="-3 1.5 -1" t1="-1 1.5 -1" t2="-2 2.5 -1" material="matte" emission="3 3 3"/>
-           <triangle t0="-4 -1.2 4" t1="4 -1.2 4" t2="0 -1.2 -4" material="matte" color="0.6 0.6 0.6"/></scene>"#,
+           <triangle t0="-4 -1.2 4" t1="4 -1.2 4" t2="0 -1.2 -4" material="matte" color="0.6 0.6 0.6"/>
+           <cylinder base="2.6 -1.2 -1" radius="0.3" height="0.6" material="matte"/></scene>"#,
         "mesh.xml",
     )
     .expect("parses");
@@ -440,12 +441,23 @@ fn mesh_hits_on_lanes_and_handed_over_match_too() {
         material: None,
         params: Default::default(),
     });
+    // With the cylinder the rays go lane by lane through the world's BVH;
+    // without it, in packets.
+    let through_bvh = World::from_scene(&scene).expect("valid");
+    let cylinder = scene.objects.len() - 2;
+    scene.objects.remove(cylinder);
     let world = World::from_scene(&scene).expect("valid");
     assert_eq!(
         world.meshes.len(),
         materials.len(),
         "one instance per material"
     );
+    assert!(
+        WavefrontScene::new(&through_bvh, Method::Robust)
+            .shapes
+            .is_none()
+    );
+    assert!(WavefrontScene::new(&world, Method::Robust).shapes.is_some());
     let table = WavefrontScene::new(&world, Method::Robust).objects;
     let on_lanes = |instance: u32| {
         let flags = table.row(table.mesh_row(instance))[Column::Flags as usize].to_bits();
@@ -455,6 +467,7 @@ fn mesh_hits_on_lanes_and_handed_over_match_too() {
     let shaded: Vec<bool> = (0..materials.len() as u32).map(on_lanes).collect();
     assert_eq!(shaded, expected, "which instances the lanes shade");
     assert_every_pixel_matches(&world, &[(8, 21), (3, 5)], 2);
+    assert_every_pixel_matches(&through_bvh, &[(8, 21)], 2);
 }
 
 #[test]
