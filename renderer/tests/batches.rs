@@ -1,12 +1,10 @@
 //! Both integrators traced in batches: every sample's radiance is the one
-//! the same sample gets traced alone, bit for bit, whatever the batch
-//! size, the order of the samples or the thread count.
+//! the same sample gets traced alone, bit for bit, whatever list it is
+//! traced in, the order of the samples or the thread count.
 
 use glam::Vec3;
 use renderer::integrator::sampler::Sampling;
-use renderer::integrator::{
-    Integrator, SampleRef, SampleResult, sample_pixel, trace_samples_batched,
-};
+use renderer::integrator::{Integrator, SampleRef, SampleResult, sample_pixel, trace_samples};
 use renderer::{Film, Method, RenderOptions, World};
 mod common;
 
@@ -23,7 +21,7 @@ fn bits(v: Vec3) -> [u32; 3] {
 }
 
 #[test]
-fn a_batched_sample_is_the_sample_traced_alone_bit_for_bit_for_any_batch_size() {
+fn a_batched_sample_is_the_sample_traced_alone_bit_for_bit_in_any_list() {
     let worlds = [
         ("spheres.xml", reference("spheres.xml", 24, 18)),
         ("rough.xml", reference("rough.xml", 16, 16)),
@@ -60,9 +58,12 @@ fn a_batched_sample_is_the_sample_traced_alone_bit_for_bit_for_any_batch_size() 
                 .iter()
                 .map(|s| bits(sample_pixel(world, &options, s.i, s.j, s.sample)))
                 .collect();
-            for batch in [1, 2, 7, 64, 1000] {
+            // The list whole, or cut into lists of `batch` traced one by one.
+            for batch in [1, 2, 7, 64, samples.len()] {
                 let mut results = vec![SampleResult::default(); samples.len()];
-                trace_samples_batched(world, &options, &samples, batch, &mut results);
+                for (list, out) in samples.chunks(batch).zip(results.chunks_mut(batch)) {
+                    trace_samples(world, &options, list, out);
+                }
                 for ((s, result), expected) in samples.iter().zip(&results).zip(&alone) {
                     assert_eq!(
                         &bits(result.radiance),

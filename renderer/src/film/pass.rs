@@ -167,7 +167,8 @@ impl Film {
     /// of `world` (bytes): one chunk's sample lists and the path tracer's
     /// batch of lanes. It does not depend on the image's size.
     pub fn pass_bytes_per_thread(world: &World) -> usize {
-        PASS_CHUNK * Chunk::BYTES_PER_SAMPLE + crate::integrator::path_batch_bytes(world)
+        PASS_CHUNK * Chunk::BYTES_PER_SAMPLE
+            + crate::integrator::path_batch_bytes(world, PASS_CHUNK)
     }
 
     /// A film with `spp` passes of `world`.

@@ -1,21 +1,19 @@
 //! Integrators as lanes: a sample's estimator written as a state machine
 //! that stops wherever it needs rays traced — the closest hit of its next
 //! ray, then the shadow rays of that hit — so that the same arithmetic runs
-//! whether a sample is traced alone ([`trace_alone`], the pixel inspector)
-//! or with many others whose rays are traced together ([`trace_lanes`], the
-//! film). Both integrators are lanes: [`super::path`] and [`super::whitted`].
+//! whether a sample is traced alone ([`trace_alone`], the pixel inspector
+//! and the reference of every batched way) or with many others whose rays
+//! are traced together (`trace_lanes`, which the wavefront's tests count
+//! shape tests against; the film traces the path tracer's samples on SIMD
+//! lanes, `super::wavefront`). Both integrators are lanes: [`super::path`]
+//! and [`super::whitted`].
 
 use super::RenderOptions;
-use super::recorder::{EmitterLightSample, NoRecorder, Recorder};
+use super::recorder::{EmitterLightSample, Recorder};
 use super::sampler::Sampler;
-use crate::geometry::counters::shape_tests_on_this_thread;
 use crate::geometry::ray::Ray;
 use crate::world::{Hit, World};
 use glam::{Vec2, Vec3};
-
-/// Samples in flight per batch: enough that a step's rays can be traced
-/// together, few enough that the lanes' state stays in the L1 and L2 caches.
-pub(crate) const LANES_PER_BATCH: usize = 64;
 
 /// Sample `sample` of pixel (i, j).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -156,22 +154,8 @@ pub(crate) fn trace_alone<L: Lane<R::Node>, R: Recorder>(
     }
 }
 
-/// The most memory [`trace_lanes`] holds at once for lanes `L` in `world`
-/// with up to `batch` lanes: the lanes, their hits and steps, and the
-/// shadow rays of one step (each lane at most one per light and one toward
-/// an emitter). It does not depend on how many samples are traced.
-pub(crate) fn lanes_bytes<L>(world: &World, batch: usize) -> usize {
-    use std::mem::size_of;
-    let per_lane = size_of::<Slot<L>>()
-        + size_of::<Option<Hit>>()
-        + size_of::<(usize, usize)>()
-        + size_of::<Next>();
-    let shadows_per_lane = world.lights.len() + 1;
-    let per_shadow = size_of::<ShadowRay>() + size_of::<bool>();
-    batch * (per_lane + shadows_per_lane * per_shadow)
-}
-
 /// A lane in flight and the sample it belongs to.
+#[cfg(test)]
 struct Slot<L> {
     index: usize,
     lane: L,
@@ -184,6 +168,7 @@ struct Slot<L> {
 /// of their hits together; finished lanes make room for the next samples.
 /// A sample's radiance is what [`trace_alone`] gives it, bit for bit,
 /// whatever `batch` and whatever the other samples.
+#[cfg(test)]
 pub(crate) fn trace_lanes<L: Lane<()>>(
     world: &World,
     options: &RenderOptions,
@@ -191,6 +176,8 @@ pub(crate) fn trace_lanes<L: Lane<()>>(
     batch: usize,
     results: &mut [SampleResult],
 ) {
+    use super::recorder::NoRecorder;
+    use crate::geometry::counters::shape_tests_on_this_thread;
     assert_eq!(samples.len(), results.len(), "one result per sample");
     let batch = batch.max(1);
     let mut slots: Vec<Slot<L>> = Vec::with_capacity(batch);

@@ -25,7 +25,5 @@ pub use path::{path, path_recorded};
 pub use recorder::{NoRecorder, Note, RayKind, Recorder};
 pub use sample_pixel::{TracedSample, sample_offset, sample_pixel, sample_pixel_recorded};
 pub use shading_context::ShadingContext;
-pub use trace_samples::{
-    SampleRef, SampleResult, path_batch_bytes, trace_samples, trace_samples_batched,
-};
+pub use trace_samples::{SampleRef, SampleResult, path_batch_bytes, trace_samples};
 pub use whitted::{whitted, whitted_recorded};

@@ -2,7 +2,7 @@
 
 use super::delta::{dielectric_samples, fresnel_schlick, mirrored};
 use super::draws::{cosine_warps, dead_ray, emitter_draws, roulette_draws, scatter_draws};
-use super::glossy::RoughConductors;
+use super::glossy::{Highlights, RoughConductors};
 use super::handover::{Handover, Target};
 use super::lane_math::{Frame, offset_origins, power_heuristics};
 use super::paths::Paths;
@@ -16,6 +16,7 @@ use crate::integrator::sampler::PixelStream;
 use crate::integrator::sampler::lanes::StreamLanes;
 use crate::integrator::{RenderOptions, path::power_heuristic};
 use crate::packet::{FloatLanes, IntLanes, MaskLanes, Rays, Vec3s, WIDTH, lane_set, mask_from};
+use crate::shading::texture::marble;
 use crate::world::World;
 use crate::world::light::Light;
 use glam::Vec3;
@@ -175,8 +176,7 @@ impl<F: FloatLanes> PathGroup<F> {
         }
 
         let mut at = Surfaces::<F>::gather(&scene.objects, hit, closest.rows(&scene.objects));
-        // Hits on materials the lanes do not shade (a highlight, marble,
-        // an emitting mesh triangle) go to the scalar code.
+        // Hits on emitting mesh triangles go to the scalar code.
         let scalar = hit & !at.on_lanes;
         let hit = hit & at.on_lanes;
         self.handover
@@ -230,17 +230,22 @@ impl<F: FloatLanes> PathGroup<F> {
         let last = hit & mask_from::<F>(|k| depth[k] + 1 >= options.max_depth);
         finished |= last.to_bitmask();
         let go = hit & !last;
+        // Marble's albedo: its solid texture through the colour, at the point.
+        for k in (0..WIDTH).filter(|&k| lane_set(go & at.marble, k)) {
+            at.color
+                .set_lane(k, marble(point.lane(k), at.color.lane(k)));
+        }
 
         let frame = Frame::new(ns);
         let wo = frame.to_local(-dir);
         let above = offset_origins(point, n, at.magnitude);
         // Lights are sampled where a lobe is not a delta: a Lambertian, a
-        // rough conductor's or rough glass's. Rough glass also sees lights
-        // behind the surface, through shadow rays from below it.
+        // highlight, a rough conductor's or rough glass's. Rough glass also
+        // sees lights behind the surface, through shadow rays from below it.
         let rough = go & at.rough;
         let rough_glass = go & at.rough_glass;
         let below = offset_origins(point, -n, at.magnitude);
-        let lit = go & (at.diffuse.simd_gt(F::ZERO) | rough | rough_glass);
+        let lit = go & ((at.diffuse + at.glossy).simd_gt(F::ZERO) | rough | rough_glass);
         let frosted = RoughDielectrics {
             alpha: at.alpha,
             eta: front.select(at.eta.0, at.eta.1),
@@ -255,6 +260,9 @@ impl<F: FloatLanes> PathGroup<F> {
         let lobes = Lobes {
             color: at.color,
             diffuse: at.diffuse,
+            shiny: go & at.layered & at.glossy.simd_gt(F::ZERO),
+            glossy: at.glossy,
+            highlights: Highlights { alpha: at.alpha },
             rough,
             microfacets,
             rough_glass,
@@ -279,15 +287,25 @@ impl<F: FloatLanes> PathGroup<F> {
         let lit_by = self.paths.throughput;
 
         // The BSDF sample. A layered lane picks its mirror lobe when the
-        // lobe's number falls below the mirror's weight, else a
-        // cosine-weighted direction; a rough conductor reflects about a
-        // visible micronormal; both weigh f·cos/pdf. A conductor reflects,
-        // glass reflects or refracts.
+        // lobe's number falls below the mirror's weight, its highlight below
+        // the two weights' sum (a direction reflected about a GGX
+        // micronormal; none below the surface), else a cosine-weighted
+        // direction; a rough conductor reflects about a visible
+        // micronormal; all weigh f·cos/pdf. A conductor reflects, glass
+        // reflects or refracts.
         let (u_lobe, u) = scatter_draws(&self.paths.streams, &self.paths.depth);
         let layered_mirror = go & at.layered & u_lobe.simd_lt(at.mirror);
-        let diffuse = go & at.layered & !layered_mirror;
+        let glossy = go & at.layered & !layered_mirror & u_lobe.simd_lt(at.mirror + at.glossy);
+        let diffuse = go & at.layered & !layered_mirror & !glossy;
         let mut wi = cosine_warps(u);
+        let mut reflected = glossy;
+        if glossy.any() {
+            let (glossy_wi, above) = lobes.highlights.sample(glossy, wo, u);
+            wi = Vec3s::select(glossy, glossy_wi, wi);
+            reflected = above;
+        }
         let (mut f_cos, mut pdf) = lobes.eval_pdf(wo, wi);
+        pdf = (glossy & !reflected).select(F::ZERO, pdf);
         let mut radiance_scale = F::ONE;
         if rough.any() {
             let (rough_wi, rough_f, rough_pdf) = microfacets.sample(rough, wo, u);
@@ -302,7 +320,7 @@ impl<F: FloatLanes> PathGroup<F> {
             pdf = rough_glass.select(glass_pdf, pdf);
             radiance_scale = rough_glass.select(scale, radiance_scale);
         }
-        let scattered = diffuse | rough | rough_glass;
+        let scattered = diffuse | glossy | rough | rough_glass;
         let conductor = go & at.conductor;
         let glass = go & at.dielectric;
         let delta = layered_mirror | conductor | glass;
@@ -405,13 +423,20 @@ impl<F: FloatLanes> PathGroup<F> {
     }
 }
 
-/// The non-delta lobes of sixteen hits: a layered BSDF's Lambertian lobe,
-/// a rough conductor's or rough glass's GGX lobes, per lane.
+/// The non-delta lobes of sixteen hits: a layered BSDF's Lambertian lobe
+/// and white highlight, a rough conductor's or rough glass's GGX lobes, per
+/// lane.
 struct Lobes<F: FloatLanes> {
     /// The Lambertian albedo.
     color: Vec3s<F>,
     /// The Lambertian lobe's weight (0 where there is none).
     diffuse: F,
+    /// Layered lanes with a highlight.
+    shiny: F::Mask,
+    /// The highlight's weight.
+    glossy: F,
+    /// The highlights.
+    highlights: Highlights<F>,
     /// Lanes with a rough conductor.
     rough: F::Mask,
     /// The rough conductors.
@@ -434,6 +459,14 @@ impl<F: FloatLanes> Lobes<F> {
             F::ZERO,
             self.diffuse * (wi.z.max(F::ZERO) * F::splat(FRAC_1_PI)),
         );
+        if self.shiny.any() {
+            // `diffuse + Vec3::splat(glossy · reflection)`, both above.
+            let (glossy_f, glossy_pdf) = self.highlights.eval_pdf(wo, wi);
+            let shiny = self.shiny & !dark_side;
+            let white = self.glossy * glossy_f;
+            f = Vec3s::select(shiny, f + Vec3s::new(white, white, white), f);
+            pdf = shiny.select(pdf + self.glossy * glossy_pdf, pdf);
+        }
         if self.rough.any() {
             let (rough_f, rough_pdf) = self.microfacets.eval_pdf(wo, wi);
             f = Vec3s::select(self.rough, rough_f, f);

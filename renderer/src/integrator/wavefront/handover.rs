@@ -1,5 +1,5 @@
-//! Lanes handed to the scalar path tracer: a hit on a material the lanes do
-//! not shade (a highlight, marble, an emitting mesh triangle) is
+//! Lanes handed to the scalar path tracer: a hit the lanes do not shade (an
+//! emitting mesh triangle, whose emitter is per triangle) is
 //! shaded by `PathLane` itself, resumed from the lane's state and put back
 //! into it afterwards, its shadow ray traced in the same packet as the
 //! others'. The lane's arithmetic is then the scalar path tracer's by

@@ -18,22 +18,23 @@
 //! Rays are tested in packets in worlds of lone triangles (small meshes'
 //! placed in world space included), boxes, spheres and planes ([`crate::packet_shapes::PacketShapes`]: against every
 //! primitive, or through a tree, then the planes), else traced lane by lane through the world's BVH
-//! (`tracing.rs`). Hits on surfaces with smooth lobes are shaded on
-//! lanes: Lambertian with a mirror lobe, rough conductors (`glossy.rs`) and
-//! rough glass (`rough_glass.rs`), point and directional lights included,
-//! mirror, metal and smooth glass (`delta.rs`). Mesh triangles among them
-//! too: each lane's point, interpolated normal and texture colour are found
-//! by the scalar code (`World::hit_surface`), the rest on lanes in the
-//! shading normal's frame. Any other hit (a highlight, marble, an emitting
-//! mesh triangle) is shaded by the scalar `PathLane` itself
-//! (`handover.rs`).
+//! (`tracing.rs`). Every material is shaded on lanes: Lambertian with a
+//! white GGX highlight and a mirror lobe (matte, plastic, marble — whose
+//! solid texture each lane evaluates at its point), rough conductors and
+//! the highlights (`glossy.rs`), rough glass (`rough_glass.rs`), mirror,
+//! metal and smooth glass (`delta.rs`), point and directional lights
+//! included. Mesh triangles among them too: each lane's point, interpolated
+//! normal and texture colour are found by the scalar code
+//! (`World::hit_surface`), the rest on lanes in the shading normal's frame.
+//! Only a hit on an emitting mesh triangle (whose emitter is per triangle)
+//! is shaded by the scalar `PathLane` itself (`handover.rs`).
 //!
 //! Lane code is written in `#[inline(always)]` functions and methods, not
 //! closures: a closure that is not inlined is compiled without the AVX2
 //! instruction set, and its lane operations then run as calls (a closure
-//! for the BSDF's value made `rough.xml` 40% slower). The film uses the wavefront
-//! where its rays go in packets (`trace_samples.rs` says why: lane by lane
-//! through a BVH it measured slower than the scalar lanes).
+//! for the BSDF's value made `rough.xml` 40% slower). The film's path tracer
+//! uses the wavefront for every world ([`WavefrontScene::new`] gives the
+//! figures against the scalar lanes it replaced).
 
 mod delta;
 mod draws;
@@ -97,6 +98,29 @@ pub(crate) fn trace_wavefront(
             }
         }
     }
+}
+
+/// The most memory [`trace_wavefront`] holds at once for a list of at most
+/// `samples` samples of `world` (bytes), whatever the lane type: its group
+/// of sixteen paths, the scalar code's shadow rays for handed-over lanes
+/// (at most one toward each light and one toward the emitters a lane), the
+/// shadow masks toward each light, and, while a thread still measures its
+/// two ways of refilling lanes, a copy of every other sample with its
+/// result.
+pub(crate) fn wavefront_bytes(world: &World, samples: usize) -> usize {
+    use crate::integrator::lanes::ShadowRay;
+    use std::mem::size_of;
+    let group = size_of::<PathGroup<crate::simd::Portable>>();
+    #[cfg(target_arch = "x86_64")]
+    let group = group
+        .max(size_of::<PathGroup<crate::simd::avx2::Avx2>>())
+        .max(size_of::<PathGroup<crate::simd::avx512::Avx512>>());
+    let shadows_per_lane = world.lights.len() + 1;
+    let handover = WIDTH * shadows_per_lane * size_of::<ShadowRay>() + shadows_per_lane;
+    // A mask of sixteen lanes takes at most 4 bytes a lane.
+    let masks = world.lights.len() * WIDTH * 4;
+    let trial = samples.div_ceil(2) * (size_of::<SampleRef>() + size_of::<SampleResult>());
+    group + handover + masks + trial
 }
 
 /// A call of [`trace_wavefront`], to run with some lane type.

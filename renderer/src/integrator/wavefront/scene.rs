@@ -10,15 +10,16 @@ use glam::Vec3;
 use scene::{BaseMaterial, Material};
 
 /// Which BSDF the lanes evaluate for an object (`Bsdf` without the
-/// per-hit parts), or none.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// per-hit parts). Every material has one; only an emitting mesh
+/// instance's row has none (no flags), as its emitters are per triangle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum LaneBsdf {
-    /// None: a hit on it is shaded by the scalar path tracer's code.
-    #[default]
-    Scalar,
-    /// A Lambertian lobe and a mirror lobe (matte, or plastic without a
-    /// highlight; no texture).
-    Layered,
+    /// A Lambertian lobe, a white GGX highlight of α =
+    /// [`ObjectTable::alpha`] and a mirror lobe (matte, plastic, marble).
+    Layered {
+        /// Whether the albedo is marble's solid texture through the colour.
+        marble: bool,
+    },
     /// A smooth conductor (mirror, or metal with Schlick's tint toward
     /// white at grazing angles when `schlick`).
     Conductor {
@@ -67,7 +68,7 @@ pub(crate) enum Column {
     EtaFront = 5,
     /// Glass's η met from inside (ior).
     EtaBack = 6,
-    /// A rough conductor's or rough glass's GGX α.
+    /// A rough conductor's, rough glass's or a layered highlight's GGX α.
     Alpha = 7,
     /// The radiance the front side emits (three numbers; zero for most).
     Emission = 8,
@@ -79,6 +80,8 @@ pub(crate) enum Column {
     /// The object's index among the world's emitters, −1 when it is none,
     /// as the bits of an `f32`.
     Emitter = 13,
+    /// The weight of a layered BSDF's white GGX highlight.
+    Glossy = 14,
 }
 
 impl LaneBsdf {
@@ -96,12 +99,15 @@ impl LaneBsdf {
     pub(crate) const ROUGH_GLASS: i32 = 32;
     /// Set for [`LaneBsdf::Dielectric`].
     pub(crate) const DIELECTRIC: i32 = 64;
+    /// Set for a layered BSDF whose albedo is marble's texture.
+    pub(crate) const MARBLE: i32 = 128;
 
     /// The BSDF as a set of the flags above.
     pub(crate) fn flags(self) -> i32 {
         match self {
-            LaneBsdf::Scalar => 0,
-            LaneBsdf::Layered => Self::ON_LANES | Self::LAYERED,
+            LaneBsdf::Layered { marble } => {
+                Self::ON_LANES | Self::LAYERED | if marble { Self::MARBLE } else { 0 }
+            }
             LaneBsdf::Conductor { schlick } => {
                 Self::ON_LANES | Self::CONDUCTOR | if schlick { Self::SCHLICK } else { 0 }
             }
@@ -131,13 +137,19 @@ pub(crate) struct WavefrontScene {
 
 impl WavefrontScene {
     /// The wavefront view of `world` traced with the formulas of `method`.
-    /// Every world is covered: hits on surfaces with smooth lobes
-    /// ([`LaneBsdf`]) are shaded on lanes, the others (a highlight,
-    /// marble's texture, emitting mesh triangles) by the scalar code,
-    /// lane by lane; rays are tested in packets when the world allows it
-    /// ([`PacketShapes::new`]), else lane by lane through its BVH. The
-    /// tests trace any world with it; the film asks [`WavefrontScene::for_film`].
-    #[cfg(test)]
+    /// Every world is covered: every material is shaded on lanes
+    /// ([`LaneBsdf`]; only an emitting mesh triangle goes to the scalar
+    /// code, lane by lane, as its emitter is per triangle); rays are tested
+    /// in packets when the world allows it ([`PacketShapes::new`]), else
+    /// lane by lane through its BVH.
+    ///
+    /// The film's path tracer takes it for every world. Through the BVH
+    /// each lane's ray takes the scalar query, so the lanes gain on shading
+    /// only; measured against the scalar lanes it replaced there (path,
+    /// 16 spp, 2 threads, medians of 5 alternated runs, 2026-11-28):
+    /// seed.xml 2.40 → 2.20 s and roughness.xml 2.14 → 1.88 s (their marble
+    /// floors on lanes), Duck.gltf beside a cylinder 0.99 → 0.92 s (its
+    /// texture on lanes).
     pub(crate) fn new(world: &World, method: Method) -> Self {
         Self {
             shapes: packet_shapes(world, method),
@@ -146,46 +158,6 @@ impl WavefrontScene {
             refill: RefillChoice::default(),
         }
     }
-
-    /// The wavefront view of `world` when the wavefront is the faster path
-    /// tracer there, `None` when the scalar lanes are: with packets
-    /// whenever the world allows them (textured or not, as before); through
-    /// the world's BVH unless a material is textured (marble, or a mesh's
-    /// base-colour image).
-    ///
-    /// Through the BVH each lane's ray takes the scalar query, so the lanes
-    /// gain only on shading; a textured hit is shaded by the scalar code.
-    /// Measured against the scalar lanes (path, sobol, 16 or 32 spp,
-    /// 2 threads, medians of 3 alternated runs): 900 and 2,500 spheres
-    /// (before they went in packets) 3.06 → 2.61 s and 2.94 → 2.41 s; the
-    /// 20,000-triangle knot mesh 0.45 → 0.41 s; seed.xml and roughness.xml
-    /// with their marble floors made matte 3.01 → 2.25 s and 2.89 → 2.03 s,
-    /// but with marble 4.07 → 4.90 s and 4.08 → 4.98 s.
-    pub(crate) fn for_film(world: &World, method: Method) -> Option<Self> {
-        let shapes = packet_shapes(world, method);
-        if shapes.is_none() && has_textures(world) {
-            return None;
-        }
-        Some(Self {
-            shapes,
-            objects: ObjectTable::new(world),
-            emitters: EmitterTable::new(&world.emitters),
-            refill: RefillChoice::default(),
-        })
-    }
-}
-
-/// Whether some object of `world` is shaded with a texture: a marble
-/// material, or a mesh with a base-colour image.
-fn has_textures(world: &World) -> bool {
-    world
-        .materials
-        .iter()
-        .any(|m| m.base == BaseMaterial::Marble)
-        || world
-            .meshes
-            .iter()
-            .any(|m| m.texture.is_some() || m.material.base == BaseMaterial::Marble)
 }
 
 /// `world`'s primitives for packet tests, when it has few enough lone
@@ -266,16 +238,19 @@ impl ObjectTable {
     /// Appends the row of a surface of `material` with the prepared `bsdf`,
     /// the object's `magnitude` and its index among the emitters (−1: none).
     fn push_row(&mut self, material: &Material, bsdf: &PreparedBsdf, magnitude: f32, emitter: i32) {
-        // No highlight, no texture.
         let mut alpha = 1.0;
+        let mut glossy = 0.0;
         let (bsdf, diffuse, mirror, eta) = match *bsdf {
             PreparedBsdf::Layered {
                 diffuse,
-                glossy: 0.0,
+                glossy: highlight,
                 mirror,
-                ..
-            } if material.base != BaseMaterial::Marble => {
-                (LaneBsdf::Layered, diffuse, mirror, (1.0, 1.0))
+                ggx,
+            } => {
+                alpha = ggx.alpha;
+                glossy = highlight;
+                let marble = material.base == BaseMaterial::Marble;
+                (LaneBsdf::Layered { marble }, diffuse, mirror, (1.0, 1.0))
             }
             PreparedBsdf::Conductor { schlick, ggx: None } => {
                 (LaneBsdf::Conductor { schlick }, 0.0, 0.0, (1.0, 1.0))
@@ -300,13 +275,13 @@ impl ObjectTable {
                 alpha = ggx.alpha;
                 (LaneBsdf::RoughDielectric, 0.0, 0.0, (eta_front, eta_back))
             }
-            _ => (LaneBsdf::Scalar, 0.0, 0.0, (1.0, 1.0)),
         };
         let mut row = [0.0f32; ROW];
         let color = Column::Color as usize;
         row[color..color + 3].copy_from_slice(&material.color.to_array());
         row[Column::Diffuse as usize] = diffuse;
         row[Column::Mirror as usize] = mirror;
+        row[Column::Glossy as usize] = glossy;
         (
             row[Column::EtaFront as usize],
             row[Column::EtaBack as usize],

@@ -9,8 +9,10 @@ use crate::packet::{FloatLanes, IntLanes, Vec3s, WIDTH, lane_set};
 pub(super) struct Surfaces<F: FloatLanes> {
     /// Lanes whose BSDF the lanes evaluate.
     pub(super) on_lanes: F::Mask,
-    /// Lanes with a layered BSDF (Lambertian and mirror lobes).
+    /// Lanes with a layered BSDF (Lambertian, highlight and mirror lobes).
     pub(super) layered: F::Mask,
+    /// Layered lanes whose albedo is marble's texture through the colour.
+    pub(super) marble: F::Mask,
     /// Lanes with a smooth conductor.
     pub(super) conductor: F::Mask,
     /// Lanes whose conductor, smooth or rough, follows Schlick's
@@ -20,7 +22,7 @@ pub(super) struct Surfaces<F: FloatLanes> {
     pub(super) rough: F::Mask,
     /// Lanes with rough glass.
     pub(super) rough_glass: F::Mask,
-    /// The rough conductor's or glass's GGX α.
+    /// The rough conductor's, glass's or highlight's GGX α.
     pub(super) alpha: F,
     /// Lanes with smooth glass.
     pub(super) dielectric: F::Mask,
@@ -28,6 +30,8 @@ pub(super) struct Surfaces<F: FloatLanes> {
     pub(super) color: Vec3s<F>,
     /// The Lambertian lobe's weight.
     pub(super) diffuse: F,
+    /// The white GGX highlight's weight.
+    pub(super) glossy: F,
     /// The mirror lobe's weight.
     pub(super) mirror: F,
     /// Glass's η from outside and from inside.
@@ -58,6 +62,7 @@ impl<F: FloatLanes> Surfaces<F> {
         Self {
             on_lanes: has::<F>(flags, LaneBsdf::ON_LANES),
             layered: has::<F>(flags, LaneBsdf::LAYERED),
+            marble: has::<F>(flags, LaneBsdf::MARBLE),
             conductor: has::<F>(flags, LaneBsdf::CONDUCTOR),
             schlick: has::<F>(flags, LaneBsdf::SCHLICK),
             rough: has::<F>(flags, LaneBsdf::ROUGH),
@@ -66,6 +71,7 @@ impl<F: FloatLanes> Surfaces<F> {
             dielectric: has::<F>(flags, LaneBsdf::DIELECTRIC),
             color: vec3s(&rows, Column::Color as usize),
             diffuse: column(&rows, Column::Diffuse as usize),
+            glossy: column(&rows, Column::Glossy as usize),
             mirror: column(&rows, Column::Mirror as usize),
             eta: (
                 column(&rows, Column::EtaFront as usize),

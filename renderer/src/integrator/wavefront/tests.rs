@@ -328,7 +328,7 @@ fn floors_and_walls_go_in_packets_with_the_tree_and_match_too() {
     xml += "</scene>";
     let world = world_from(&xml, 12, 9);
     assert!(
-        WavefrontScene::for_film(&world, Method::Robust).is_some_and(|s| s.shapes.is_some()),
+        WavefrontScene::new(&world, Method::Robust).shapes.is_some(),
         "packets through the tree, planes after it"
     );
     assert_every_pixel_matches(&world, &[(8, 21), (3, 22)], 3);
@@ -348,7 +348,8 @@ fn mesh_hits_on_lanes_and_handed_over_match_too() {
     // some rays meet the shading frame from below), placed once per
     // material of the model file beside lone shapes: on lanes a textured
     // matte, a matte with a mirror lobe, smooth and rough metal, smooth and
-    // rough glass; handed over a plastic (highlight) and an emitting matte.
+    // rough glass, a plastic (highlight), a textured marble; handed over an
+    // emitting matte.
     let positions = vec![
         Vec3::new(0.0, 0.0, 0.0),
         Vec3::new(1.0, 0.0, 0.3),
@@ -381,6 +382,7 @@ fn mesh_hits_on_lanes_and_handed_over_match_too() {
         builtin(BaseMaterial::Glass),
         with(BaseMaterial::Glass, &|m| m.roughness = 0.2),
         builtin(BaseMaterial::Plastic),
+        builtin(BaseMaterial::Marble),
         with(BaseMaterial::Matte, &|m| m.emission = Vec3::splat(2.0)),
     ];
     let mut model = ModelFile::default();
@@ -402,7 +404,8 @@ fn mesh_hits_on_lanes_and_handed_over_match_too() {
         .enumerate()
         .map(|(k, &material)| ModelMaterial {
             material,
-            base_color_texture: (k == 0).then_some(0),
+            // Textured matte, and marble veins through a texture.
+            base_color_texture: (k == 0 || k == 7).then_some(0),
         })
         .collect();
     model.instances = (0..materials.len())
@@ -463,7 +466,10 @@ fn mesh_hits_on_lanes_and_handed_over_match_too() {
         let flags = table.row(table.mesh_row(instance))[Column::Flags as usize].to_bits();
         flags as i32 & LaneBsdf::ON_LANES != 0
     };
-    let expected: Vec<bool> = (0..materials.len()).map(|k| k < 6).collect();
+    // All but the emitting one.
+    let expected: Vec<bool> = (0..materials.len())
+        .map(|k| k + 1 < materials.len())
+        .collect();
     let shaded: Vec<bool> = (0..materials.len() as u32).map(on_lanes).collect();
     assert_eq!(shaded, expected, "which instances the lanes shade");
     assert_every_pixel_matches(&world, &[(8, 21), (3, 5)], 2);
@@ -558,10 +564,9 @@ fn a_tree_world_of_every_smooth_material_and_mixed_emitters_matches_too() {
 }
 
 #[test]
-fn the_film_takes_the_wavefront_unless_a_material_is_textured() {
-    // Packets where the world allows them (marble or not); through the BVH
-    // for other shapes (a cylinder) and for the lecture's formulas; the
-    // scalar lanes for those once a material is marble.
+fn packets_where_the_world_allows_them_else_the_bvh() {
+    // Packets for lone spheres (marble or not); through the BVH for other
+    // shapes (a cylinder) and for the lecture's formulas.
     let scene = |body: &str| {
         world_from(
             &format!(
@@ -580,23 +585,20 @@ fn the_film_takes_the_wavefront_unless_a_material_is_textured() {
     let marble = scene(r#"<sphere center="0 0 0" radius="1" material="marble"/>"#);
     let other_marble =
         scene(r#"<cylinder base="0 -1 0" radius="0.6" height="1.5" material="marble"/>"#);
-    let choice = |world: &World, method| {
-        WavefrontScene::for_film(world, method).map(|scene| scene.shapes.is_some())
-    };
-    assert_eq!(choice(&lone, Method::Robust), Some(true), "packets");
-    assert_eq!(
-        choice(&lone, Method::Lecture),
-        Some(false),
-        "through the BVH"
+    let packets = |world: &World, method| WavefrontScene::new(world, method).shapes.is_some();
+    assert!(packets(&lone, Method::Robust));
+    assert!(!packets(&lone, Method::Lecture), "through the BVH");
+    assert!(!packets(&other, Method::Robust), "through the BVH");
+    assert!(packets(&marble, Method::Robust));
+    assert!(!packets(&marble, Method::Lecture), "through the BVH");
+    assert!(!packets(&other_marble, Method::Robust), "through the BVH");
+    // Marble through the BVH, on lanes, under a sky.
+    let lit_marble = scene(
+        r#"<sky color="0.5 0.6 0.7"/>
+  <cylinder base="0 -1 0" radius="1.5" height="1.5" material="marble"/>"#,
     );
-    assert_eq!(
-        choice(&other, Method::Robust),
-        Some(false),
-        "through the BVH"
-    );
-    assert_eq!(choice(&marble, Method::Robust), Some(true), "packets");
-    assert_eq!(choice(&marble, Method::Lecture), None, "scalar lanes");
-    assert_eq!(choice(&other_marble, Method::Robust), None, "scalar lanes");
+    assert!(!packets(&lit_marble, Method::Robust));
+    assert_every_pixel_matches(&lit_marble, &[(4, 1)], 2);
 }
 
 #[test]
@@ -630,7 +632,7 @@ fn a_world_of_nine_hundred_spheres_goes_in_packets_and_matches_the_scalar_sample
     assert!(world.objects.len() > 512);
     let options = path_options(Sampling::Sobol, 8, 3);
     assert!(
-        WavefrontScene::for_film(&world, Method::Robust).is_some_and(|s| s.shapes.is_some()),
+        WavefrontScene::new(&world, Method::Robust).shapes.is_some(),
         "packets through the tree"
     );
     assert_wavefront_equals_scalar(&world, &options, &all_samples(8, 6, 2));
