@@ -58,8 +58,9 @@ enum CameraHits<'a> {
     /// (ray by ray past [`crate::world::BATCHED_INSTANCES`] instances).
     Batch,
     /// [`World::intersect`] ray by ray: a world without meshes that
-    /// packets do not cover (cylinders, cones, tori, the lecture's formulas,
-    /// more than [`PacketShapes::MAX_PRIMITIVES`] primitives).
+    /// packets do not cover (more than two cylinders, cones and tori, the
+    /// lecture's formulas, more than [`PacketShapes::MAX_PRIMITIVES`]
+    /// primitives).
     OneByOne,
 }
 

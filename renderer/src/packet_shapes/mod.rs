@@ -1,6 +1,7 @@
 //! Packet intersection for worlds of lone primitives: sixteen rays (one per
 //! lane) tested against the triangles, boxes, spheres and infinite planes of
-//! a world made only of them, with exactly the [`Method::Robust`] formulas of
+//! a world made of them and at most two cylinders, cones or tori (those
+//! tested lane by lane by their scalar test, `others.rs`), with exactly the [`Method::Robust`] formulas of
 //! the scalar code (`shapes/triangle.rs`, `shapes/cuboid.rs`,
 //! `shapes/sphere.rs`, `shapes/plane.rs`): the
 //! same operations in the same order in every lane, no fused multiply–add,
@@ -26,6 +27,7 @@
 //! [`Method::Robust`]: crate::shapes::Method::Robust
 
 mod boxes;
+mod others;
 mod planes;
 mod spheres;
 mod tree;
@@ -37,6 +39,7 @@ use crate::packet::{FloatLanes, IntLanes, MaskLanes, Rays, Vec3s, WIDTH};
 use crate::shapes::{Method, Shape, Triangle};
 use crate::world::{Hit, Object, TriangleRef, World};
 use boxes::Boxes;
+use others::Others;
 use planes::Planes;
 use spheres::{SphereRays, Spheres};
 use tree::{BoxRays, Leaf, Tree, Visitor};
@@ -74,8 +77,10 @@ const BOX: usize = 1;
 const SPHERE: usize = 2;
 /// [`Slot::kind`] of an infinite plane.
 const PLANE: usize = 3;
+/// [`Slot::kind`] of a shape tested lane by lane (cylinder, cone, torus).
+const OTHER: usize = 4;
 /// [`Slot::kind`] of a lane that hit nothing.
-const NO_KIND: usize = 4;
+const NO_KIND: usize = 5;
 
 /// Every primitive of a world made only of lone triangles, small meshes
 /// (their triangles placed in world space, as [`World::grouped_triangles`]
@@ -91,6 +96,8 @@ pub struct PacketShapes {
     spheres: Spheres,
     /// The infinite planes (`<plane>`, `<floor>`), outside the tree.
     planes: Planes,
+    /// The cylinders, cones and tori, tested lane by lane, outside the tree.
+    others: Others,
     /// Per object id, which primitive it is (for a triangle or a model,
     /// only the kind: [`PacketHits::triangle`] says which triangle).
     slots: Vec<Slot>,
@@ -185,6 +192,17 @@ impl<F: FloatLanes> Nearest<F> {
     }
 }
 
+/// Whether `p` is a shape without a packet test (cylinder, cone, torus).
+fn is_other(world: &World, p: &Primitive) -> bool {
+    match *p {
+        Primitive::Object(id) => matches!(
+            world.shape(id),
+            Some(Shape::Cylinder(_) | Shape::Cone(_) | Shape::Torus(_))
+        ),
+        Primitive::Grouped(_) => false,
+    }
+}
+
 /// The live lanes of a packet: those with t_max > 0 (dead ones hold 0).
 #[inline(always)]
 fn live_lanes<F: FloatLanes>(rays: &Rays<F>) -> F::Mask {
@@ -214,8 +232,9 @@ impl PacketShapes {
     /// against 2.62 s (through each instance's BVH, ray by ray).
     pub const MAX_PRIMITIVES: usize = 8192;
 
-    /// `None` when `world` holds anything else (a cylinder, cone, torus,
-    /// a mesh too large to be placed among its lone triangles, ...), more
+    /// `None` when `world` holds anything else (a mesh too large to be
+    /// placed among its lone triangles), more than [`Others::MAX`]
+    /// cylinders, cones and tori (each tested lane by lane), more
     /// than [`PacketShapes::MAX_PRIMITIVES`] primitives, or primitives so
     /// unevenly spread that their tree would be deeper than its walk's stack
     /// (64 levels); such worlds are traced by the scalar lanes.
@@ -237,15 +256,14 @@ impl PacketShapes {
         for (id, object) in world.objects.iter().enumerate() {
             match object {
                 Object::Shape(Shape::Triangle(_)) if grouped.is_some() => {}
-                Object::Shape(
-                    Shape::Triangle(_) | Shape::Box(_) | Shape::Sphere(_) | Shape::Plane(_),
-                ) => primitives.push(Primitive::Object(id as u32)),
+                Object::Shape(_) => primitives.push(Primitive::Object(id as u32)),
                 // Its instances' triangles are among the grouped ones.
                 Object::Model { .. } if world.instances_grouped() && grouped.is_some() => {}
                 _ => return None,
             }
         }
-        (primitives.len() <= Self::MAX_PRIMITIVES).then_some(primitives)
+        let others = primitives.iter().filter(|p| is_other(world, p)).count();
+        (primitives.len() <= Self::MAX_PRIMITIVES && others <= Others::MAX).then_some(primitives)
     }
 
     /// [`PacketShapes::new`] with a tree or without, whatever the count.
@@ -274,6 +292,7 @@ impl PacketShapes {
             boxes: Boxes::default(),
             spheres: Spheres::default(),
             planes: Planes::default(),
+            others: Others::default(),
             slots: vec![
                 Slot {
                     kind: NO_KIND,
@@ -301,10 +320,11 @@ impl PacketShapes {
             }
             Primitive::Object(id) => shapes.push(world, id, key_of[id as usize]),
         };
+        // Planes and the shapes tested lane by lane stay outside the tree.
         let is_plane = |p: &Primitive| match *p {
             Primitive::Object(id) => matches!(world.shape(id), Some(Shape::Plane(_))),
             Primitive::Grouped(_) => false,
-        };
+        } || is_other(world, p);
         if !with_tree || primitives.is_empty() {
             for &p in primitives {
                 push(&mut shapes, p);
@@ -358,6 +378,7 @@ impl PacketShapes {
             Object::Shape(Shape::Box(b)) => (BOX, self.boxes.push(object, b)),
             Object::Shape(Shape::Sphere(s)) => (SPHERE, self.spheres.push(object, s)),
             Object::Shape(Shape::Plane(p)) => (PLANE, self.planes.push(object, p)),
+            Object::Shape(shape) => (OTHER, self.others.push(object, shape)),
             other => unreachable!("object {id} has no packet test: {other:?}"),
         };
         self.slots[id as usize] = Slot { kind, index };
@@ -390,6 +411,8 @@ impl PacketShapes {
         };
         if live.any() {
             self.search(rays, live, &mut search);
+            self.others
+                .closest(rays, live, &mut search.nearest, &mut search.prepared.tests);
             // Planes last: a plane must be strictly nearer.
             self.planes
                 .closest(rays, live, &mut search.nearest, &mut search.prepared.tests);
@@ -417,7 +440,11 @@ impl PacketShapes {
         let all_blocked =
             self.planes
                 .occluded(rays, &mut search.settled, &mut search.prepared.tests);
-        if !all_blocked {
+        if !all_blocked && self.others.len() > 0 {
+            self.others
+                .occluded(rays, &mut search.settled, &mut search.prepared.tests);
+        }
+        if !all_blocked && !search.settled.all() {
             let open = !search.settled;
             self.search(rays, open, &mut search);
         }
@@ -540,9 +567,9 @@ impl PacketShapes {
             };
             bits[slot.kind] |= 1 << lane;
         }
-        let hit_bits = bits[TRIANGLE] | bits[BOX] | bits[SPHERE] | bits[PLANE];
+        let hit_bits = bits[TRIANGLE] | bits[BOX] | bits[SPHERE] | bits[PLANE] | bits[OTHER];
         let (mut point, mut normal) = (Vec3s::ZERO, Vec3s::ZERO);
-        for kind in [TRIANGLE, BOX, SPHERE, PLANE] {
+        for kind in [TRIANGLE, BOX, SPHERE, PLANE, OTHER] {
             if bits[kind] == 0 {
                 continue;
             }
@@ -550,7 +577,10 @@ impl PacketShapes {
                 TRIANGLE => self.triangles.surface(rays, hits.alpha, &index[kind]),
                 BOX => self.boxes.surface(rays, hits.alpha, &index[kind]),
                 SPHERE => self.spheres.surface(rays, hits.alpha, &index[kind]),
-                _ => self.planes.surface(rays, hits.alpha, &index[kind]),
+                PLANE => self.planes.surface(rays, hits.alpha, &index[kind]),
+                _ => self
+                    .others
+                    .surface(rays, hits.alpha, &index[kind], bits[kind]),
             };
             if bits[kind] == hit_bits {
                 // Every lane that hit, hit this kind.
@@ -1224,21 +1254,62 @@ mod tests {
     }
 
     #[test]
-    fn worlds_with_other_shapes_or_too_many_primitives_are_refused() {
-        // A plane is a packet primitive; these have no packet test.
+    fn cylinders_cones_and_tori_among_shapes_give_the_scalar_worlds_hits_bit_for_bit() {
+        // Tested lane by lane by their own scalar test, two to a world:
+        // rotated, a cone's base on the floor plane, a cylinder through a
+        // box, a torus around a sphere; with and without the tree (past the
+        // brute-force limit).
+        for pair in [
+            r#"<cylinder base="-1 -1 0" radius="0.4" height="1.2" rotate="10 0 20"/>
+               <cone base="0.8 -1 0.3" radius="0.5" height="1.4"/>"#,
+            r#"<torus center="0 0.6 -0.8" major="0.6" minor="0.15" rotate="70 10 0"/>
+               <cylinder base="-1 -1.2 0" radius="0.2" height="1.5" rotate="90 0 0"/>"#,
+        ] {
+            let mut xml = format!(
+                r#"<scene>
+              <plane point="0 -1 0" normal="0 1 0"/>
+              {pair}
+              <sphere center="0 0.6 -0.8" radius="0.3"/>
+              <box center="-1 -0.4 0" size="0.5 0.3 0.5"/>"#
+            );
+            for k in 0..20 {
+                let (x, z) = ((k % 5) as f32 * 0.8 - 1.6, (k / 5) as f32 * 0.8 - 1.6);
+                xml += &format!(r#"<sphere center="{x} 1.8 {z}" radius="0.2"/>"#);
+            }
+            xml += "</scene>";
+            let world = world_of(&xml);
+            let rays = rays_for(&world, 9, 6000);
+            let found = check_rays(&world, &rays);
+            assert!(found > 3000, "too few hits to mean anything: {found}");
+        }
+    }
+
+    #[test]
+    fn worlds_with_too_many_other_shapes_or_primitives_are_refused() {
+        // A plane is a packet primitive; up to two cylinders, cones and
+        // tori are tested lane by lane.
         let with_plane = world_of(
             r#"<scene><sphere center="0 0 0" radius="1"/><plane point="0 -1 0" normal="0 1 0"/></scene>"#,
         );
         assert!(PacketShapes::new(&with_plane).is_some());
         for other in [
-            r#"<cylinder base="0 0 0" radius="1" height="1"/>"#,
-            r#"<cone base="0 0 0" radius="1" height="1"/>"#,
-            r#"<torus center="0 0 0" major="1" minor="0.2"/>"#,
+            r#"<cylinder base="{k} 0 0" radius="0.3" height="1"/>"#,
+            r#"<cone base="{k} 0 0" radius="0.3" height="1"/>"#,
+            r#"<torus center="{k} 0 0" major="0.3" minor="0.1"/>"#,
         ] {
-            let world = world_of(&format!(
-                r#"<scene><sphere center="0 0 0" radius="1"/>{other}</scene>"#
-            ));
-            assert!(PacketShapes::new(&world).is_none(), "{other}");
+            let world = |n: usize| {
+                let list: String = (0..n)
+                    .map(|k| other.replace("{k}", &k.to_string()))
+                    .collect();
+                world_of(&format!(
+                    r#"<scene><sphere center="0 2 0" radius="1"/>{list}</scene>"#
+                ))
+            };
+            assert!(PacketShapes::new(&world(Others::MAX)).is_some(), "{other}");
+            assert!(
+                PacketShapes::new(&world(Others::MAX + 1)).is_none(),
+                "{other}"
+            );
         }
         let spheres = |n: usize| {
             let list: String = (0..n)

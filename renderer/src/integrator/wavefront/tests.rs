@@ -51,6 +51,25 @@ fn all_samples(width: u32, height: u32, spp: u32) -> Vec<SampleRef> {
 /// Traces `samples` with the wavefront and checks each against the scalar path tracer.
 fn assert_wavefront_equals_scalar(world: &World, options: &RenderOptions, samples: &[SampleRef]) {
     let scene = WavefrontScene::new(world, options.method);
+    assert_scene_equals_scalar(world, scene, options, samples);
+}
+
+/// `world`'s wavefront view with every ray through its BVH, lane by lane,
+/// even where packets would take them.
+fn through_bvh(world: &World, method: Method) -> WavefrontScene {
+    WavefrontScene {
+        shapes: None,
+        ..WavefrontScene::new(world, method)
+    }
+}
+
+/// [`assert_wavefront_equals_scalar`] with the view `scene` of `world`.
+fn assert_scene_equals_scalar(
+    world: &World,
+    scene: WavefrontScene,
+    options: &RenderOptions,
+    samples: &[SampleRef],
+) {
     let mut results = vec![SampleResult::default(); samples.len()];
     // The widest lanes this CPU has, as a render runs them, then every
     // narrower lane type, each refilling lanes at once and by cohorts: all
@@ -118,11 +137,27 @@ fn assert_wavefront_equals_scalar(world: &World, options: &RenderOptions, sample
 /// [`assert_wavefront_equals_scalar`] over every pixel of `world`'s image,
 /// `spp` samples each, with both samplers and each (max depth, seed).
 fn assert_every_pixel_matches(world: &World, depths_and_seeds: &[(u32, u64)], spp: u32) {
+    assert_every_pixel_matches_in(world, depths_and_seeds, spp, false);
+}
+
+/// [`assert_every_pixel_matches`], every ray through the world's BVH when
+/// `bvh`.
+fn assert_every_pixel_matches_in(
+    world: &World,
+    depths_and_seeds: &[(u32, u64)],
+    spp: u32,
+    bvh: bool,
+) {
     let samples = all_samples(world.camera.w, world.camera.h, spp);
     for sampling in [Sampling::Independent, Sampling::Sobol] {
         for &(max_depth, seed) in depths_and_seeds {
             let options = path_options(sampling, max_depth, seed);
-            assert_wavefront_equals_scalar(world, &options, &samples);
+            let scene = if bvh {
+                through_bvh(world, options.method)
+            } else {
+                WavefrontScene::new(world, options.method)
+            };
+            assert_scene_equals_scalar(world, scene, &options, &samples);
         }
     }
 }
@@ -224,10 +259,10 @@ fn emitters_seen_through_mirrors_metal_and_glass_match_too() {
 
 #[test]
 fn other_shapes_through_the_bvh_and_big_worlds_through_the_tree_match_too() {
-    // Cylinders, cones and tori have no packet test: their rays go
-    // through the world's BVH, lane by lane; so does every shape under the
-    // lecture's formulas. The 104 primitives of spheres.xml are walked in
-    // packets through a tree.
+    // Three cylinders, cones and tori are more than the packets test lane
+    // by lane: their rays go through the world's BVH, lane by lane; so does
+    // every shape under the lecture's formulas. The 104 primitives of
+    // spheres.xml are walked in packets through a tree.
     let shapes = world_from(
         r#"<scene>
   <camera eye="0 2 9" toward="0 -0.3 -1" up="0 1 0" theta="30" width="16" height="12"/>
@@ -444,21 +479,13 @@ fn mesh_hits_on_lanes_and_handed_over_match_too() {
         material: None,
         params: Default::default(),
     });
-    // With the cylinder the rays go lane by lane through the world's BVH;
-    // without it, in packets.
-    let through_bvh = World::from_scene(&scene).expect("valid");
-    let cylinder = scene.objects.len() - 2;
-    scene.objects.remove(cylinder);
+    // In packets (the cylinder tested lane by lane), and every ray through
+    // the world's BVH.
     let world = World::from_scene(&scene).expect("valid");
     assert_eq!(
         world.meshes.len(),
         materials.len(),
         "one instance per material"
-    );
-    assert!(
-        WavefrontScene::new(&through_bvh, Method::Robust)
-            .shapes
-            .is_none()
     );
     assert!(WavefrontScene::new(&world, Method::Robust).shapes.is_some());
     let table = WavefrontScene::new(&world, Method::Robust).objects;
@@ -473,7 +500,7 @@ fn mesh_hits_on_lanes_and_handed_over_match_too() {
     let shaded: Vec<bool> = (0..materials.len() as u32).map(on_lanes).collect();
     assert_eq!(shaded, expected, "which instances the lanes shade");
     assert_every_pixel_matches(&world, &[(8, 21), (3, 5)], 2);
-    assert_every_pixel_matches(&through_bvh, &[(8, 21)], 2);
+    assert_every_pixel_matches_in(&world, &[(8, 21)], 2, true);
 }
 
 #[test]
@@ -565,8 +592,9 @@ fn a_tree_world_of_every_smooth_material_and_mixed_emitters_matches_too() {
 
 #[test]
 fn packets_where_the_world_allows_them_else_the_bvh() {
-    // Packets for lone spheres (marble or not); through the BVH for other
-    // shapes (a cylinder) and for the lecture's formulas.
+    // Packets for lone spheres (marble or not) and up to two cylinders,
+    // cones or tori (tested lane by lane); through the BVH for the
+    // lecture's formulas.
     let scene = |body: &str| {
         world_from(
             &format!(
@@ -588,17 +616,20 @@ fn packets_where_the_world_allows_them_else_the_bvh() {
     let packets = |world: &World, method| WavefrontScene::new(world, method).shapes.is_some();
     assert!(packets(&lone, Method::Robust));
     assert!(!packets(&lone, Method::Lecture), "through the BVH");
-    assert!(!packets(&other, Method::Robust), "through the BVH");
+    assert!(packets(&other, Method::Robust));
     assert!(packets(&marble, Method::Robust));
     assert!(!packets(&marble, Method::Lecture), "through the BVH");
-    assert!(!packets(&other_marble, Method::Robust), "through the BVH");
-    // Marble through the BVH, on lanes, under a sky.
+    assert!(packets(&other_marble, Method::Robust));
+    // Marble on lanes, under a sky, beside a glass cone, in packets (both
+    // tested lane by lane) and through the BVH.
     let lit_marble = scene(
         r#"<sky color="0.5 0.6 0.7"/>
-  <cylinder base="0 -1 0" radius="1.5" height="1.5" material="marble"/>"#,
+  <cylinder base="0 -1 0" radius="1.5" height="1.5" material="marble"/>
+  <cone base="1.8 -1 1" radius="0.6" height="1.6" material="glass"/>"#,
     );
-    assert!(!packets(&lit_marble, Method::Robust));
+    assert!(packets(&lit_marble, Method::Robust));
     assert_every_pixel_matches(&lit_marble, &[(4, 1)], 2);
+    assert_every_pixel_matches_in(&lit_marble, &[(4, 1)], 2, true);
 }
 
 #[test]
