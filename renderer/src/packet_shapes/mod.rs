@@ -321,7 +321,7 @@ impl PacketShapes {
             Primitive::Object(id) => shapes.push(world, id, key_of[id as usize]),
         };
         // Planes and the shapes tested lane by lane stay outside the tree.
-        let is_plane = |p: &Primitive| match *p {
+        let outside_tree = |p: &Primitive| match *p {
             Primitive::Object(id) => matches!(world.shape(id), Some(Shape::Plane(_))),
             Primitive::Grouped(_) => false,
         } || is_other(world, p);
@@ -334,7 +334,7 @@ impl PacketShapes {
         let items = primitives
             .iter()
             .enumerate()
-            .filter(|(_, p)| !is_plane(p))
+            .filter(|(_, p)| !outside_tree(p))
             .map(|(k, p)| {
                 let bounds = match *p {
                     Primitive::Grouped(g) => grouped[g as usize].bounds,
@@ -343,7 +343,7 @@ impl PacketShapes {
                 Some((k as u32, bounds))
             })
             .collect::<Option<Vec<_>>>()?;
-        for &p in primitives.iter().filter(|p| is_plane(p)) {
+        for &p in primitives.iter().filter(|p| outside_tree(p)) {
             push(&mut shapes, p);
         }
         if items.is_empty() {

@@ -72,8 +72,7 @@ impl Others {
             let hit = mask_from::<F>(|k| alpha[k] < f32::INFINITY);
             nearest.take(hit, F::from_array(alpha), object);
         }
-        let count = F::Ints::splat(self.shapes.len() as i32);
-        *tests = *tests + F::Ints::select(live, count, F::Ints::splat(0));
+        *tests = *tests + super::count::<F>(live, self.shapes.len());
     }
 
     /// Marks as settled the lanes of `rays` not yet settled whose ray any

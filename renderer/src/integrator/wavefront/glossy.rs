@@ -132,25 +132,28 @@ impl<F: FloatLanes> Highlights<F> {
         let tan2 = self.alpha * self.alpha * ux / (F::ONE - ux).max(F::splat(1.0e-7));
         let cos = F::ONE / (F::ONE + tan2).sqrt();
         let sin = (F::ONE - cos * cos).max(F::ZERO).sqrt();
-        let phi = F::splat(2.0 * PI) * uy;
-        // libm's cosine and sine, lane by lane, as the scalar code calls them.
-        let angles = phi.to_array();
-        let (mut cos_phi, mut sin_phi) = ([1.0f32; WIDTH], [0.0f32; WIDTH]);
-        for k in 0..WIDTH {
-            if lane_set(lanes, k) {
-                (cos_phi[k], sin_phi[k]) = (angles[k].cos(), angles[k].sin());
-            }
-        }
-        let h = Vec3s::new(
-            sin * F::from_array(cos_phi),
-            sin * F::from_array(sin_phi),
-            cos,
-        );
+        let (cos_phi, sin_phi) = turn(lanes, uy);
+        let h = Vec3s::new(sin * cos_phi, sin * sin_phi, cos);
         // optics::reflect(−wo, h) = d − 2 (d · h) h.
         let d = -wo;
         let wi = d - h * (F::splat(2.0) * d.dot(h));
         (wi, lanes & wi.z.simd_gt(F::ZERO))
     }
+}
+
+/// cos φ and sin φ of φ = 2π u in the lanes of `lanes` (1 and 0 in the
+/// others): libm's cosine and sine, lane by lane, as the scalar code calls
+/// them.
+#[inline(always)]
+fn turn<F: FloatLanes>(lanes: F::Mask, u: F) -> (F, F) {
+    let angles = (F::splat(2.0 * PI) * u).to_array();
+    let (mut cos, mut sin) = ([1.0f32; WIDTH], [0.0f32; WIDTH]);
+    for k in 0..WIDTH {
+        if lane_set(lanes, k) {
+            (cos[k], sin[k]) = (angles[k].cos(), angles[k].sin());
+        }
+    }
+    (F::from_array(cos), F::from_array(sin))
 }
 
 /// `Ggx::d(h)` with α per lane: the density of micronormals h, 0 below
@@ -191,18 +194,10 @@ pub(super) fn sample_visible<F: FloatLanes>(
     );
     let t2 = v.cross(t1);
     let r = ux.sqrt();
-    let phi = F::splat(2.0 * PI) * uy;
-    // libm's cosine and sine, lane by lane, as the scalar code calls them.
-    let angles = phi.to_array();
-    let (mut cos, mut sin) = ([1.0f32; WIDTH], [0.0f32; WIDTH]);
-    for k in 0..WIDTH {
-        if lane_set(lanes, k) {
-            (cos[k], sin[k]) = (angles[k].cos(), angles[k].sin());
-        }
-    }
-    let p1 = r * F::from_array(cos);
+    let (cos, sin) = turn(lanes, uy);
+    let p1 = r * cos;
     let s = F::splat(0.5) * (F::ONE + v.z);
-    let p2 = (F::ONE - s) * (F::ONE - p1 * p1).max(F::ZERO).sqrt() + s * r * F::from_array(sin);
+    let p2 = (F::ONE - s) * (F::ONE - p1 * p1).max(F::ZERO).sqrt() + s * r * sin;
     let n = t1 * p1 + t2 * p2 + v * (F::ONE - p1 * p1 - p2 * p2).max(F::ZERO).sqrt();
     Vec3s::new(alpha * n.x, alpha * n.y, n.z.max(F::splat(1.0e-6))).normalize()
 }
