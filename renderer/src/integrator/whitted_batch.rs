@@ -58,7 +58,7 @@ enum CameraHits<'a> {
     /// (ray by ray past [`crate::world::BATCHED_INSTANCES`] instances).
     Batch,
     /// [`World::intersect`] ray by ray: a world without meshes that
-    /// packets do not cover (more than two cylinders, cones and tori, the
+    /// packets do not cover (more than eight cylinders, cones and tori, the
     /// lecture's formulas, more than [`PacketShapes::MAX_PRIMITIVES`]
     /// primitives).
     OneByOne,

@@ -1,6 +1,6 @@
 //! Packet intersection for worlds of lone primitives: sixteen rays (one per
 //! lane) tested against the triangles, boxes, spheres and infinite planes of
-//! a world made of them and at most two cylinders, cones or tori (those
+//! a world made of them and at most eight cylinders, cones or tori (those
 //! tested lane by lane by their scalar test, `others.rs`), with exactly the [`Method::Robust`] formulas of
 //! the scalar code (`shapes/triangle.rs`, `shapes/cuboid.rs`,
 //! `shapes/sphere.rs`, `shapes/plane.rs`): the
@@ -1255,15 +1255,21 @@ mod tests {
 
     #[test]
     fn cylinders_cones_and_tori_among_shapes_give_the_scalar_worlds_hits_bit_for_bit() {
-        // Tested lane by lane by their own scalar test, two to a world:
-        // rotated, a cone's base on the floor plane, a cylinder through a
-        // box, a torus around a sphere; with and without the tree (past the
-        // brute-force limit).
+        // Tested lane by lane by their own scalar test after the lanes'
+        // bounding-sphere test, two to five to a world: rotated, a cone's
+        // base on the floor plane, a cylinder through a box, a torus around
+        // a sphere, tori and cones in a row; with and without the tree
+        // (past the brute-force limit).
         for pair in [
             r#"<cylinder base="-1 -1 0" radius="0.4" height="1.2" rotate="10 0 20"/>
                <cone base="0.8 -1 0.3" radius="0.5" height="1.4"/>"#,
             r#"<torus center="0 0.6 -0.8" major="0.6" minor="0.15" rotate="70 10 0"/>
                <cylinder base="-1 -1.2 0" radius="0.2" height="1.5" rotate="90 0 0"/>"#,
+            r#"<torus center="-1.2 0 0.5" major="0.3" minor="0.1" rotate="0 0 90"/>
+               <torus center="-0.4 0 0.5" major="0.3" minor="0.12" rotate="90 0 0"/>
+               <cone base="0.4 -1 0.5" radius="0.3" height="1.1" rotate="0 0 15"/>
+               <cone base="1.2 -0.2 0.5" radius="0.25" height="0.6" rotate="180 0 0"/>
+               <cylinder base="0 -1 1.2" radius="0.1" height="2.4" rotate="0 0 80"/>"#,
         ] {
             let mut xml = format!(
                 r#"<scene>
@@ -1286,8 +1292,8 @@ mod tests {
 
     #[test]
     fn worlds_with_too_many_other_shapes_or_primitives_are_refused() {
-        // A plane is a packet primitive; up to two cylinders, cones and
-        // tori are tested lane by lane.
+        // A plane is a packet primitive; up to `Others::MAX` cylinders,
+        // cones and tori are tested lane by lane.
         let with_plane = world_of(
             r#"<scene><sphere center="0 0 0" radius="1"/><plane point="0 -1 0" normal="0 1 0"/></scene>"#,
         );

@@ -3,13 +3,17 @@
 //! not send every ray of its world lane by lane through the BVH (the cone
 //! of `seed.xml` did).
 //!
-//! Each lane's ray is tested below the lane's nearest hit so far with
-//! [`Shape::intersect`] and its hit placed with [`Shape::surface`]: the
-//! numbers [`crate::world::World::intersect`] and
+//! Each shape's loose bounding sphere is tested first for all sixteen lanes
+//! at once ([`BoundingSphere::may_hit_lanes`], the scalar test's answer
+//! bit for bit). Each lane it lets through is tested below the lane's
+//! nearest hit so far with [`Shape::intersect`] and its hit placed with
+//! [`Shape::surface`]: the numbers [`crate::world::World::intersect`] and
 //! [`crate::world::World::surface`] give for that ray, bit for bit.
+//!
+//! [`BoundingSphere::may_hit_lanes`]: crate::shapes::bound::BoundingSphere::may_hit_lanes
 
 use super::Nearest;
-use crate::packet::{FloatLanes, IntLanes, MaskLanes, Rays, Vec3s, WIDTH, lane_set, mask_from};
+use crate::packet::{FloatLanes, IntLanes, MaskLanes, Rays, Vec3s, WIDTH, mask_from};
 use crate::shapes::{Method, Shape};
 use glam::Vec3;
 
@@ -23,14 +27,15 @@ pub(super) struct Others {
 }
 
 impl Others {
-    /// The most shapes a world in packets may hold: each costs every live
-    /// lane a scalar test, where the world's BVH tests only the rays that
-    /// come near it. Measured against the BVH (`render --spp 8`, 2 threads,
-    /// medians of 5 alternated runs, path / Whitted): seed.xml with one
-    /// cone 0.77 / 0.94 of the time (1280×720, 4 spp: 0.76 / 0.94), but
-    /// primitives.xml with three shapes 1.05 / 1.13, roughness.xml with
-    /// three 0.93 / 1.06, glass.xml with five 1.11 / 1.04.
-    pub(super) const MAX: usize = 2;
+    /// The most shapes a world in packets may hold: each costs every packet
+    /// a sixteen-lane bounding-sphere test, and the lanes it lets through a
+    /// scalar test each, where the world's BVH tests only the rays that come
+    /// near the shape. With the lane test, 8 against 2 (`render --spp 8`,
+    /// 2 threads, medians of 5–7 alternated runs, path / Whitted):
+    /// glass.xml's five 0.62 / 0.96 of the time, primitives.xml's three
+    /// 0.49 / 0.82, roughness.xml's three 0.68 / 1.00. Before it (every live
+    /// lane tested scalar) three or more were slower than the BVH.
+    pub(super) const MAX: usize = 8;
 
     /// Adds `shape`, object `object`; returns its index.
     pub(super) fn push(&mut self, object: i32, shape: &Shape) -> u32 {
@@ -59,14 +64,18 @@ impl Others {
             return;
         }
         for (shape, &object) in self.shapes.iter().zip(&self.objects) {
+            let mut near = candidates(shape, rays, nearest.limit, live);
+            if near == 0 {
+                continue;
+            }
             let limit = nearest.limit.to_array();
             let mut alpha = [f32::INFINITY; WIDTH];
-            for (k, alpha) in alpha.iter_mut().enumerate() {
-                if lane_set(live, k) {
-                    let ray = rays.lane(k).with_t_max(limit[k]);
-                    if let Some(a) = shape.intersect(&ray, Method::Robust) {
-                        *alpha = a;
-                    }
+            while near != 0 {
+                let k = near.trailing_zeros() as usize;
+                near &= near - 1;
+                let ray = rays.lane(k).with_t_max(limit[k]);
+                if let Some(a) = shape.intersect(&ray, Method::Robust) {
+                    alpha[k] = a;
                 }
             }
             let hit = mask_from::<F>(|k| alpha[k] < f32::INFINITY);
@@ -84,23 +93,25 @@ impl Others {
         settled: &mut F::Mask,
         tests: &mut F::Ints,
     ) {
-        let open = !*settled;
-        let mut tested = [0i32; WIDTH];
-        let mut blocked = 0u32;
-        for (k, tested) in tested.iter_mut().enumerate() {
-            if lane_set(open, k) {
-                let ray = rays.lane(k);
-                for shape in &self.shapes {
-                    *tested += 1;
-                    if shape.intersect(&ray, Method::Robust).is_some() {
-                        blocked |= 1 << k;
-                        break;
-                    }
+        let mut open = !*settled;
+        let mut tested = F::Ints::splat(0);
+        for shape in &self.shapes {
+            // One test counted per shape and lane still open, as the
+            // scalar occlusion test counts them (it stops at the first blocker).
+            tested = tested + F::Ints::select(open, F::Ints::splat(1), F::Ints::splat(0));
+            let mut near = candidates(shape, rays, rays.t_max, open);
+            let mut blocked = 0u32;
+            while near != 0 {
+                let k = near.trailing_zeros() as usize;
+                near &= near - 1;
+                if shape.intersect(&rays.lane(k), Method::Robust).is_some() {
+                    blocked |= 1 << k;
                 }
             }
+            open = open & !F::Mask::from_bitmask(blocked);
         }
-        *settled = *settled | F::Mask::from_bitmask(blocked);
-        *tests = *tests + F::Ints::from_array(tested);
+        *settled = !open;
+        *tests = *tests + tested;
     }
 
     /// The hit points and outward normals of the lanes whose hit is the
@@ -122,5 +133,17 @@ impl Others {
             normals[k] = surface.normal;
         }
         (Vec3s::from_lanes(&points), Vec3s::from_lanes(&normals))
+    }
+}
+
+/// The lanes of `lanes` whose ray over (0, t_max) may hit `shape`, as a
+/// bit mask: those its bounding sphere lets through, tested for all
+/// sixteen at once (bit for bit the scalar test's answer, which
+/// [`Shape::intersect`] asks first), or all of `lanes` for a shape without one.
+#[inline(always)]
+fn candidates<F: FloatLanes>(shape: &Shape, rays: &Rays<F>, t_max: F, lanes: F::Mask) -> u32 {
+    match shape.bounding_sphere() {
+        Some(bound) => (bound.may_hit_lanes(rays.origin, rays.dir, t_max) & lanes).to_bitmask(),
+        None => lanes.to_bitmask(),
     }
 }

@@ -6,7 +6,7 @@
 //! to run against every candidate; [`Shape::surface`] computes the hit point
 //! and normal for the one closest hit.
 
-mod bound;
+pub(crate) mod bound;
 mod cone;
 mod cuboid;
 mod cylinder;
@@ -144,6 +144,18 @@ impl Shape {
             Shape::Cone(s) => s.intersect(ray),
             Shape::Torus(s) => s.intersect(ray),
             Shape::Plane(s) => s.intersect(ray),
+        }
+    }
+
+    /// The loose bounding sphere the shape's [`Shape::intersect`] tests
+    /// first, for the shapes that have one (cylinders, cones and tori): a
+    /// ray it turns away gets `None` from `intersect`.
+    pub(crate) fn bounding_sphere(&self) -> Option<&bound::BoundingSphere> {
+        match self {
+            Shape::Cylinder(s) => Some(s.bound()),
+            Shape::Cone(s) => Some(s.bound()),
+            Shape::Torus(s) => Some(s.bound()),
+            _ => None,
         }
     }
 

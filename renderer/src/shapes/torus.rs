@@ -1,6 +1,7 @@
 //! The torus (√(x² + z²) − R)² + y² = r² in object space: a quartic in α,
 //! formed in f64 from an origin first moved onto the bounding sphere.
 
+use super::bound::BoundingSphere;
 use super::placement::Placement;
 use super::{AreaSample, Surface};
 use crate::geometry::ray::Ray;
@@ -16,6 +17,8 @@ pub struct Torus {
     major: f32,
     /// r, the minor radius.
     minor: f32,
+    /// A loose world-space sphere around it, tested before anything else.
+    bound: BoundingSphere,
 }
 
 /// f(p) = (‖p‖² + R² − r²)² − 4R²(x² + z²), zero on the torus, and its gradient.
@@ -33,22 +36,39 @@ impl Torus {
     /// (x, then y, then z) about the centre.
     pub fn new(center: Vec3, major: f32, minor: f32, rotate_deg: Vec3) -> Self {
         debug_assert!(major >= 0.0 && minor >= 0.0, "R {major} r {minor}");
+        let (major, minor) = (major.abs(), minor.abs());
         Self {
             placement: Placement::from_euler_degrees(center, rotate_deg),
-            major: major.abs(),
-            minor: minor.abs(),
+            major,
+            minor,
+            bound: BoundingSphere::new(center, major + minor),
         }
+    }
+
+    /// The loose world-space sphere [`Torus::intersect`] tests first: a ray
+    /// it turns away misses the torus.
+    pub(crate) fn bound(&self) -> &BoundingSphere {
+        &self.bound
     }
 
     /// α of the nearest hit with t_min < α < t_max, or `None`.
     ///
-    /// The ray is first clipped to the bounding sphere of radius R + r (a miss
+    /// A loose world-space bounding sphere first turns clear misses away,
+    /// before the object-space transform. The ray is then clipped to the bounding sphere of radius R + r (a miss
     /// there is a miss); its origin is moved to the sphere's entry point
     /// P0 + α_s v (α_s = max(entry, 0)), so that the quartic's coefficients
     /// are formed, in f64, from an origin within R + r of the centre. The
     /// roots from `roots::find_roots_quartic` are polished by two Newton steps
     /// on f(P0 + α v) and shifted back by α_s.
     pub fn intersect(&self, ray: &Ray) -> Option<f32> {
+        if !self.bound.may_hit(ray) {
+            return None;
+        }
+        self.intersect_exact(ray)
+    }
+
+    /// [`Torus::intersect`] without the loose bounding-sphere test.
+    fn intersect_exact(&self, ray: &Ray) -> Option<f32> {
         let local = self.placement.ray_to_object(ray);
         let (o, d) = (local.origin.as_dvec3(), local.dir.as_dvec3());
         let (big, small) = (f64::from(self.major), f64::from(self.minor));
@@ -167,6 +187,27 @@ mod tests {
     use super::*;
     use crate::integrator::sampler::Sampler;
     use proptest::prelude::*;
+
+    #[test]
+    fn the_bounding_sphere_only_skips_rays_that_miss() {
+        for (k, (major, minor, rotate)) in [
+            (1.0, 0.25, Vec3::ZERO),
+            (0.5, 0.5, Vec3::new(30.0, 40.0, 50.0)),
+            (2.0, 0.05, Vec3::new(90.0, 0.0, 10.0)),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let t = Torus::new(Vec3::new(1.0, 2.0, -3.0), major, minor, rotate);
+            let rejected = super::super::bound::testing::rays_around(&t.bound, k as u64, |ray| {
+                assert_eq!(t.intersect(ray), t.intersect_exact(ray), "{ray:?}");
+            });
+            assert!(
+                rejected > 3_000,
+                "the bound turns clear misses away ({rejected})"
+            );
+        }
+    }
 
     fn ring() -> Torus {
         Torus::new(Vec3::ZERO, 2.0, 0.5, Vec3::ZERO)
