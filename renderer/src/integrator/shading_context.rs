@@ -34,6 +34,8 @@ pub struct ShadingContext<'w> {
     /// The largest coordinate of the object hit ([`World::magnitude`]):
     /// secondary rays start off the surface by an offset that scales with it.
     pub magnitude: f32,
+    /// The albedo when a caller found it already ([`ShadingContext::with_albedo`]).
+    known_albedo: Option<Vec3>,
 }
 
 impl<'w> ShadingContext<'w> {
@@ -65,6 +67,18 @@ impl<'w> ShadingContext<'w> {
             geometric: toward_ray(surface.normal),
             shading_normal: toward_ray(shading_normal),
             magnitude: world.magnitude(hit.object),
+            known_albedo: None,
+        }
+    }
+
+    /// This context with its albedo given: what [`ShadingContext::albedo`]
+    /// would compute, found by a caller that evaluates the marble texture
+    /// of many hits at once.
+    #[inline]
+    pub fn with_albedo(self, albedo: Vec3) -> Self {
+        Self {
+            known_albedo: Some(albedo),
+            ..self
         }
     }
 
@@ -72,7 +86,10 @@ impl<'w> ShadingContext<'w> {
     /// through it.
     #[inline]
     pub fn albedo(&self) -> Vec3 {
-        albedo_at(self.material.base, self.color, self.point())
+        match self.known_albedo {
+            Some(albedo) => albedo,
+            None => albedo_at(self.material.base, self.color, self.point()),
+        }
     }
 
     /// The BSDF at the hit.

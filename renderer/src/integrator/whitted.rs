@@ -54,6 +54,19 @@ pub(crate) fn whitted_from_hit(
     shade(world, ray, hit, options, 0, &mut NoRecorder, ())
 }
 
+/// [`whitted_from_hit`] of a camera ray that hit, with the hit's shading
+/// context already made (its albedo perhaps found already, see
+/// [`ShadingContext::with_albedo`]): the same radiance bit for bit.
+pub(crate) fn whitted_from_context(
+    world: &World,
+    ray: &Ray,
+    hit: Hit,
+    at: &ShadingContext,
+    options: &RenderOptions,
+) -> Vec3 {
+    shade_hit(world, ray, hit, at, options, 0, &mut NoRecorder, ())
+}
+
 /// The radiance along `ray`, traced at `depth` bounces.
 fn trace<R: Recorder>(
     world: &World,
@@ -85,6 +98,22 @@ fn shade<R: Recorder>(
         return background;
     };
     let at = ShadingContext::new(world, ray, &hit);
+    shade_hit(world, ray, hit, &at, options, depth, rec, node)
+}
+
+/// [`shade`] of a hit whose shading context `at` is made.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn shade_hit<R: Recorder>(
+    world: &World,
+    ray: &Ray,
+    hit: Hit,
+    at: &ShadingContext,
+    options: &RenderOptions,
+    depth: u32,
+    rec: &mut R,
+    node: R::Node,
+) -> Vec3 {
     rec.hit(node, ray, hit, &at.surface, at.front);
     let (material, front, n) = (at.material, at.front, at.shading_normal);
     let mut radiance = if front { material.emission } else { Vec3::ZERO };
@@ -100,7 +129,7 @@ fn shade<R: Recorder>(
 
     // The hit as light from the point and directional lights shades it.
     let shading = |albedo| Shading {
-        hit: &at,
+        hit: at,
         albedo,
         to_eye: -ray.dir,
     };

@@ -16,13 +16,17 @@
 
 use super::RenderOptions;
 use super::lanes::{SampleRef, SampleResult, camera_sample};
-use super::whitted::whitted_from_hit;
+use super::shading_context::ShadingContext;
+use super::whitted::{whitted_from_context, whitted_from_hit};
 use crate::geometry::counters::{count_ray, count_shape_tests, shape_tests_on_this_thread};
 use crate::geometry::ray::Ray;
 use crate::packet::{FloatLanes, IntLanes, Rays, WIDTH, WithLanes, dispatch};
 use crate::packet_shapes::PacketShapes;
+use crate::shading::texture::{marble_noise_point, marble_with};
+use crate::shading::turbulence::TURBULENCE;
 use crate::world::{Hit, World};
 use glam::Vec3;
+use scene::BaseMaterial;
 
 /// Traces every sample of `samples` with Whitted's integrator and writes
 /// each one's result to `results` (same length); `packets` are `world`'s
@@ -116,9 +120,15 @@ impl WithLanes for Trace<'_> {
                     }
                 }
             }
+            let contexts = shading_contexts::<F>(world, &rays, &hits[..n]);
             for (k, &index) in batch.iter().enumerate() {
                 let before = shape_tests_on_this_thread();
-                let radiance = whitted_from_hit(world, &rays[k], hits[k], options);
+                let radiance = match (hits[k], &contexts[k]) {
+                    (Some(hit), Some(at)) => {
+                        whitted_from_context(world, &rays[k], hit, at, options)
+                    }
+                    _ => whitted_from_hit(world, &rays[k], hits[k], options),
+                };
                 results[index as usize] = SampleResult {
                     radiance,
                     shape_tests: u64::from(tests[k]) + shape_tests_on_this_thread() - before,
@@ -126,6 +136,42 @@ impl WithLanes for Trace<'_> {
             }
         }
     }
+}
+
+/// The shading context of each ray of `rays` that hit (`hits`, as many as
+/// there are rays in use), the marble ones with their albedo: the noise of
+/// every marble hit found at once ([`Turbulence::at_each`]), where shading
+/// them one by one would evaluate it hit by hit.
+///
+/// [`Turbulence::at_each`]: crate::shading::turbulence::Turbulence::at_each
+#[inline(always)]
+fn shading_contexts<'w, F: FloatLanes>(
+    world: &'w World,
+    rays: &[Ray; WIDTH],
+    hits: &[Option<Hit>],
+) -> [Option<ShadingContext<'w>>; WIDTH] {
+    let mut contexts = [None; WIDTH];
+    let (mut marble, mut noise_points, mut m) = ([0; WIDTH], [[0.0; 3]; WIDTH], 0);
+    for (k, hit) in hits.iter().enumerate() {
+        if let Some(hit) = hit {
+            let at = ShadingContext::new(world, &rays[k], hit);
+            if at.material.base == BaseMaterial::Marble {
+                (marble[m], noise_points[m]) = (k, marble_noise_point(at.point()));
+                m += 1;
+            }
+            contexts[k] = Some(at);
+        }
+    }
+    if m > 0 {
+        let mut noise = [0.0; WIDTH];
+        TURBULENCE.at_each::<F>(&noise_points[..m], &mut noise[..m]);
+        for (&k, &noise) in marble[..m].iter().zip(&noise) {
+            if let Some(at) = &mut contexts[k] {
+                *at = at.with_albedo(marble_with(at.point(), at.color, noise));
+            }
+        }
+    }
+    contexts
 }
 
 /// The indices of `samples` in the order of 4 × 4 tiles of pixels, when

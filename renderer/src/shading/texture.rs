@@ -19,8 +19,20 @@ const VEIN_FREQUENCY: f32 = 2.0;
 
 /// Marble: a solid texture of dark veins, sin(x + turbulence), through `color`.
 pub fn marble(point: Vec3, color: Vec3) -> Vec3 {
-    let p = point * 0.7;
-    let turbulence = TURBULENCE.at([p.x, p.y, p.z]);
+    marble_with(point, color, TURBULENCE.at(marble_noise_point(point)))
+}
+
+/// Where marble reads its turbulence for `point` (the noise is stretched).
+#[inline(always)]
+pub fn marble_noise_point(point: Vec3) -> [f32; 3] {
+    (point * 0.7).to_array()
+}
+
+/// [`marble`] at `point` given the turbulence there (what
+/// [`TURBULENCE`] gives at [`marble_noise_point`]), for callers that
+/// evaluate the noise of many points at once.
+#[inline]
+pub fn marble_with(point: Vec3, color: Vec3, turbulence: f32) -> Vec3 {
     let phase = VEIN_FREQUENCY * (point.x + 0.5 * point.z) + 6.0 * turbulence;
     // Sharp, thin veins: 1 on the vein's centre line, falling off fast.
     let vein = (1.0 - phase.sin().abs()).powi(6);

@@ -135,48 +135,12 @@ struct Octaves<'a> {
 impl WithLanes for Octaves<'_> {
     type Output = f32;
 
-    /// One octave of 3D Perlin noise per lane, as the crate's `perlin_3d`
-    /// computes it: a gradient at each corner of the unit cell, dotted with
-    /// the offset to the point, blended by the quintic fade.
     #[inline(always)]
     fn run<F: FloatLanes>(self) -> f32 {
         let noise = self.noise;
-        let frequency = F::from_array(noise.frequency);
-        let x = scaled(self.p[0], frequency);
-        let y = scaled(self.p[1], frequency);
-        let z = scaled(self.p[2], frequency);
-        let (x_floor, y_floor, z_floor) = (x.floor(), y.floor(), z.floor());
-        // The offsets from the cell's near corner and from its far one.
-        let (dx, dy, dz) = (x - x_floor, y - y_floor, z - z_floor);
-        let (ex, ey, ez) = (dx - F::ONE, dy - F::ONE, dz - F::ONE);
-        // The crate hashes a corner's coordinates by their low byte:
-        // hash(x, y, z) = T[T[T[x] ^ y] ^ z].
-        let [x0, x1] = cell_bytes::<F>(x_floor);
-        let [y0, y1] = cell_bytes::<F>(y_floor);
-        let [z0, z1] = cell_bytes::<F>(z_floor);
+        let [x, y, z] = self.p.map(F::splat);
         let base = <F::Ints as IntLanes>::from_array(LANE_BASE);
-        let table = &noise.permutation;
-        let a0 = F::Ints::gather(table, x0 + base);
-        let a1 = F::Ints::gather(table, x1 + base);
-        let b00 = F::Ints::gather(table, (a0 ^ y0) + base);
-        let b01 = F::Ints::gather(table, (a0 ^ y1) + base);
-        let b10 = F::Ints::gather(table, (a1 ^ y0) + base);
-        let b11 = F::Ints::gather(table, (a1 ^ y1) + base);
-        let g = &noise.gradient;
-        let c000 = corner::<F>(g, (b00 ^ z0) + base, dx, dy, dz);
-        let c001 = corner::<F>(g, (b00 ^ z1) + base, dx, dy, ez);
-        let c010 = corner::<F>(g, (b01 ^ z0) + base, dx, ey, dz);
-        let c011 = corner::<F>(g, (b01 ^ z1) + base, dx, ey, ez);
-        let c100 = corner::<F>(g, (b10 ^ z0) + base, ex, dy, dz);
-        let c101 = corner::<F>(g, (b10 ^ z1) + base, ex, dy, ez);
-        let c110 = corner::<F>(g, (b11 ^ z0) + base, ex, ey, dz);
-        let c111 = corner::<F>(g, (b11 ^ z1) + base, ex, ey, ez);
-        let (u, v, w) = (quintic(dx), quintic(dy), quintic(dz));
-        let near = lerp(v, lerp(u, c000, c100), lerp(u, c010, c110));
-        let far = lerp(v, lerp(u, c001, c101), lerp(u, c011, c111));
-        let octave = (lerp(w, near, far) * F::splat(PERLIN_SCALE))
-            .fast_max(-F::ONE)
-            .fast_min(F::ONE);
+        let octave = octave_lanes(noise, [x, y, z], F::from_array(noise.frequency), base);
         let weighted = (octave * F::from_array(noise.weight)).to_array();
         let mut sum = 0.0;
         for value in &weighted[..OCTAVES] {
@@ -184,6 +148,89 @@ impl WithLanes for Octaves<'_> {
         }
         sum
     }
+}
+
+impl Turbulence {
+    /// [`Turbulence::at`] of each of `points` (at most [`WIDTH`]), written
+    /// to `out` (same length), bit for bit, in lanes `F` of the caller's
+    /// dispatch: the lanes hold (point, octave) pairs, sixteen at a time,
+    /// where `at` fills six lanes of sixteen with one point's octaves. Each
+    /// lane computes what lane `octave` of `at` computes for its point, and
+    /// each point's weighted octaves are summed in the same order.
+    #[inline(always)]
+    pub fn at_each<F: FloatLanes>(&self, points: &[[f32; 3]], out: &mut [f32]) {
+        assert!(points.len() <= WIDTH && points.len() == out.len());
+        let pairs = points.len() * OCTAVES;
+        let mut weighted = [0.0f32; WIDTH * OCTAVES];
+        for (step, values) in weighted.chunks_mut(WIDTH).enumerate() {
+            let first = step * WIDTH;
+            if first >= pairs {
+                break;
+            }
+            // Lane j: pair first + j, its point and octave (a spare lane
+            // repeats the first pair; its value is not read).
+            let pair = |j: usize| if first + j < pairs { first + j } else { 0 };
+            let point = |j: usize| points[pair(j) / OCTAVES];
+            let octave = |j: usize| pair(j) % OCTAVES;
+            let coordinate = |axis: usize| F::from_array(std::array::from_fn(|j| point(j)[axis]));
+            let p = [coordinate(0), coordinate(1), coordinate(2)];
+            let frequency = F::from_array(std::array::from_fn(|j| self.frequency[octave(j)]));
+            let weight = F::from_array(std::array::from_fn(|j| self.weight[octave(j)]));
+            let base = F::Ints::from_array(std::array::from_fn(|j| LANE_BASE[octave(j)]));
+            let value = octave_lanes(self, p, frequency, base) * weight;
+            values.copy_from_slice(value.as_array());
+        }
+        for (i, out) in out.iter_mut().enumerate() {
+            let mut sum = 0.0;
+            for value in &weighted[i * OCTAVES..(i + 1) * OCTAVES] {
+                sum += value;
+            }
+            *out = sum;
+        }
+    }
+}
+
+/// One octave of 3D Perlin noise per lane, as the crate's `perlin_3d`
+/// computes it: the point `p` at the lane's `frequency`, through the lane's
+/// tables (those starting at `base`): a gradient at each corner of the unit
+/// cell, dotted with the offset to the point, blended by the quintic fade,
+/// scaled into [−1, 1].
+#[inline(always)]
+fn octave_lanes<F: FloatLanes>(noise: &Turbulence, p: [F; 3], frequency: F, base: F::Ints) -> F {
+    let x = scaled(p[0], frequency);
+    let y = scaled(p[1], frequency);
+    let z = scaled(p[2], frequency);
+    let (x_floor, y_floor, z_floor) = (x.floor(), y.floor(), z.floor());
+    // The offsets from the cell's near corner and from its far one.
+    let (dx, dy, dz) = (x - x_floor, y - y_floor, z - z_floor);
+    let (ex, ey, ez) = (dx - F::ONE, dy - F::ONE, dz - F::ONE);
+    // The crate hashes a corner's coordinates by their low byte:
+    // hash(x, y, z) = T[T[T[x] ^ y] ^ z].
+    let [x0, x1] = cell_bytes::<F>(x_floor);
+    let [y0, y1] = cell_bytes::<F>(y_floor);
+    let [z0, z1] = cell_bytes::<F>(z_floor);
+    let table = &noise.permutation;
+    let a0 = F::Ints::gather(table, x0 + base);
+    let a1 = F::Ints::gather(table, x1 + base);
+    let b00 = F::Ints::gather(table, (a0 ^ y0) + base);
+    let b01 = F::Ints::gather(table, (a0 ^ y1) + base);
+    let b10 = F::Ints::gather(table, (a1 ^ y0) + base);
+    let b11 = F::Ints::gather(table, (a1 ^ y1) + base);
+    let g = &noise.gradient;
+    let c000 = corner::<F>(g, (b00 ^ z0) + base, dx, dy, dz);
+    let c001 = corner::<F>(g, (b00 ^ z1) + base, dx, dy, ez);
+    let c010 = corner::<F>(g, (b01 ^ z0) + base, dx, ey, dz);
+    let c011 = corner::<F>(g, (b01 ^ z1) + base, dx, ey, ez);
+    let c100 = corner::<F>(g, (b10 ^ z0) + base, ex, dy, dz);
+    let c101 = corner::<F>(g, (b10 ^ z1) + base, ex, dy, ez);
+    let c110 = corner::<F>(g, (b11 ^ z0) + base, ex, ey, dz);
+    let c111 = corner::<F>(g, (b11 ^ z1) + base, ex, ey, ez);
+    let (u, v, w) = (quintic(dx), quintic(dy), quintic(dz));
+    let near = lerp(v, lerp(u, c000, c100), lerp(u, c010, c110));
+    let far = lerp(v, lerp(u, c001, c101), lerp(u, c011, c111));
+    (lerp(w, near, far) * F::splat(PERLIN_SCALE))
+        .fast_max(-F::ONE)
+        .fast_min(F::ONE)
 }
 
 /// Lane k's first entry in a lane table (256 k, for any lane count).
@@ -199,8 +246,8 @@ const LANE_BASE: [i32; WIDTH] = {
 
 /// The coordinate `x` at each lane's frequency, clamped to ±[`FAR`].
 #[inline(always)]
-fn scaled<F: FloatLanes>(x: f32, frequency: F) -> F {
-    (F::splat(x) * frequency)
+fn scaled<F: FloatLanes>(x: F, frequency: F) -> F {
+    (x * frequency)
         .fast_max(F::splat(-FAR))
         .fast_min(F::splat(FAR))
 }
@@ -302,6 +349,49 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// [`Turbulence::at_each`] of up to sixteen points at once, on each lane type.
+    #[derive(Clone, Copy)]
+    struct Each<'a> {
+        noise: &'a Turbulence,
+        points: &'a [[f32; 3]],
+    }
+
+    impl WithLanes for Each<'_> {
+        type Output = Vec<f32>;
+        fn run<F: FloatLanes>(self) -> Vec<f32> {
+            let mut out = vec![0.0; self.points.len()];
+            self.noise.at_each::<F>(self.points, &mut out);
+            out
+        }
+    }
+
+    /// Points in (point, octave) lanes give each point's `at` bit for bit,
+    /// however many share the call (every count from 1 to 16, so the last
+    /// step is full or has spare lanes), on every lane type.
+    #[test]
+    fn many_points_at_once_give_each_points_noise_bit_for_bit() {
+        let turbulence = Turbulence::new();
+        let all: Vec<[f32; 3]> = points()
+            .take(3_000)
+            .chain([[1e11, -3e38, 0.5], [8_388_607.5, -1e7, 0.0]])
+            .collect();
+        let mut compared = 0;
+        for n in 1..=WIDTH {
+            for group in all.chunks(n) {
+                let alone: Vec<u32> = group.iter().map(|&p| turbulence.at(p).to_bits()).collect();
+                for together in on_every_lane_type(Each {
+                    noise: &turbulence,
+                    points: group,
+                }) {
+                    let together: Vec<u32> = together.iter().map(|v| v.to_bits()).collect();
+                    assert_eq!(together, alone, "{group:?}");
+                    compared += group.len();
+                }
+            }
+        }
+        assert!(compared >= 16 * all.len(), "{compared}");
     }
 
     /// Far from the origin, where f32 holds only integers (a floor seen

@@ -16,7 +16,8 @@ use crate::integrator::sampler::PixelStream;
 use crate::integrator::sampler::lanes::StreamLanes;
 use crate::integrator::{RenderOptions, path::power_heuristic};
 use crate::packet::{FloatLanes, IntLanes, MaskLanes, Rays, Vec3s, WIDTH, lane_set, mask_from};
-use crate::shading::texture::marble;
+use crate::shading::texture::{marble_noise_point, marble_with};
+use crate::shading::turbulence::TURBULENCE;
 use crate::world::World;
 use crate::world::light::Light;
 use glam::Vec3;
@@ -230,10 +231,23 @@ impl<F: FloatLanes> PathGroup<F> {
         let last = hit & mask_from::<F>(|k| depth[k] + 1 >= options.max_depth);
         finished |= last.to_bitmask();
         let go = hit & !last;
-        // Marble's albedo: its solid texture through the colour, at the point.
-        for k in (0..WIDTH).filter(|&k| lane_set(go & at.marble, k)) {
-            at.color
-                .set_lane(k, marble(point.lane(k), at.color.lane(k)));
+        // Marble's albedo: its solid texture through the colour, at the
+        // point; the noise of every marble lane at once.
+        let mut marbled = (go & at.marble).to_bitmask();
+        if marbled != 0 {
+            let (mut lanes, mut noise_points, mut n) = ([0; WIDTH], [[0.0; 3]; WIDTH], 0);
+            while marbled != 0 {
+                let k = marbled.trailing_zeros() as usize;
+                marbled &= marbled - 1;
+                (lanes[n], noise_points[n]) = (k, marble_noise_point(point.lane(k)));
+                n += 1;
+            }
+            let mut noise = [0.0; WIDTH];
+            TURBULENCE.at_each::<F>(&noise_points[..n], &mut noise[..n]);
+            for (&k, &noise) in lanes[..n].iter().zip(&noise) {
+                at.color
+                    .set_lane(k, marble_with(point.lane(k), at.color.lane(k), noise));
+            }
         }
 
         let frame = Frame::new(ns);
