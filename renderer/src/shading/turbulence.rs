@@ -167,17 +167,22 @@ impl Turbulence {
             if first >= pairs {
                 break;
             }
-            // Lane j: pair first + j, its point and octave (a spare lane
-            // repeats the first pair; its value is not read).
-            let pair = |j: usize| if first + j < pairs { first + j } else { 0 };
-            let point = |j: usize| points[pair(j) / OCTAVES];
-            let octave = |j: usize| pair(j) % OCTAVES;
-            let coordinate = |axis: usize| F::from_array(std::array::from_fn(|j| point(j)[axis]));
-            let p = [coordinate(0), coordinate(1), coordinate(2)];
-            let frequency = F::from_array(std::array::from_fn(|j| self.frequency[octave(j)]));
-            let weight = F::from_array(std::array::from_fn(|j| self.weight[octave(j)]));
-            let base = F::Ints::from_array(std::array::from_fn(|j| LANE_BASE[octave(j)]));
-            let value = octave_lanes(self, p, frequency, base) * weight;
+            // Lane j: pair first + j, of point (first + j) / 6 at octave
+            // (first + j) % 6; a spare lane repeats the last point, its
+            // value not read. (Plain loops: `array::from_fn` was not inlined.)
+            let (mut x, mut y, mut z) = ([0.0; WIDTH], [0.0; WIDTH], [0.0; WIDTH]);
+            let (mut frequency, mut weight, mut base) = ([0.0; WIDTH], [0.0; WIDTH], [0; WIDTH]);
+            for j in 0..WIDTH {
+                let pair = first + j;
+                let [px, py, pz] = points[pair.min(pairs - 1) / OCTAVES];
+                let octave = pair % OCTAVES;
+                (x[j], y[j], z[j]) = (px, py, pz);
+                (frequency[j], weight[j]) = (self.frequency[octave], self.weight[octave]);
+                base[j] = LANE_BASE[octave];
+            }
+            let p = [F::from_array(x), F::from_array(y), F::from_array(z)];
+            let (frequency, base) = (F::from_array(frequency), F::Ints::from_array(base));
+            let value = octave_lanes(self, p, frequency, base) * F::from_array(weight);
             values.copy_from_slice(value.as_array());
         }
         for (i, out) in out.iter_mut().enumerate() {
