@@ -57,6 +57,13 @@ pub(crate) fn camera_sample(
     (sampler, offset, world.camera.ray(i, j, offset))
 }
 
+/// The jitter [`camera_sample`] aims sample `sample` of pixel (i, j) at:
+/// the first two numbers of its stream.
+#[inline]
+pub(crate) fn camera_jitter(options: &RenderOptions, i: u32, j: u32, sample: u32) -> Vec2 {
+    Sampler::for_pixel_sample(options.sampling, options.seed, i, j, sample).next_2d()
+}
+
 /// A shadow ray a lane waits on, and the radiance it lets through (before
 /// the lane's weights) when nothing blocks it.
 #[derive(Clone, Copy, Debug)]

@@ -15,7 +15,7 @@
 //! (a glass hit spawns two) and stay with the recursion.
 
 use super::RenderOptions;
-use super::lanes::{SampleRef, SampleResult, camera_sample};
+use super::lanes::{SampleRef, SampleResult, camera_jitter};
 use super::shading_context::ShadingContext;
 use super::whitted::{whitted_from_context, whitted_from_hit};
 use crate::geometry::counters::{count_ray, count_shape_tests, shape_tests_on_this_thread};
@@ -95,11 +95,7 @@ impl WithLanes for Trace<'_> {
         let dead = Ray::new(Vec3::ZERO, Vec3::Z).with_t_max(0.0);
         for batch in tiles(samples).chunks(WIDTH) {
             let n = batch.len();
-            let mut rays = [dead; WIDTH];
-            for (ray, &index) in rays.iter_mut().zip(batch) {
-                let s = samples[index as usize];
-                *ray = camera_sample(world, options, s.i, s.j, Some(s.sample)).2;
-            }
+            let rays = camera_rays(world, options, samples, batch, dead);
             let mut hits = [None; WIDTH];
             let mut tests = [0u32; WIDTH];
             match camera_hits {
@@ -136,6 +132,35 @@ impl WithLanes for Trace<'_> {
             }
         }
     }
+}
+
+/// The camera rays of the samples `batch` (indices into `samples`, at most
+/// [`WIDTH`]), `dead` past them: each [`camera_sample`]'s ray bit for bit,
+/// the jitter drawn sample by sample and the directions v_ij found
+/// together ([`Camera::directions`]).
+///
+/// [`Camera::directions`]: crate::camera::Camera::directions
+#[inline(always)]
+fn camera_rays(
+    world: &World,
+    options: &RenderOptions,
+    samples: &[SampleRef],
+    batch: &[u32],
+    dead: Ray,
+) -> [Ray; WIDTH] {
+    let (mut i, mut j) = ([0; WIDTH], [0; WIDTH]);
+    let (mut x, mut y) = ([0.5; WIDTH], [0.5; WIDTH]);
+    for (k, &index) in batch.iter().enumerate() {
+        let s = samples[index as usize];
+        let jitter = camera_jitter(options, s.i, s.j, s.sample);
+        (i[k], j[k], x[k], y[k]) = (s.i, s.j, jitter.x, jitter.y);
+    }
+    let v = world.camera.directions(&i, &j, &x, &y);
+    let mut rays = [dead; WIDTH];
+    for (k, ray) in rays.iter_mut().enumerate().take(batch.len()) {
+        *ray = Ray::new(world.camera.p0, Vec3::new(v[0][k], v[1][k], v[2][k]));
+    }
+    rays
 }
 
 /// The shading context of each ray of `rays` that hit (`hits`, as many as
