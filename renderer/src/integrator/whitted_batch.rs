@@ -140,6 +140,7 @@ impl WithLanes for Trace<'_> {
 /// together ([`Camera::directions`]).
 ///
 /// [`Camera::directions`]: crate::camera::Camera::directions
+/// [`camera_sample`]: super::lanes::camera_sample
 #[inline(always)]
 fn camera_rays(
     world: &World,

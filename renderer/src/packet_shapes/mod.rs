@@ -959,8 +959,9 @@ pub(super) mod testing {
                 .map(|(t, shadow)| (t.to_array()[k] as usize, shadow))
             {
                 // Every primitive without a tree, at most every one with it
-                // (or when a plane, met first, blocks a shadow ray).
-                let stops_early = shadow && !shapes.planes.is_empty();
+                // (or when a plane or a cylinder, cone or torus, met first,
+                // blocks a shadow ray).
+                let stops_early = shadow && (!shapes.planes.is_empty() || shapes.others.len() > 0);
                 let expected = match (&shapes.tree, ray.t_max) {
                     (_, 0.0) => 0..=0,
                     (None, _) if !stops_early => shapes.len()..=shapes.len(),

@@ -98,7 +98,7 @@ impl Others {
         for shape in &self.shapes {
             // One test counted per shape and lane still open, as the
             // scalar occlusion test counts them (it stops at the first blocker).
-            tested = tested + F::Ints::select(open, F::Ints::splat(1), F::Ints::splat(0));
+            tested = tested + super::count::<F>(open, 1);
             let mut near = candidates(shape, rays, rays.t_max, open);
             let mut blocked = 0u32;
             while near != 0 {
@@ -109,6 +109,9 @@ impl Others {
                 }
             }
             open = open & !F::Mask::from_bitmask(blocked);
+            if !open.any() {
+                break;
+            }
         }
         *settled = !open;
         *tests = *tests + tested;

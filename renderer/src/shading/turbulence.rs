@@ -1,10 +1,12 @@
 //! Marble's turbulence: fractal Perlin noise, the `noise` crate's
 //! `Fbm<Perlin>` of seed 7 (its permutation tables, gradients, quintic fade,
 //! six octaves, lacunarity 2π/3 and persistence ½), evaluated in `f32` with
-//! the six octaves side by side in SIMD lanes: lane k is octave k, its
-//! table reads are gathers, and lanes 6 and 7 weigh nothing. The crate works
-//! in `f64` through generic vector code, one octave after another: its
-//! octaves were 31–39% of a full Whitted pass of `seed.xml`.
+//! octaves side by side in SIMD lanes, table reads as gathers. For one point
+//! ([`Turbulence::at`]) lane k is octave k and lanes 6 to 15 weigh nothing;
+//! for many ([`Turbulence::at_each`]) the lanes hold (point, octave) pairs,
+//! sixteen to a step, each lane computing what lane `octave` of `at` does.
+//! The crate works in `f64` through generic vector code, one octave after
+//! another: its octaves were 31–39% of a full Whitted pass of `seed.xml`.
 
 use crate::simd::{FloatLanes, IntLanes, MaskLanes, WIDTH, WithLanes, dispatch};
 use std::sync::LazyLock;

@@ -50,6 +50,12 @@ impl Cone {
         }
     }
 
+    /// The loose world-space sphere [`Cone::intersect`] tests first: a ray
+    /// it turns away misses the shape.
+    pub(crate) fn bound(&self) -> &BoundingSphere {
+        &self.bound
+    }
+
     /// α of the nearest hit with t_min < α < t_max, or `None`.
     ///
     /// The origin is first moved along the ray to its closest approach to the
@@ -58,12 +64,6 @@ impl Cone {
     /// solved in the stable form, so a ray parallel to a generator (a = 0)
     /// gets its single linear root. Roots on the mirror nappe (y > H) or
     /// below the base (y < 0) are rejected; the base disk is the other candidate.
-    /// The loose world-space sphere [`Cone::intersect`] tests first: a ray
-    /// it turns away misses the shape.
-    pub(crate) fn bound(&self) -> &BoundingSphere {
-        &self.bound
-    }
-
     /// A loose world-space bounding sphere first turns clear misses away
     /// without the object-space transform; the answer is the same either way.
     pub fn intersect(&self, ray: &Ray) -> Option<f32> {

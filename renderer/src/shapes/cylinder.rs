@@ -41,6 +41,12 @@ impl Cylinder {
         }
     }
 
+    /// The loose world-space sphere [`Cylinder::intersect`] tests first: a ray
+    /// it turns away misses the shape.
+    pub(crate) fn bound(&self) -> &BoundingSphere {
+        &self.bound
+    }
+
     /// α of the nearest hit with t_min < α < t_max, or `None`. The origin is
     /// first moved along the ray to its closest approach to the mid-axis
     /// point (α = shift + t), which keeps the quadratic's coefficients small
@@ -48,12 +54,6 @@ impl Cylinder {
     /// the side's roots with 0 ≤ y ≤ H and the caps' hits with x² + z² ≤ R².
     /// A ray along the axis (no side quadratic: a = b = 0) sees only the caps;
     /// a ray parallel to the caps (d_y = 0) sees only the side.
-    /// The loose world-space sphere [`Cylinder::intersect`] tests first: a ray
-    /// it turns away misses the shape.
-    pub(crate) fn bound(&self) -> &BoundingSphere {
-        &self.bound
-    }
-
     /// A loose world-space bounding sphere first turns clear misses away
     /// without the object-space transform; the answer is the same either way.
     pub fn intersect(&self, ray: &Ray) -> Option<f32> {

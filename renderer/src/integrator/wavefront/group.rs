@@ -235,16 +235,16 @@ impl<F: FloatLanes> PathGroup<F> {
         // point; the noise of every marble lane at once.
         let mut marbled = (go & at.marble).to_bitmask();
         if marbled != 0 {
-            let (mut lanes, mut noise_points, mut n) = ([0; WIDTH], [[0.0; 3]; WIDTH], 0);
+            let (mut lanes, mut noise_points, mut count) = ([0; WIDTH], [[0.0; 3]; WIDTH], 0);
             while marbled != 0 {
                 let k = marbled.trailing_zeros() as usize;
                 marbled &= marbled - 1;
-                (lanes[n], noise_points[n]) = (k, marble_noise_point(point.lane(k)));
-                n += 1;
+                (lanes[count], noise_points[count]) = (k, marble_noise_point(point.lane(k)));
+                count += 1;
             }
             let mut noise = [0.0; WIDTH];
-            TURBULENCE.at_each::<F>(&noise_points[..n], &mut noise[..n]);
-            for (&k, &noise) in lanes[..n].iter().zip(&noise) {
+            TURBULENCE.at_each::<F>(&noise_points[..count], &mut noise[..count]);
+            for (&k, &noise) in lanes[..count].iter().zip(&noise) {
                 at.color
                     .set_lane(k, marble_with(point.lane(k), at.color.lane(k), noise));
             }

@@ -261,38 +261,43 @@ fn emitters_seen_through_mirrors_metal_and_glass_match_too() {
 fn other_shapes_through_the_bvh_and_big_worlds_through_the_tree_match_too() {
     // Nine cylinders, cones and tori are more than the packets test lane
     // by lane (eight): their rays go through the world's BVH, lane by lane;
-    // so does every shape under the lecture's formulas. The 104 primitives
-    // of spheres.xml are walked in packets through a tree.
-    let rows: String = [0.0f32, -2.0, -4.0]
-        .iter()
-        .map(|z| {
-            format!(
-                r#"
+    // so does every shape under the lecture's formulas. Three of them go in
+    // packets. The 104 primitives of spheres.xml are walked in packets
+    // through a tree.
+    let rows = |depths: &[f32]| {
+        let rows: String = depths
+            .iter()
+            .map(|z| {
+                format!(
+                    r#"
   <cylinder base="-2 -0.75 {z}" radius="0.6" height="1.5" material="matte" color="0.8 0.4 0.3"/>
   <cone base="0 -0.75 {z}" radius="0.7" height="1.5" material="glass"/>
   <torus center="2 0.2 {z}" major="0.7" minor="0.25" material="matte" color="0.3 0.7 0.4"/>"#
-            )
-        })
-        .collect();
-    let shapes = world_from(
-        &format!(
-            r#"<scene>
+                )
+            })
+            .collect();
+        world_from(
+            &format!(
+                r#"<scene>
   <camera eye="0 2 9" toward="0 -0.3 -1" up="0 1 0" theta="30" width="16" height="12"/>
   <sky color="0.5 0.5 0.6"/>{rows}
   <sphere center="0 3 -1" radius="0.5" material="matte" emission="8 8 8"/>
   <plane point="0 -0.75 0" normal="0 1 0" material="matte" color="0.6 0.6 0.6"/>
 </scene>"#
-        ),
-        16,
-        12,
-    );
+            ),
+            16,
+            12,
+        )
+    };
+    let shapes = rows(&[0.0, -2.0, -4.0]);
+    let one_row = rows(&[0.0]);
     let spheres = world_from(
         include_str!("../../../../assets/reference/spheres.xml"),
         16,
         12,
     );
     let cornell = cornell(12, 12);
-    for world in [&shapes, &spheres, &cornell] {
+    for world in [&shapes, &one_row, &spheres, &cornell] {
         for method in [Method::Robust, Method::Lecture] {
             let options = RenderOptions {
                 method,
