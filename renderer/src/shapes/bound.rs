@@ -125,6 +125,24 @@ pub(super) mod testing {
         }
         rejected
     }
+
+    /// Checks on [`rays_around`]'s rays around `b` that a shape's test with
+    /// the bound first (`bounded`) answers as its test without it
+    /// (`exact`), and that the bound turns many clear misses away.
+    pub fn assert_only_misses_skipped(
+        b: &BoundingSphere,
+        seed: u64,
+        bounded: impl Fn(&Ray) -> Option<f32>,
+        exact: impl Fn(&Ray) -> Option<f32>,
+    ) {
+        let rejected = rays_around(b, seed, |ray| {
+            assert_eq!(bounded(ray), exact(ray), "{ray:?}");
+        });
+        assert!(
+            rejected > 3_000,
+            "the bound turns clear misses away ({rejected})"
+        );
+    }
 }
 
 #[cfg(test)]
