@@ -320,6 +320,9 @@ fn work(shared: &Shared) {
     // and how long its conversion for display took.
     let mut per_sample: Option<Duration> = None;
     let mut publish_time = Duration::ZERO;
+    // The film of the last job dropped, for the next job's first pass to
+    // reuse its memory.
+    let mut spare: Option<Film> = None;
     loop {
         let mut republish = false;
         {
@@ -344,11 +347,14 @@ fn work(shared: &Shared) {
                     .as_ref()
                     .is_some_and(|c| c.generation != shared.generation.load(Ordering::SeqCst))
                 {
-                    current = None;
+                    spare = current.take().and_then(|c| c.film).or(spare.take());
                 }
                 if let Some((generation, job, submitted)) = inbox.pending.take() {
                     let (w, h) = (job.world.camera.w, job.world.camera.h);
                     let first = first_preview_stride(w, h, per_sample, publish_time);
+                    if let Some(film) = current.take().and_then(|c| c.film) {
+                        spare = Some(film);
+                    }
                     current = Some(Current {
                         generation,
                         job,
@@ -376,7 +382,7 @@ fn work(shared: &Shared) {
         if let Some(c) = current.as_mut() {
             if republish {
                 publish(shared, c, display);
-            } else if let Some((traced, published)) = step(shared, c, display) {
+            } else if let Some((traced, published)) = step(shared, c, display, &mut spare) {
                 per_sample = Some(traced);
                 publish_time = published;
             }
@@ -384,12 +390,18 @@ fn work(shared: &Shared) {
     }
 }
 
-/// Renders one preview or one full pass of `c` and publishes it unless stale.
+/// Renders one preview or one full pass of `c` and publishes it unless stale;
+/// its film, made at the first pass, takes `spare`'s memory if it can.
 /// Each preview traces only the samples the previous one did not, and the
 /// first pass only those no preview did: after an edit, every sample 0 is
 /// traced once. Returns the step's wall-clock time per sample it traced and
 /// the time its publishing took, unless it was cut short.
-fn step(shared: &Shared, c: &mut Current, display: Display) -> Option<(Duration, Duration)> {
+fn step(
+    shared: &Shared,
+    c: &mut Current,
+    display: Display,
+    spare: &mut Option<Film>,
+) -> Option<(Duration, Duration)> {
     let stale = || shared.generation.load(Ordering::SeqCst) != c.generation;
     let world = Arc::clone(&c.job.world);
     let started = Instant::now();
@@ -410,7 +422,7 @@ fn step(shared: &Shared, c: &mut Current, display: Display) -> Option<(Duration,
     } else {
         let film = c
             .film
-            .get_or_insert_with(|| Film::new(world.camera.w, world.camera.h));
+            .get_or_insert_with(|| Film::recycled(spare.take(), world.camera.w, world.camera.h));
         let samples_before = film.samples();
         let reused_before = c.reused;
         let completed = match c.preview_samples.take() {

@@ -12,15 +12,21 @@ pub fn encode_srgb8_direct(x: f32) -> u8 {
     (scene::color::linear_to_srgb(x.clamp(0.0, 1.0)) * 255.0).round() as u8
 }
 
-/// Buckets of the fast encoding's first guess, over [0, 1].
-const BUCKETS: usize = 4096;
+/// The fast encoding's buckets are the floats of [0, 1] sharing their bits
+/// above this one: each octave is cut into 2⁸ buckets, narrower than the
+/// gap between any two steps of the encoding, so a bucket holds at most one.
+const BUCKET_SHIFT: u32 = 15;
+
+/// Buckets over [0, 1]: the last one holds 1.0 alone.
+const BUCKETS: usize = (0x3f80_0000 >> BUCKET_SHIFT) + 1;
 
 /// The tables of the fast sRGB encoding.
 struct Srgb8Table {
-    /// `thresholds[k]`: the smallest f32 whose [`encode_srgb8_direct`] is ≥ k + 1.
-    thresholds: [f32; 255],
-    /// `bucket_start[b]`: the code of b / BUCKETS, a lower bound for the bucket.
-    bucket_start: [u8; BUCKETS + 1],
+    /// `thresholds[k]`: the smallest f32 whose [`encode_srgb8_direct`] is ≥ k + 1
+    /// (`thresholds[255]`, past the last step, is +∞).
+    thresholds: [f32; 256],
+    /// `bucket_start[b]`: the code of the bucket's smallest float.
+    bucket_start: Box<[u8; BUCKETS]>,
 }
 
 /// The thresholds are found by bisection over the bit patterns of [0, 1]
@@ -29,7 +35,7 @@ struct Srgb8Table {
 fn srgb8_table() -> &'static Srgb8Table {
     static TABLE: std::sync::OnceLock<Srgb8Table> = std::sync::OnceLock::new();
     TABLE.get_or_init(|| {
-        let mut thresholds = [0.0f32; 255];
+        let mut thresholds = [f32::INFINITY; 256];
         for (k, threshold) in (1u8..=255).zip(thresholds.iter_mut()) {
             let (mut below, mut at) = (0u32, 1.0f32.to_bits());
             while at - below > 1 {
@@ -42,10 +48,17 @@ fn srgb8_table() -> &'static Srgb8Table {
             }
             *threshold = f32::from_bits(at);
         }
-        let mut bucket_start = [0u8; BUCKETS + 1];
+        let steps = &thresholds[..255];
+        assert!(
+            steps
+                .windows(2)
+                .all(|pair| pair[0].to_bits() >> BUCKET_SHIFT != pair[1].to_bits() >> BUCKET_SHIFT),
+            "two steps of the sRGB encoding share a bucket"
+        );
+        let mut bucket_start = Box::new([0u8; BUCKETS]);
         for (b, start) in bucket_start.iter_mut().enumerate() {
-            let x = b as f32 / BUCKETS as f32; // exact: a power-of-two division
-            *start = thresholds.partition_point(|&t| t <= x) as u8;
+            let x = f32::from_bits((b as u32) << BUCKET_SHIFT);
+            *start = steps.partition_point(|&t| t <= x) as u8;
         }
         Srgb8Table {
             thresholds,
@@ -54,8 +67,9 @@ fn srgb8_table() -> &'static Srgb8Table {
     })
 }
 
-/// One channel through the tables: the bucket's code, then the few steps
-/// inside the bucket.
+/// One channel through the tables: the bucket's code, plus one if the
+/// bucket's step (if it has one) is at or below `x`.
+#[inline(always)]
 fn encode_srgb8_fast(table: &Srgb8Table, x: f32) -> u8 {
     if !(x > 0.0) {
         return 0; // also NaN
@@ -63,12 +77,8 @@ fn encode_srgb8_fast(table: &Srgb8Table, x: f32) -> u8 {
     if x >= 1.0 {
         return 255;
     }
-    // x · BUCKETS is exact, so the bucket's lower bound is ≤ x.
-    let mut code = table.bucket_start[(x * BUCKETS as f32) as usize];
-    while code < 255 && x >= table.thresholds[code as usize] {
-        code += 1;
-    }
-    code
+    let code = table.bucket_start[(x.to_bits() >> BUCKET_SHIFT) as usize];
+    code + u8::from(x >= table.thresholds[code as usize])
 }
 
 /// Linear radiance to an 8-bit sRGB pixel, clamping to [0, 1] (NaN gives 0):

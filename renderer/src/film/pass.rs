@@ -4,7 +4,7 @@
 //! every sample can be re-traced exactly.
 
 use super::preview::{PreviewSamples, for_each_with_known_in};
-use super::{Film, PixelStats};
+use super::{Film, PASS_CHUNK, PixelStats};
 use crate::geometry::counters::rays_on_this_thread;
 use crate::integrator::adaptive::{Adaptive, pixels_needing_samples};
 use crate::integrator::{RenderOptions, SampleRef, SampleResult, trace_samples};
@@ -15,11 +15,6 @@ use scene::color::luminance;
 
 /// Rows per parallel work item: bands of rows are the tiles rayon shares out.
 const BAND_ROWS: usize = 4;
-
-/// Pixels of a band a worker gathers, traces and accumulates at a time:
-/// enough for the path tracer's batches to stay full, few enough that a
-/// worker's lists stay in its caches and do not grow with the image's width.
-pub const PASS_CHUNK: usize = 1024;
 
 impl Film {
     /// Adds one sample to every pixel that needs one (a pixel's k-th sample
@@ -82,6 +77,7 @@ impl Film {
                 pixels_needing_samples(width, self.height as usize, &variance, adaptive.threshold)
             });
         let needing = needing.as_deref();
+        let fresh_pages = std::mem::take(&mut self.fresh_pages);
         let (discarded, skipped, rays, samples): (u64, u64, u64, u64) = self
             .sum
             .par_chunks_mut(width * BAND_ROWS)
@@ -91,6 +87,15 @@ impl Film {
             .map(|(band, ((rows, stats), counts))| {
                 if cancelled() {
                     return (0, 1, 0, 0);
+                }
+                if fresh_pages {
+                    // Written before they are read: a new film's pages, fresh
+                    // from the OS, are then each faulted in once, not first
+                    // mapped to the zero page by a read and then copied on
+                    // write, with a TLB flush on every core.
+                    rows.fill(Vec3::ZERO);
+                    stats.fill(PixelStats::default());
+                    counts.fill(0);
                 }
                 let rays_before = rays_on_this_thread();
                 // The band's samples, at most PASS_CHUNK at a time (so a

@@ -5,11 +5,15 @@
 //! the very samples that finer previews and the first full pass trace again;
 //! [`PreviewSamples`] keeps them so that they are traced once per edit.
 
+use super::PASS_CHUNK;
 use crate::integrator::{RenderOptions, SampleRef, SampleResult, trace_samples};
 use crate::world::World;
 use glam::Vec3;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
+
+/// Rows of preview samples per parallel work item.
+const BAND_ROWS: usize = 4;
 
 /// Sample 0 of pixel (i, j) for every i and j that are multiples of the
 /// stride, exactly as [`sample_pixel`](crate::integrator::sample_pixel) returns it (NaN and infinities kept).
@@ -52,9 +56,9 @@ impl PreviewSamples {
 
     /// Like [`PreviewSamples::trace`], but rows not yet started are skipped
     /// once `cancelled()` returns true, and then the preview is `None`: an
-    /// edit need not wait for a stale preview to finish. A row's samples go
-    /// through [`trace_samples`] together (the path tracer's SIMD lanes), each
-    /// one [`sample_pixel`](crate::integrator::sample_pixel)'s bit for bit.
+    /// edit need not wait for a stale preview to finish. Strips of a band of
+    /// rows go through [`trace_samples`] together (the path tracer's SIMD
+    /// lanes, Whitted's camera rays in squares of pixels), each sample [`sample_pixel`](crate::integrator::sample_pixel)'s bit for bit.
     pub fn trace_unless(
         world: &World,
         options: &RenderOptions,
@@ -71,38 +75,57 @@ impl PreviewSamples {
         let mut values = vec![Vec3::ZERO; columns * rows];
         let mut tests = vec![0u32; columns * rows];
         let skipped = AtomicBool::new(false);
+        let band = columns * BAND_ROWS;
         values
-            .par_chunks_mut(columns)
-            .zip(tests.par_chunks_mut(columns))
+            .par_chunks_mut(band)
+            .zip(tests.par_chunks_mut(band))
             .enumerate()
-            .for_each(|(row, (out, out_tests))| {
-                if cancelled() {
-                    skipped.store(true, Ordering::Relaxed);
-                    return;
-                }
-                let j = row as u32 * stride;
-                let known = coarser
-                    .and_then(|c| c.row(j))
-                    .map(|row| (row, (row.stride / stride) as usize));
-                // The row's samples no coarser preview holds, traced together.
-                let mut wanted = Vec::with_capacity(out.len());
-                for_each_with_known(out.len(), known, |k, sample| match sample {
-                    Some((value, tests)) => (out[k], out_tests[k]) = (value, tests),
-                    None => wanted.push(k),
-                });
-                let samples: Vec<SampleRef> = wanted
-                    .iter()
-                    .map(|&k| SampleRef {
-                        i: k as u32 * stride,
-                        j,
-                        sample: 0,
-                    })
-                    .collect();
-                let mut results = vec![SampleResult::default(); samples.len()];
-                trace_samples(world, options, &samples, &mut results);
-                for (&k, result) in wanted.iter().zip(&results) {
-                    out[k] = result.radiance;
-                    out_tests[k] = u32::try_from(result.shape_tests).unwrap_or(u32::MAX);
+            .for_each(|(band, (out, out_tests))| {
+                let rows_in_band = out.len() / columns;
+                // The band's samples that no coarser preview holds, gathered
+                // in strips of columns, every row of a strip in turn, and
+                // traced a strip at a time: a list of several rows keeps the
+                // path tracer's lanes full to its end, and Whitted traces its
+                // camera rays in squares of neighbouring pixels.
+                let strip = ((PASS_CHUNK / rows_in_band) & !3).max(4);
+                let mut wanted = Vec::with_capacity(PASS_CHUNK);
+                let mut samples = Vec::with_capacity(PASS_CHUNK);
+                let mut results = Vec::with_capacity(PASS_CHUNK);
+                for start in (0..columns).step_by(strip) {
+                    if cancelled() {
+                        skipped.store(true, Ordering::Relaxed);
+                        return;
+                    }
+                    let end = (start + strip).min(columns);
+                    wanted.clear();
+                    samples.clear();
+                    for row in 0..rows_in_band {
+                        let j = (band * BAND_ROWS + row) as u32 * stride;
+                        let known = coarser
+                            .and_then(|c| c.row(j))
+                            .map(|row| (row, (row.stride / stride) as usize));
+                        for_each_with_known_in(start..end, known, |k, sample| {
+                            let at = row * columns + k;
+                            match sample {
+                                Some((value, tests)) => (out[at], out_tests[at]) = (value, tests),
+                                None => {
+                                    wanted.push(at);
+                                    samples.push(SampleRef {
+                                        i: k as u32 * stride,
+                                        j,
+                                        sample: 0,
+                                    });
+                                }
+                            }
+                        });
+                    }
+                    results.clear();
+                    results.resize(samples.len(), SampleResult::default());
+                    trace_samples(world, options, &samples, &mut results);
+                    for (&at, result) in wanted.iter().zip(&results) {
+                        out[at] = result.radiance;
+                        out_tests[at] = u32::try_from(result.shape_tests).unwrap_or(u32::MAX);
+                    }
                 }
             });
         if skipped.load(Ordering::Relaxed) {
@@ -230,21 +253,12 @@ pub fn preview(world: &World, options: &RenderOptions, stride: u32) -> Vec<Vec3>
     PreviewSamples::trace(world, options, stride, None).image()
 }
 
-/// Calls `visit(index, known)` for every index in 0..`len`, in order, where
+/// Calls `visit(index, known)` for every index in `range`, in order, where
 /// `known` is the sample `row` already holds for that index — its value and
 /// the shape tests it cost — or `None`: `row` holds one for every `step`-th
 /// index from 0 (a finer preview: the stride ratio; a full pass: the stride).
 /// Runs of `step` items, the first of each known, find them without a
 /// division per item.
-pub(super) fn for_each_with_known(
-    len: usize,
-    known: Option<(PreviewRow, usize)>,
-    visit: impl FnMut(usize, Option<(Vec3, u32)>),
-) {
-    for_each_with_known_in(0..len, known, visit);
-}
-
-/// [`for_each_with_known`] for the indices of `range` only.
 pub(super) fn for_each_with_known_in(
     range: std::ops::Range<usize>,
     known: Option<(PreviewRow, usize)>,
