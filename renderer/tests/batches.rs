@@ -27,6 +27,8 @@ fn a_batched_sample_is_the_sample_traced_alone_bit_for_bit_in_any_list() {
         ("rough.xml", reference("rough.xml", 16, 16)),
         ("glass.xml", shipped("glass.xml", 20, 12)),
         ("seed.xml", shipped("seed.xml", 20, 12)),
+        ("cornell.xml", shipped("cornell.xml", 12, 12)),
+        ("roughness.xml", shipped("roughness.xml", 16, 10)),
     ];
     let settings = [
         (Integrator::Path, Sampling::Independent),
@@ -102,6 +104,40 @@ fn a_film_is_the_same_on_one_thread_and_on_all() {
                     bits(all.pixel(i, j)),
                     bits(one.pixel(i, j)),
                     "{integrator:?} pixel ({i}, {j})"
+                );
+            }
+        }
+    }
+}
+
+/// Whitted's ray trees, grown level by level and tested in packets, give
+/// the recursion's radiance bit for bit at every depth limit: the limit
+/// decides which hits ask for reflected and refracted rays.
+#[test]
+fn whitted_trees_give_the_recursions_radiance_at_every_depth_limit() {
+    for (name, world) in [
+        ("glass.xml", shipped("glass.xml", 20, 12)),
+        ("primitives.xml", shipped("primitives.xml", 16, 12)),
+    ] {
+        for max_depth in [0, 1, 2, 3] {
+            let options = RenderOptions {
+                integrator: Integrator::Whitted,
+                max_depth,
+                ..Default::default()
+            };
+            let samples: Vec<SampleRef> = (0..world.camera.h)
+                .flat_map(|j| (0..world.camera.w).map(move |i| SampleRef { i, j, sample: 1 }))
+                .collect();
+            let mut results = vec![SampleResult::default(); samples.len()];
+            trace_samples(&world, &options, &samples, &mut results);
+            for (s, result) in samples.iter().zip(&results) {
+                let alone = sample_pixel(&world, &options, s.i, s.j, s.sample);
+                assert_eq!(
+                    bits(result.radiance),
+                    bits(alone),
+                    "{name} max depth {max_depth}: pixel ({}, {})",
+                    s.i,
+                    s.j
                 );
             }
         }

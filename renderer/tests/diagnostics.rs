@@ -92,18 +92,18 @@ fn far_off_shapes_cost_nothing_a_miss_costs_nothing_and_a_lit_hit_costs_two() {
 }
 
 #[test]
-fn camera_rays_in_packets_cost_every_shape_their_packet_tests() {
+fn rays_in_packets_cost_every_shape_their_packet_tests() {
     // A few spheres (the robust formulas): Whitted's camera rays go
-    // sixteen at a time against every sphere, the shadow ray alone
-    // through the BVH.
+    // sixteen at a time against every sphere, and so do their shadow rays.
     for n in [1usize, 5] {
         let world = sphere_world(16, n - 1);
         let film = Film::render(&world, &RenderOptions::default(), 3);
         let cost = film.cost_per_sample();
         assert_eq!(cost[0], n as f32, "a miss with {n} shapes");
+        // Unblocked, the shadow ray is tested against every sphere too.
         assert_eq!(
             cost[8 * 16 + 8],
-            n as f32 + 1.0,
+            2.0 * n as f32,
             "a lit hit with {n} shapes"
         );
     }

@@ -18,6 +18,8 @@ pub mod trace_samples;
 mod wavefront;
 pub mod whitted;
 mod whitted_batch;
+mod whitted_packets;
+mod whitted_tree;
 
 pub use adaptive::Adaptive;
 pub use options::{Integrator, RenderOptions};

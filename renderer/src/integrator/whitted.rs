@@ -9,7 +9,11 @@
 //!
 //! One integrator serves the image and the pixel inspector: it is generic
 //! over a [`Recorder`], told about every ray beside the radiance computation.
-//! The image uses [`NoRecorder`], whose empty calls compile away.
+//! The image uses [`NoRecorder`], whose empty calls compile away. It is
+//! generic too over where its reflected, refracted and shadow rays get their
+//! answers ([`Secondary`]): traced at once by the recursion, or — for the
+//! film's batches of samples — recorded first, traced many at a time, and
+//! handed back (`whitted_tree.rs`).
 
 use super::RenderOptions;
 use super::recorder::{NoRecorder, Note, RayKind, Recorder};
@@ -38,7 +42,50 @@ pub fn whitted_recorded<R: Recorder>(
     recorder: &mut R,
 ) -> Vec3 {
     let node = recorder.primary(ray);
-    trace(world, ray, options, 0, recorder, node)
+    trace(world, ray, options, 0, recorder, node, &mut Recursive)
+}
+
+/// Where a hit's reflected, refracted and shadow rays get their answers.
+/// Whitted's shading asks for them in an order that depends only on the hit
+/// (never on an answer), so they may be recorded first and answered later.
+pub(crate) trait Secondary {
+    /// The radiance arriving along the reflected or refracted ray `ray`,
+    /// `depth` bounces deep, recorded as `node`.
+    fn radiance<R: Recorder>(
+        &mut self,
+        world: &World,
+        ray: &Ray,
+        options: &RenderOptions,
+        depth: u32,
+        rec: &mut R,
+        node: R::Node,
+    ) -> Vec3;
+
+    /// True when something blocks the shadow ray `ray`.
+    fn occluded(&mut self, world: &World, ray: &Ray, options: &RenderOptions) -> bool;
+}
+
+/// Each ray traced when it is asked for: Whitted's recursion.
+struct Recursive;
+
+impl Secondary for Recursive {
+    #[inline(always)]
+    fn radiance<R: Recorder>(
+        &mut self,
+        world: &World,
+        ray: &Ray,
+        options: &RenderOptions,
+        depth: u32,
+        rec: &mut R,
+        node: R::Node,
+    ) -> Vec3 {
+        trace(world, ray, options, depth, rec, node, self)
+    }
+
+    #[inline(always)]
+    fn occluded(&mut self, world: &World, ray: &Ray, options: &RenderOptions) -> bool {
+        world.occluded(ray, options.method)
+    }
 }
 
 /// [`whitted`] of the camera ray `ray` whose closest hit `hit` is already
@@ -51,7 +98,16 @@ pub(crate) fn whitted_from_hit(
     hit: Option<Hit>,
     options: &RenderOptions,
 ) -> Vec3 {
-    shade(world, ray, hit, options, 0, &mut NoRecorder, ())
+    shade(
+        world,
+        ray,
+        hit,
+        options,
+        0,
+        &mut NoRecorder,
+        (),
+        &mut Recursive,
+    )
 }
 
 /// [`whitted_from_hit`] of a camera ray that hit, with the hit's shading
@@ -64,26 +120,71 @@ pub(crate) fn whitted_from_context(
     at: &ShadingContext,
     options: &RenderOptions,
 ) -> Vec3 {
-    shade_hit(world, ray, hit, at, options, 0, &mut NoRecorder, ())
+    shade_hit(
+        world,
+        ray,
+        hit,
+        at,
+        options,
+        0,
+        &mut NoRecorder,
+        (),
+        &mut Recursive,
+    )
+}
+
+/// The radiance of the ray `ray`, `depth` bounces deep, whose hit `hit`
+/// has the shading context `at`, its reflected, refracted and shadow rays
+/// asked of `secondary`: with the answers the recursion would give, the
+/// radiance is [`whitted`]'s bit for bit.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn whitted_at_hit<S: Secondary>(
+    world: &World,
+    ray: &Ray,
+    hit: Hit,
+    at: &ShadingContext,
+    options: &RenderOptions,
+    depth: u32,
+    secondary: &mut S,
+) -> Vec3 {
+    shade_hit(
+        world,
+        ray,
+        hit,
+        at,
+        options,
+        depth,
+        &mut NoRecorder,
+        (),
+        secondary,
+    )
+}
+
+/// The radiance of a ray that hits nothing: the ambient light and the sky.
+pub(crate) fn background(world: &World) -> Vec3 {
+    world.ambient + world.sky
 }
 
 /// The radiance along `ray`, traced at `depth` bounces.
-fn trace<R: Recorder>(
+fn trace<R: Recorder, S: Secondary>(
     world: &World,
     ray: &Ray,
     options: &RenderOptions,
     depth: u32,
     rec: &mut R,
     node: R::Node,
+    secondary: &mut S,
 ) -> Vec3 {
     let hit = world.intersect(ray, options.method);
-    shade(world, ray, hit, options, depth, rec, node)
+    shade(world, ray, hit, options, depth, rec, node, secondary)
 }
 
 /// The radiance along `ray` (at `depth` bounces) whose closest hit is
 /// `hit`: the background on a miss, else the hit shaded, recursing.
 #[inline(always)]
-fn shade<R: Recorder>(
+#[allow(clippy::too_many_arguments)]
+fn shade<R: Recorder, S: Secondary>(
     world: &World,
     ray: &Ray,
     hit: Option<Hit>,
@@ -91,20 +192,21 @@ fn shade<R: Recorder>(
     depth: u32,
     rec: &mut R,
     node: R::Node,
+    secondary: &mut S,
 ) -> Vec3 {
     let Some(hit) = hit else {
-        let background = world.ambient + world.sky;
+        let background = background(world);
         rec.miss(node, background);
         return background;
     };
     let at = ShadingContext::new(world, ray, &hit);
-    shade_hit(world, ray, hit, &at, options, depth, rec, node)
+    shade_hit(world, ray, hit, &at, options, depth, rec, node, secondary)
 }
 
 /// [`shade`] of a hit whose shading context `at` is made.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn shade_hit<R: Recorder>(
+fn shade_hit<R: Recorder, S: Secondary>(
     world: &World,
     ray: &Ray,
     hit: Hit,
@@ -113,6 +215,7 @@ fn shade_hit<R: Recorder>(
     depth: u32,
     rec: &mut R,
     node: R::Node,
+    secondary: &mut S,
 ) -> Vec3 {
     rec.hit(node, ray, hit, &at.surface, at.front);
     let (material, front, n) = (at.material, at.front, at.shading_normal);
@@ -121,10 +224,10 @@ fn shade_hit<R: Recorder>(
 
     let can_recurse = depth < options.max_depth;
     // A reflected or refracted ray, recorded as `node`'s child carrying `factor`.
-    let bounce = |rec: &mut R, kind: RayKind, dir: Vec3, factor: Vec3| {
+    let bounce = |rec: &mut R, secondary: &mut S, kind: RayKind, dir: Vec3, factor: Vec3| {
         let next = at.spawn(dir);
         let child = rec.bounce(node, kind, &next, depth + 1, factor);
-        trace(world, &next, options, depth + 1, rec, child)
+        secondary.radiance(world, &next, options, depth + 1, rec, child)
     };
 
     // The hit as light from the point and directional lights shades it.
@@ -139,11 +242,18 @@ fn shade_hit<R: Recorder>(
             let diffuse_weight = 1.0 - material.reflectivity;
             rec.local(node, diffuse_weight * (albedo * world.ambient));
             let at = shading(albedo);
-            radiance += diffuse_weight * direct(world, options, &at, diffuse_weight, rec, node);
+            radiance +=
+                diffuse_weight * direct(world, options, &at, diffuse_weight, rec, node, secondary);
             if material.reflectivity > 0.0 {
                 if can_recurse {
                     let factor = Vec3::splat(material.reflectivity);
-                    let mirrored = bounce(rec, RayKind::Reflection, reflect(ray.dir, n), factor);
+                    let mirrored = bounce(
+                        rec,
+                        secondary,
+                        RayKind::Reflection,
+                        reflect(ray.dir, n),
+                        factor,
+                    );
                     radiance += material.reflectivity * mirrored;
                 } else {
                     rec.note(node, Note::DepthLimit);
@@ -156,8 +266,9 @@ fn shade_hit<R: Recorder>(
             if let Bsdf::RoughConductor(conductor) = at.bsdf.at(at.color, front) {
                 let roughness = material.roughness.clamp(0.0, 1.0);
                 let at = shading(at.color);
-                radiance +=
-                    rough_conductor_direct(world, options, &at, &conductor, roughness, rec, node);
+                radiance += rough_conductor_direct(
+                    world, options, &at, &conductor, roughness, rec, node, secondary,
+                );
                 mirrored = 1.0 - roughness;
             }
             if can_recurse {
@@ -166,7 +277,13 @@ fn shade_hit<R: Recorder>(
                     mirrored * conductor_reflectance(at.color, metal, -ray.dir.dot(n));
                 if reflectance != Vec3::ZERO {
                     radiance += reflectance
-                        * bounce(rec, RayKind::Reflection, reflect(ray.dir, n), reflectance);
+                        * bounce(
+                            rec,
+                            secondary,
+                            RayKind::Reflection,
+                            reflect(ray.dir, n),
+                            reflectance,
+                        );
                 }
             } else {
                 rec.note(node, Note::DepthLimit);
@@ -183,6 +300,7 @@ fn shade_hit<R: Recorder>(
                 let fresnel = fresnel_dielectric(-ray.dir.dot(n), eta);
                 let reflected = bounce(
                     rec,
+                    secondary,
                     RayKind::Reflection,
                     reflect(ray.dir, n),
                     Vec3::splat(fresnel),
@@ -190,7 +308,7 @@ fn shade_hit<R: Recorder>(
                 radiance += fresnel * reflected;
                 if let Some(dir) = refract(ray.dir, n, eta) {
                     let tint = (1.0 - fresnel) * at.color;
-                    let transmitted = bounce(rec, RayKind::Refraction, dir, tint);
+                    let transmitted = bounce(rec, secondary, RayKind::Refraction, dir, tint);
                     radiance += (1.0 - fresnel) * at.color * transmitted;
                 } else {
                     rec.note(node, Note::TotalInternalReflection);
@@ -216,13 +334,14 @@ struct Shading<'a> {
 /// shadow ray finds unblocked: Lambert (albedo/π · E cos θ) plus a normalised
 /// Blinn-Phong highlight. `scale` is the weight the caller gives the result,
 /// told to the recorder with each shadow ray.
-fn direct<R: Recorder>(
+fn direct<R: Recorder, S: Secondary>(
     world: &World,
     options: &RenderOptions,
     at: &Shading,
     scale: f32,
     rec: &mut R,
     node: R::Node,
+    secondary: &mut S,
 ) -> Vec3 {
     let (material, albedo, n) = (at.hit.material, at.albedo, at.hit.shading_normal);
     let ambient = albedo * world.ambient;
@@ -234,6 +353,7 @@ fn direct<R: Recorder>(
             scale,
             rec,
             node,
+            secondary,
             |to_light, irradiance| {
                 let lambert = albedo / PI * irradiance;
                 if material.specular > 0.0 {
@@ -251,13 +371,15 @@ fn direct<R: Recorder>(
 /// The light of every point and directional light whose shadow ray is
 /// unblocked and which lies above the surface, as `shade(to_light, E cos θ)`
 /// reflects it toward the eye; `scale` as in [`direct`].
-fn lights<R: Recorder>(
+#[allow(clippy::too_many_arguments)]
+fn lights<R: Recorder, S: Secondary>(
     world: &World,
     options: &RenderOptions,
     at: &Shading,
     scale: f32,
     rec: &mut R,
     node: R::Node,
+    secondary: &mut S,
     shade: impl Fn(Vec3, Vec3) -> Vec3,
 ) -> Vec3 {
     let mut radiance = Vec3::ZERO;
@@ -272,7 +394,7 @@ fn lights<R: Recorder>(
             continue;
         }
         let shadow = Ray::new(origin, sample.to_light).with_t_max(sample.distance);
-        if world.occluded(&shadow, options.method) {
+        if secondary.occluded(world, &shadow, options) {
             rec.shadow(node, index, &shadow, scale, None);
             continue;
         }
@@ -287,7 +409,8 @@ fn lights<R: Recorder>(
 /// its GGX lobe (exact for such lights), plus the ambient light scaled by
 /// its reflectance and `roughness`: Whitted traces no glossy reflections,
 /// so the caller mirrors the rest, weighted by 1 − roughness.
-fn rough_conductor_direct<R: Recorder>(
+#[allow(clippy::too_many_arguments)]
+fn rough_conductor_direct<R: Recorder, S: Secondary>(
     world: &World,
     options: &RenderOptions,
     at: &Shading,
@@ -295,6 +418,7 @@ fn rough_conductor_direct<R: Recorder>(
     roughness: f32,
     rec: &mut R,
     node: R::Node,
+    secondary: &mut S,
 ) -> Vec3 {
     let n = at.hit.shading_normal;
     let frame = ShadingFrame::new(n);
@@ -309,6 +433,7 @@ fn rough_conductor_direct<R: Recorder>(
             1.0,
             rec,
             node,
+            secondary,
             |to_light, irradiance| {
                 // eval includes cos θ_i; the irradiance passed in does too.
                 let cos = n.dot(to_light);

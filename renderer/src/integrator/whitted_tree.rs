@@ -1,0 +1,268 @@
+//! Whitted's rays for a batch of camera rays, traced level by level, many at
+//! a time: the ray trees of up to sixteen samples are grown breadth first —
+//! each hit's reflected and refracted rays recorded, then all the rays of a
+//! level tested in SIMD packets against the world's primitives
+//! ([`PacketShapes`]) and the marble hits among them given their noise
+//! together — their shadow rays tested in packets too, and only then is
+//! every hit shaded, deepest first, from the answers.
+//!
+//! Each hit is shaded by Whitted's own code ([`whitted_at_hit`]) twice: once
+//! to record the rays it asks for (its answers ignored: Whitted asks for the
+//! same rays whatever they answer), once with the answers. Its children's
+//! radiance is then already known, so every sample's radiance is the
+//! recursion's bit for bit: the same hits (a packet lane's hit is
+//! [`World::intersect`]'s), the same formulas in the same order.
+
+use super::RenderOptions;
+use super::recorder::Recorder;
+use super::shading_context::ShadingContext;
+use super::whitted::{Secondary, background, whitted_at_hit};
+use super::whitted_packets::{packet_hits, shading_contexts};
+use crate::geometry::counters::{count_ray, count_shape_tests};
+use crate::geometry::ray::Ray;
+use crate::packet::{FloatLanes, IntLanes, Rays, WIDTH, lane_set};
+use crate::packet_shapes::PacketShapes;
+use crate::world::{Hit, World};
+use glam::Vec3;
+use std::ops::Range;
+
+/// One ray of the trees of a batch.
+#[derive(Clone)]
+struct Node<'w> {
+    ray: Ray,
+    /// Bounces from the camera ray (0).
+    depth: u32,
+    /// The camera ray whose tree it is in: its index in the batch.
+    sample: u32,
+    hit: Option<Hit>,
+    /// The hit's shading context.
+    at: Option<ShadingContext<'w>>,
+    /// Its reflected and refracted rays, in the order it asks for them.
+    children: Range<u32>,
+    /// Its shadow rays, in the order it asks for them.
+    shadows: Range<u32>,
+}
+
+/// The rays a hit asks for, collected while it is shaded the first time.
+struct Record<'a> {
+    /// Each reflected or refracted ray and its depth.
+    rays: &'a mut Vec<(Ray, u32)>,
+    /// Each shadow ray.
+    shadows: &'a mut Vec<Ray>,
+}
+
+impl Secondary for Record<'_> {
+    #[inline(always)]
+    fn radiance<R: Recorder>(
+        &mut self,
+        _: &World,
+        ray: &Ray,
+        _: &RenderOptions,
+        depth: u32,
+        _: &mut R,
+        _: R::Node,
+    ) -> Vec3 {
+        self.rays.push((*ray, depth));
+        Vec3::ZERO
+    }
+
+    #[inline(always)]
+    fn occluded(&mut self, _: &World, ray: &Ray, _: &RenderOptions) -> bool {
+        self.shadows.push(*ray);
+        // Blocked: the first shading skips the light's formulas.
+        true
+    }
+}
+
+/// The answers to the rays a hit asks for, in the order it asks for them.
+struct Replay<'a> {
+    radiance: std::slice::Iter<'a, Vec3>,
+    blocked: std::slice::Iter<'a, bool>,
+}
+
+impl Secondary for Replay<'_> {
+    #[inline(always)]
+    fn radiance<R: Recorder>(
+        &mut self,
+        _: &World,
+        _: &Ray,
+        _: &RenderOptions,
+        _: u32,
+        _: &mut R,
+        _: R::Node,
+    ) -> Vec3 {
+        *self.radiance.next().expect("a recorded ray")
+    }
+
+    #[inline(always)]
+    fn occluded(&mut self, _: &World, _: &Ray, _: &RenderOptions) -> bool {
+        *self.blocked.next().expect("a recorded shadow ray")
+    }
+}
+
+/// The lists [`Trees::shade`] grows, kept from one batch to the next.
+#[derive(Default)]
+pub(super) struct Trees<'w> {
+    /// The rays of the trees, level by level: the camera rays first.
+    nodes: Vec<Node<'w>>,
+    /// Each shadow ray and the camera ray whose tree it is in.
+    shadows: Vec<(Ray, u32)>,
+    /// Whether each of `shadows` is blocked.
+    blocked: Vec<bool>,
+    /// Each node's radiance.
+    radiance: Vec<Vec3>,
+    /// The reflected and refracted rays one hit asks for, with their depth.
+    asked: Vec<(Ray, u32)>,
+    /// The shadow rays one hit asks for.
+    asked_shadows: Vec<Ray>,
+}
+
+impl<'w> Trees<'w> {
+    /// The radiance of each of the first `n` camera rays of `rays`, whose
+    /// hits are `hits` and their shading contexts `contexts`, with the shape
+    /// tests of all the rays of its tree added to its entry of `tests`:
+    /// Whitted's recursion's radiance bit for bit, every later ray tested in
+    /// packets against `shapes` (`world`'s primitives).
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn shade<F: FloatLanes>(
+        &mut self,
+        world: &'w World,
+        shapes: &PacketShapes,
+        options: &RenderOptions,
+        rays: &[Ray; WIDTH],
+        hits: &[Option<Hit>],
+        contexts: &[Option<ShadingContext<'w>>; WIDTH],
+        tests: &mut [u32; WIDTH],
+    ) -> [Vec3; WIDTH] {
+        let n = hits.len();
+        let Trees {
+            nodes,
+            shadows,
+            blocked,
+            radiance,
+            asked,
+            asked_shadows,
+        } = self;
+        nodes.clear();
+        shadows.clear();
+        nodes.extend((0..n).map(|k| Node {
+            ray: rays[k],
+            depth: 0,
+            sample: k as u32,
+            hit: hits[k],
+            at: contexts[k],
+            children: 0..0,
+            shadows: 0..0,
+        }));
+        let mut level = 0..n;
+        while !level.is_empty() {
+            // Each hit of the level shaded once, to record the rays it asks for.
+            for index in level.clone() {
+                let node = &nodes[index];
+                let (Some(hit), Some(at)) = (node.hit, &node.at) else {
+                    continue;
+                };
+                let (ray, depth, sample) = (node.ray, node.depth, node.sample);
+                let mut record = Record {
+                    rays: asked,
+                    shadows: asked_shadows,
+                };
+                whitted_at_hit(world, &ray, hit, at, options, depth, &mut record);
+                let first_child = nodes.len() as u32;
+                let first_shadow = shadows.len() as u32;
+                for (ray, depth) in asked.drain(..) {
+                    nodes.push(Node {
+                        ray,
+                        depth,
+                        sample,
+                        hit: None,
+                        at: None,
+                        children: 0..0,
+                        shadows: 0..0,
+                    });
+                }
+                shadows.extend(asked_shadows.drain(..).map(|ray| (ray, sample)));
+                nodes[index].children = first_child..nodes.len() as u32;
+                nodes[index].shadows = first_shadow..shadows.len() as u32;
+            }
+            // The next level's rays, sixteen at a time.
+            let next = level.end..nodes.len();
+            for start in next.clone().step_by(WIDTH) {
+                let batch = &mut nodes[start..(start + WIDTH).min(next.end)];
+                let m = batch.len();
+                let mut lanes = [DEAD; WIDTH];
+                for (lane, node) in lanes.iter_mut().zip(batch.iter()) {
+                    *lane = node.ray;
+                }
+                let mut found = [None; WIDTH];
+                let mut tested = [0u32; WIDTH];
+                packet_hits::<F>(shapes, &lanes, m, &mut found, &mut tested);
+                let found_contexts = shading_contexts::<F>(world, &lanes, &found[..m]);
+                for (k, node) in batch.iter_mut().enumerate() {
+                    node.hit = found[k];
+                    node.at = found_contexts[k];
+                    tests[node.sample as usize] += tested[k];
+                }
+            }
+            level = next;
+        }
+        shadows_blocked::<F>(shapes, shadows, blocked, tests);
+        // Every hit shaded again with its answers, deepest first: a node's
+        // children come after it in the list.
+        radiance.clear();
+        radiance.resize(nodes.len(), Vec3::ZERO);
+        let range = |r: &Range<u32>| r.start as usize..r.end as usize;
+        for (index, node) in nodes.iter().enumerate().rev() {
+            radiance[index] = match (node.hit, &node.at) {
+                (Some(hit), Some(at)) => {
+                    let mut replay = Replay {
+                        radiance: radiance[range(&node.children)].iter(),
+                        blocked: blocked[range(&node.shadows)].iter(),
+                    };
+                    whitted_at_hit(world, &node.ray, hit, at, options, node.depth, &mut replay)
+                }
+                _ => background(world),
+            };
+        }
+        let mut out = [Vec3::ZERO; WIDTH];
+        out[..n].copy_from_slice(&radiance[..n]);
+        out
+    }
+}
+
+/// A ray that hits nothing, for the lanes past the last ray.
+const DEAD: Ray = Ray {
+    origin: Vec3::ZERO,
+    dir: Vec3::Z,
+    t_min: 0.0,
+    t_max: 0.0,
+};
+
+/// Whether each shadow ray of `shadows` (each with its sample) is blocked,
+/// into `blocked`, tested sixteen at a time, each one's shape tests added to its sample's
+/// entry of `tests`.
+#[inline(always)]
+fn shadows_blocked<F: FloatLanes>(
+    shapes: &PacketShapes,
+    shadows: &[(Ray, u32)],
+    blocked: &mut Vec<bool>,
+    tests: &mut [u32; WIDTH],
+) {
+    blocked.clear();
+    for batch in shadows.chunks(WIDTH) {
+        let mut lanes = [DEAD; WIDTH];
+        for (lane, (ray, _)) in lanes.iter_mut().zip(batch) {
+            *lane = *ray;
+        }
+        let mut tested = F::Ints::splat(0);
+        let mask = shapes.occluded(&Rays::<F>::from_lanes(&lanes), &mut tested);
+        let tested = tested.to_array();
+        for (k, &(_, sample)) in batch.iter().enumerate() {
+            blocked.push(lane_set(mask, k));
+            tests[sample as usize] += tested[k] as u32;
+            count_ray();
+            count_shape_tests(tested[k] as usize);
+        }
+    }
+}
