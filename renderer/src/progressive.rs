@@ -289,7 +289,8 @@ struct Current {
     submitted: Instant,
     /// The passes so far: made at the first pass, so that an edit's
     /// previews do not wait for 30 MB of a 1280×720 film to be allocated
-    /// and zeroed (it took 2–15 ms, memory reused from the last film).
+    /// and zeroed (it took 2–15 ms), in the last job's film's memory
+    /// ([`Film::recycled`]).
     film: Option<Film>,
     /// The next preview's stride; `None` once the previews are done.
     next_stride: Option<u32>,

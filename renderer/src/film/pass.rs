@@ -264,6 +264,29 @@ mod tests {
         world_of(&["sphere", "box", "floor"], width, height)
     }
 
+    /// A film made in the memory of another (of the same size, or not) is
+    /// the film a new one becomes, bit for bit, pass after pass.
+    #[test]
+    fn a_recycled_film_is_a_new_film() {
+        let world = wide_world(40, 9);
+        let options = RenderOptions::default();
+        let expected = Film::render(&world, &options, 2);
+        let other = Film::render(&wide_world(40, 9), &options, 3);
+        let smaller = Film::render(&wide_world(20, 9), &options, 1);
+        for old in [Some(other), Some(smaller), None] {
+            let mut film = Film::recycled(old, 40, 9);
+            assert_eq!(film.passes(), 0);
+            assert!(film.linear().iter().all(|&p| p == Vec3::ZERO));
+            for _ in 0..2 {
+                film.add_pass(&world, &options);
+            }
+            assert_eq!(film.linear(), expected.linear());
+            assert_eq!(film.cost_per_sample(), expected.cost_per_sample());
+            assert_eq!(film.relative_variance(), expected.relative_variance());
+            assert_eq!(film.samples(), expected.samples());
+        }
+    }
+
     #[test]
     fn a_pass_traced_chunk_by_chunk_holds_each_pixels_own_sample() {
         let (w, h) = (PASS_CHUNK as u32 + 301, 6);
