@@ -5,9 +5,11 @@
 //!
 //! Each shape's loose bounding sphere is tested first for all sixteen lanes
 //! at once ([`BoundingSphere::may_hit_lanes`], the scalar test's answer
-//! bit for bit). Each lane it lets through is tested below the lane's
-//! nearest hit so far with [`Shape::intersect`] and its hit placed with
-//! [`Shape::surface`]: the numbers [`crate::world::World::intersect`] and
+//! bit for bit). The lanes it lets through are tested below each lane's
+//! nearest hit so far — a cone's all at once (`Cone::intersect_exact_lanes`,
+//! the scalar test's α bit for bit), a cylinder's or torus's lane by lane
+//! with [`Shape::intersect`] — and each hit placed with [`Shape::surface`]:
+//! the numbers [`crate::world::World::intersect`] and
 //! [`crate::world::World::surface`] give for that ray, bit for bit.
 //!
 //! [`BoundingSphere::may_hit_lanes`]: crate::shapes::bound::BoundingSphere::may_hit_lanes
@@ -68,6 +70,12 @@ impl Others {
             if near == 0 {
                 continue;
             }
+            if let Shape::Cone(cone) = shape {
+                let alpha = cone.intersect_exact_lanes(rays.origin, rays.dir, nearest.limit);
+                let hit = F::Mask::from_bitmask(near) & alpha.simd_lt(F::splat(f32::INFINITY));
+                nearest.take(hit, alpha, object);
+                continue;
+            }
             let limit = nearest.limit.to_array();
             let mut alpha = [f32::INFINITY; WIDTH];
             while near != 0 {
@@ -101,6 +109,11 @@ impl Others {
             tested = tested + super::count::<F>(open, 1);
             let mut near = candidates(shape, rays, rays.t_max, open);
             let mut blocked = 0u32;
+            if let (Shape::Cone(cone), true) = (shape, near != 0) {
+                let alpha = cone.intersect_exact_lanes(rays.origin, rays.dir, rays.t_max);
+                blocked = near & alpha.simd_lt(F::splat(f32::INFINITY)).to_bitmask();
+                near = 0;
+            }
             while near != 0 {
                 let k = near.trailing_zeros() as usize;
                 near &= near - 1;

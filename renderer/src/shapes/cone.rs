@@ -1,6 +1,8 @@
 //! The capped cone: the side's quadratic H²(x² + z²) = R²(H − y)² in object
 //! space, restricted to the nappe 0 ≤ y ≤ H, plus the base disk.
 
+mod lanes;
+
 use super::bound::BoundingSphere;
 use super::cylinder::shift_near;
 use super::placement::Placement;
