@@ -118,7 +118,8 @@ impl WithLanes for Trace<'_> {
                     }
                 }
             }
-            let contexts = shading_contexts::<F>(world, &rays, &hits[..n]);
+            let mut contexts = [None; WIDTH];
+            shading_contexts::<F>(world, &rays, &hits[..n], &mut contexts[..n]);
             if let CameraHits::Packets(shapes) = camera_hits {
                 let radiance = trees.shade::<F>(
                     world,

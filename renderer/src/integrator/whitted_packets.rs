@@ -38,7 +38,8 @@ pub(super) fn packet_hits<F: FloatLanes>(
 }
 
 /// The shading context of each ray of `rays` that hit (`hits`, as many as
-/// there are rays in use), the marble ones with their albedo: the noise of
+/// there are rays in use) into `contexts` (as long as `hits`; `None` for a
+/// miss), the marble ones with their albedo: the noise of
 /// every marble hit found at once ([`Turbulence::at_each`]), where shading
 /// them one by one would evaluate it hit by hit.
 ///
@@ -48,17 +49,18 @@ pub(super) fn shading_contexts<'w, F: FloatLanes>(
     world: &'w World,
     rays: &[Ray; WIDTH],
     hits: &[Option<Hit>],
-) -> [Option<ShadingContext<'w>>; WIDTH] {
-    let mut contexts = [None; WIDTH];
+    contexts: &mut [Option<ShadingContext<'w>>],
+) {
     let (mut marble, mut noise_points, mut m) = ([0; WIDTH], [[0.0; 3]; WIDTH], 0);
-    for (k, hit) in hits.iter().enumerate() {
+    for (k, (hit, context)) in hits.iter().zip(contexts.iter_mut()).enumerate() {
+        *context = None;
         if let Some(hit) = hit {
             let at = ShadingContext::new(world, &rays[k], hit);
             if at.material.base == BaseMaterial::Marble {
                 (marble[m], noise_points[m]) = (k, marble_noise_point(at.point()));
                 m += 1;
             }
-            contexts[k] = Some(at);
+            *context = Some(at);
         }
     }
     if m > 0 {
@@ -70,5 +72,4 @@ pub(super) fn shading_contexts<'w, F: FloatLanes>(
             }
         }
     }
-    contexts
 }

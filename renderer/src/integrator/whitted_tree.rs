@@ -26,17 +26,15 @@ use crate::world::{Hit, World};
 use glam::Vec3;
 use std::ops::Range;
 
-/// One ray of the trees of a batch.
+/// One ray of the trees of a batch (its hit and the hit's shading context
+/// are kept beside it, in [`Trees`]).
 #[derive(Clone)]
-struct Node<'w> {
+struct Node {
     ray: Ray,
     /// Bounces from the camera ray (0).
     depth: u32,
     /// The camera ray whose tree it is in: its index in the batch.
     sample: u32,
-    hit: Option<Hit>,
-    /// The hit's shading context.
-    at: Option<ShadingContext<'w>>,
     /// Its reflected and refracted rays, in the order it asks for them.
     children: Range<u32>,
     /// Its shadow rays, in the order it asks for them.
@@ -104,7 +102,11 @@ impl Secondary for Replay<'_> {
 #[derive(Default)]
 pub(super) struct Trees<'w> {
     /// The rays of the trees, level by level: the camera rays first.
-    nodes: Vec<Node<'w>>,
+    nodes: Vec<Node>,
+    /// Each node's hit.
+    hits: Vec<Option<Hit>>,
+    /// Each node's hit's shading context.
+    contexts: Vec<Option<ShadingContext<'w>>>,
     /// Each shadow ray and the camera ray whose tree it is in.
     shadows: Vec<(Ray, u32)>,
     /// Whether each of `shadows` is blocked.
@@ -138,6 +140,8 @@ impl<'w> Trees<'w> {
         let n = hits.len();
         let Trees {
             nodes,
+            hits: node_hits,
+            contexts: node_contexts,
             shadows,
             blocked,
             radiance,
@@ -150,17 +154,19 @@ impl<'w> Trees<'w> {
             ray: rays[k],
             depth: 0,
             sample: k as u32,
-            hit: hits[k],
-            at: contexts[k],
             children: 0..0,
             shadows: 0..0,
         }));
+        node_hits.clear();
+        node_hits.extend_from_slice(hits);
+        node_contexts.clear();
+        node_contexts.extend_from_slice(&contexts[..n]);
         let mut level = 0..n;
         while !level.is_empty() {
             // Each hit of the level shaded once, to record the rays it asks for.
             for index in level.clone() {
                 let node = &nodes[index];
-                let (Some(hit), Some(at)) = (node.hit, &node.at) else {
+                let (Some(hit), Some(at)) = (node_hits[index], &node_contexts[index]) else {
                     continue;
                 };
                 let (ray, depth, sample) = (node.ray, node.depth, node.sample);
@@ -176,8 +182,6 @@ impl<'w> Trees<'w> {
                         ray,
                         depth,
                         sample,
-                        hit: None,
-                        at: None,
                         children: 0..0,
                         shadows: 0..0,
                     });
@@ -188,21 +192,23 @@ impl<'w> Trees<'w> {
             }
             // The next level's rays, sixteen at a time.
             let next = level.end..nodes.len();
+            node_hits.resize(next.end, None);
+            node_contexts.resize(next.end, None);
             for start in next.clone().step_by(WIDTH) {
-                let batch = &mut nodes[start..(start + WIDTH).min(next.end)];
-                let m = batch.len();
+                let end = (start + WIDTH).min(next.end);
+                let batch = &nodes[start..end];
                 let mut lanes = [DEAD; WIDTH];
-                for (lane, node) in lanes.iter_mut().zip(batch.iter()) {
+                for (lane, node) in lanes.iter_mut().zip(batch) {
                     *lane = node.ray;
                 }
                 let mut found = [None; WIDTH];
                 let mut tested = [0u32; WIDTH];
-                packet_hits::<F>(shapes, &lanes, m, &mut found, &mut tested);
-                let found_contexts = shading_contexts::<F>(world, &lanes, &found[..m]);
-                for (k, node) in batch.iter_mut().enumerate() {
-                    node.hit = found[k];
-                    node.at = found_contexts[k];
-                    tests[node.sample as usize] += tested[k];
+                packet_hits::<F>(shapes, &lanes, batch.len(), &mut found, &mut tested);
+                let found = &found[..batch.len()];
+                node_hits[start..end].copy_from_slice(found);
+                shading_contexts::<F>(world, &lanes, found, &mut node_contexts[start..end]);
+                for (node, tested) in batch.iter().zip(tested) {
+                    tests[node.sample as usize] += tested;
                 }
             }
             level = next;
@@ -214,7 +220,7 @@ impl<'w> Trees<'w> {
         radiance.resize(nodes.len(), Vec3::ZERO);
         let range = |r: &Range<u32>| r.start as usize..r.end as usize;
         for (index, node) in nodes.iter().enumerate().rev() {
-            radiance[index] = match (node.hit, &node.at) {
+            radiance[index] = match (node_hits[index], &node_contexts[index]) {
                 (Some(hit), Some(at)) => {
                     let mut replay = Replay {
                         radiance: radiance[range(&node.children)].iter(),
