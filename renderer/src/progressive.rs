@@ -356,6 +356,9 @@ fn work(shared: &Shared) {
                     if let Some(film) = current.take().and_then(|c| c.film) {
                         spare = Some(film);
                     }
+                    // A film of another size is no use to this job: its
+                    // memory goes back now, not at the first pass.
+                    spare = spare.filter(|f| (f.width(), f.height()) == (w, h));
                     current = Some(Current {
                         generation,
                         job,

@@ -54,8 +54,8 @@ impl PreviewSamples {
         Self::trace_unless(world, options, stride, coarser, &|| false).expect("never cancelled")
     }
 
-    /// Like [`PreviewSamples::trace`], but rows not yet started are skipped
-    /// once `cancelled()` returns true, and then the preview is `None`: an
+    /// Like [`PreviewSamples::trace`], but strips of samples not yet started
+    /// are skipped once `cancelled()` returns true, and then the preview is `None`: an
     /// edit need not wait for a stale preview to finish. Strips of a band of
     /// rows go through [`trace_samples`] together (the path tracer's SIMD
     /// lanes, Whitted's camera rays in squares of pixels), each sample [`sample_pixel`](crate::integrator::sample_pixel)'s bit for bit.

@@ -4,16 +4,19 @@
 //! few cylinders, cones and tori ([`PacketShapes`]), as a batch through
 //! each mesh instance in a world of meshes ([`World::intersect_batch`]),
 //! which takes coherent rays in packets. A sample's radiance is
-//! [`sample_pixel`](super::sample_pixel)'s bit for bit: both ways give a
-//! camera ray [`World::intersect`]'s hit, and the shading is the same code.
+//! [`sample_pixel`](super::sample_pixel)'s bit for bit: every way gives a
+//! ray — camera ray or later — [`World::intersect`]'s hit, and the shading
+//! is the same code.
 //!
 //! In a world in packets, the rest of each sample's rays go in packets too:
 //! the reflected, refracted and shadow rays of the sixteen samples' trees,
 //! level by level (`whitted_tree.rs`; `render --spp 4` of the shipped
 //! scenes, 2 threads, medians of 5 alternated runs against the recursion:
 //! glass.xml 0.74 of the time, the Cornell box 0.73, spheres.xml 0.63,
-//! primitives.xml 0.92, seed.xml at 1280×720 0.94). In a world of meshes
-//! those rays, which scatter, stay with the recursion, one by one (the
+//! primitives.xml 0.92, seed.xml at 1280×720 0.94). Elsewhere (a world of
+//! meshes, or one that packets do not cover) those rays stay with the
+//! recursion, one by one; they scatter, where packets of meshes gain
+//! little (the
 //! 1,000,000-triangle knot's camera rays: 1.5× Embree's single-ray rate
 //! batched, 0.9× one by one).
 

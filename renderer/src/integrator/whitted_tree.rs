@@ -208,7 +208,8 @@ impl<'w> Trees<'w> {
                 node_hits[start..end].copy_from_slice(found);
                 shading_contexts::<F>(world, &lanes, found, &mut node_contexts[start..end]);
                 for (node, tested) in batch.iter().zip(tested) {
-                    tests[node.sample as usize] += tested;
+                    let total = &mut tests[node.sample as usize];
+                    *total = total.saturating_add(tested);
                 }
             }
             level = next;
@@ -266,7 +267,8 @@ fn shadows_blocked<F: FloatLanes>(
         let tested = tested.to_array();
         for (k, &(_, sample)) in batch.iter().enumerate() {
             blocked.push(lane_set(mask, k));
-            tests[sample as usize] += tested[k] as u32;
+            let total = &mut tests[sample as usize];
+            *total = total.saturating_add(tested[k] as u32);
             count_ray();
             count_shape_tests(tested[k] as usize);
         }

@@ -1,7 +1,8 @@
 //! Packet intersection for worlds of lone primitives: sixteen rays (one per
 //! lane) tested against the triangles, boxes, spheres and infinite planes of
-//! a world made of them and at most eight cylinders, cones or tori (those
-//! tested lane by lane by their scalar test, `others.rs`), with exactly the [`Method::Robust`] formulas of
+//! a world made of them and at most eight cylinders, cones or tori (a cone's
+//! lanes tested together, a cylinder's or torus's lane by lane by its scalar
+//! test, `others.rs`), with exactly the [`Method::Robust`] formulas of
 //! the scalar code (`shapes/triangle.rs`, `shapes/cuboid.rs`,
 //! `shapes/sphere.rs`, `shapes/plane.rs`): the
 //! same operations in the same order in every lane, no fused multiply–add,
@@ -84,8 +85,8 @@ const NO_KIND: usize = 5;
 
 /// Every primitive of a world made only of lone triangles, small meshes
 /// (their triangles placed in world space, as [`World::grouped_triangles`]
-/// holds them), boxes, spheres and infinite planes (no other shapes), laid
-/// out for packet tests.
+/// holds them), boxes, spheres and infinite planes, and at most eight
+/// cylinders, cones or tori, laid out for packet tests.
 #[derive(Clone, Debug)]
 pub struct PacketShapes {
     /// The triangles: `<triangle>` objects and mesh triangles.

@@ -1,5 +1,6 @@
-//! The few shapes without a packet test (cylinders, cones, tori), tested
-//! lane by lane with the scalar code's own test, so that one of them does
+//! The few shapes without a packet test of their own (cylinders, cones,
+//! tori), a cone's lanes tested together and the others lane by lane with
+//! the scalar code's own test, so that one of them does
 //! not send every ray of its world lane by lane through the BVH (the cone
 //! of `seed.xml` did).
 //!
@@ -31,8 +32,9 @@ pub(super) struct Others {
 impl Others {
     /// The most shapes a world in packets may hold: each costs every packet
     /// a sixteen-lane bounding-sphere test, and the lanes it lets through a
-    /// scalar test each, where the world's BVH tests only the rays that come
-    /// near the shape. With the lane test, 8 against 2 (`render --spp 8`,
+    /// scalar test each (a cone: one test of the sixteen lanes), where the
+    /// world's BVH tests only the rays that come near the shape. With the
+    /// lane bounding sphere, before the cone's lane test, 8 against 2 (`render --spp 8`,
     /// 2 threads, medians of 5–7 alternated runs, path / Whitted):
     /// glass.xml's five 0.62 / 0.96 of the time, primitives.xml's three
     /// 0.49 / 0.82, roughness.xml's three 0.68 / 1.00. Before it (every live
