@@ -16,6 +16,15 @@ pub struct Ray {
 }
 
 impl Ray {
+    /// A ray that hits nothing (t_max = 0): the stand-in for an unused
+    /// SIMD lane.
+    pub const NOTHING: Ray = Ray {
+        origin: Vec3::ZERO,
+        dir: Vec3::Z,
+        t_min: 0.0,
+        t_max: 0.0,
+    };
+
     /// A ray over (0, ∞).
     pub fn new(origin: Vec3, dir: Vec3) -> Self {
         debug_assert!(origin.is_finite() && dir.is_finite(), "ray {origin} {dir}");

@@ -96,7 +96,7 @@ impl WithLanes for Trace<'_> {
             results,
         } = self;
         // Lanes past the last sample hold a ray that hits nothing.
-        let dead = Ray::new(Vec3::ZERO, Vec3::Z).with_t_max(0.0);
+        let dead = Ray::NOTHING;
         let mut trees = Trees::default();
         for batch in tiles(samples).chunks(WIDTH) {
             let n = batch.len();

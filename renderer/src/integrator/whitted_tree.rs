@@ -197,7 +197,7 @@ impl<'w> Trees<'w> {
             for start in next.clone().step_by(WIDTH) {
                 let end = (start + WIDTH).min(next.end);
                 let batch = &nodes[start..end];
-                let mut lanes = [DEAD; WIDTH];
+                let mut lanes = [Ray::NOTHING; WIDTH];
                 for (lane, node) in lanes.iter_mut().zip(batch) {
                     *lane = node.ray;
                 }
@@ -238,14 +238,6 @@ impl<'w> Trees<'w> {
     }
 }
 
-/// A ray that hits nothing, for the lanes past the last ray.
-const DEAD: Ray = Ray {
-    origin: Vec3::ZERO,
-    dir: Vec3::Z,
-    t_min: 0.0,
-    t_max: 0.0,
-};
-
 /// Whether each shadow ray of `shadows` (each with its sample) is blocked,
 /// into `blocked`, tested sixteen at a time, each one's shape tests added to its sample's
 /// entry of `tests`.
@@ -258,7 +250,7 @@ fn shadows_blocked<F: FloatLanes>(
 ) {
     blocked.clear();
     for batch in shadows.chunks(WIDTH) {
-        let mut lanes = [DEAD; WIDTH];
+        let mut lanes = [Ray::NOTHING; WIDTH];
         for (lane, (ray, _)) in lanes.iter_mut().zip(batch) {
             *lane = *ray;
         }

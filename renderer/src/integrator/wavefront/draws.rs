@@ -5,7 +5,6 @@
 //! with the scalar path tracer's operations.
 
 use super::emitter_table::EmitterTable;
-use crate::geometry::ray::Ray;
 use crate::geometry::warp::{COS_TERMS, SIN_TERMS};
 use crate::integrator::sampler::lanes::StreamLanes;
 use crate::integrator::sampler::{BounceDraw, bounce_draw};
@@ -194,9 +193,4 @@ pub(super) fn roulette_draws<F: FloatLanes>(
         return F::ZERO;
     }
     streams.number(draw_at::<F>(depth, BounceDraw::Scatter, 2))
-}
-
-/// A stand-in ray for a dead lane: it hits nothing (t_max = 0).
-pub(super) fn dead_ray() -> Ray {
-    Ray::new(Vec3::ZERO, Vec3::Z).with_t_max(0.0)
 }

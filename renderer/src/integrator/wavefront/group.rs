@@ -1,7 +1,7 @@
 //! Sixteen paths in flight, one per lane, and one bounce of all of them.
 
 use super::delta::{dielectric_samples, fresnel_schlick, mirrored};
-use super::draws::{cosine_warps, dead_ray, emitter_draws, roulette_draws, scatter_draws};
+use super::draws::{cosine_warps, emitter_draws, roulette_draws, scatter_draws};
 use super::glossy::{Highlights, RoughConductors};
 use super::handover::{Handover, Target};
 use super::lane_math::{Frame, offset_origins, power_heuristics};
@@ -10,6 +10,7 @@ use super::rough_glass::RoughDielectrics;
 use super::scene::WavefrontScene;
 use super::surfaces::Surfaces;
 use super::tracing;
+use crate::geometry::ray::Ray;
 use crate::integrator::lanes::{SampleRef, SampleResult};
 use crate::integrator::path::{RR_DEPTH, SHADOW_SHORTENING};
 use crate::integrator::sampler::PixelStream;
@@ -47,7 +48,7 @@ impl<F: FloatLanes> PathGroup<F> {
     /// Sixteen dead lanes.
     #[inline(always)]
     pub(super) fn new() -> Self {
-        let dead = dead_ray();
+        let dead = Ray::NOTHING;
         Self {
             sample: [None; WIDTH],
             paths: Paths {

@@ -133,7 +133,7 @@ mod tests {
         fn run<F: FloatLanes>(self) -> Vec<u32> {
             let mut out = Vec::with_capacity(self.rays.len());
             for chunk in self.rays.chunks(WIDTH) {
-                let mut lanes = [Ray::new(Vec3::ZERO, Vec3::Z).with_t_max(0.0); WIDTH];
+                let mut lanes = [Ray::NOTHING; WIDTH];
                 lanes[..chunk.len()].copy_from_slice(chunk);
                 let rays = Rays::<F>::from_lanes(&lanes);
                 let alpha = self
