@@ -8,12 +8,15 @@
 //! they drive the app's own state (its session, inspector and debug view);
 //! `cli/bench.rs` runs them and prints their figures.
 
+mod wake;
+
 use super::RaylabApp;
 use renderer::integrator::Integrator;
 use renderer::progressive::Step;
 use scene::{Geometry, Scene, Shape};
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
+use wake::RepaintWake;
 
 /// An edit `interactive` makes: the kinds a user makes most, in turn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -138,6 +141,7 @@ pub fn interactive(
     edits: u32,
 ) -> Report {
     let ctx = egui::Context::default();
+    let wake = RepaintWake::of(&ctx);
     let mut app = RaylabApp::new(scene, path);
     app.doc.state.render.target_spp = None; // refine forever: the tracer never idles
     app.doc.state.render.integrator = integrator;
@@ -161,8 +165,8 @@ pub fn interactive(
     while Instant::now() < warm_up
         && !matches!(app.session.frame.as_ref().map(|f| f.step), Some(Step::Passes { spp }) if spp >= 2)
     {
-        frame(&mut app);
-        std::thread::sleep(Duration::from_millis(1));
+        let took = frame(&mut app);
+        wake.sleep(FRAME.saturating_sub(took));
     }
     let mut report = Report::default();
     let mut next_kind = 0;
@@ -209,15 +213,16 @@ pub fn interactive(
                 }
                 _ => {}
             }
-            // Wait for the next frame, or less when the tracer asks to repaint.
-            std::thread::sleep(FRAME.saturating_sub(took).min(Duration::from_millis(1)));
+            // Sleep as the window does: until the tracer hands over a step
+            // (its repaint request), or a frame at most.
+            wake.sleep(FRAME.saturating_sub(took));
         }
         // Let the tracer keep both cores busy for a while before the next edit.
         let busy = Instant::now() + Duration::from_millis(300);
         while Instant::now() < busy {
             let took = frame(&mut app);
             report.frame_times.push(took);
-            std::thread::sleep(FRAME.saturating_sub(took));
+            wake.sleep(FRAME.saturating_sub(took));
         }
     }
     report
