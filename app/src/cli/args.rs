@@ -166,6 +166,12 @@ pub struct SceneArgs {
     /// max_depth (1 = emitters seen directly, 2 = direct lighting).
     #[arg(long, default_value_t = 8)]
     pub max_depth: u32,
+    /// whitted: a reflection or refraction whose weight in the pixel (the
+    /// product of the reflectances and transmittances on its way, largest
+    /// channel) is below this is not traced (adaptive tree depth, as
+    /// POV-Ray's adc_bailout); 0 traces every bounce to --max-depth.
+    #[arg(long, value_name = "WEIGHT", default_value_t = renderer::integrator::MIN_WEIGHT)]
+    pub min_weight: f32,
     /// How each pixel's samples draw their random numbers.
     #[arg(long, value_enum, default_value_t = SamplerArg::Independent)]
     pub sampler: SamplerArg,

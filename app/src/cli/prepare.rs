@@ -28,6 +28,15 @@ pub fn prepare(args: &SceneArgs) -> Result<(World, RenderOptions)> {
         integrator: args.integrator.into(),
         method: args.method.into(),
         max_depth: args.max_depth,
+        min_weight: if (0.0..=1.0).contains(&args.min_weight) {
+            args.min_weight
+        } else {
+            return Err(UserError(format!(
+                "--min-weight {}: the weight must be a number from 0 to 1",
+                args.min_weight
+            ))
+            .into());
+        },
         seed: args.seed,
         sampling: args.sampler.into(),
         adaptive: match args.adaptive {

@@ -108,6 +108,10 @@ pub struct SurfaceHit {
     pub depth_limited: bool,
     /// Glass reflected everything here: no refracted ray (total internal reflection).
     pub total_internal_reflection: bool,
+    /// Whitted left a reflection or refraction untraced here: its weight in
+    /// the pixel was below `min_weight` (adaptive tree depth).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub negligible: bool,
     /// The path tracer counted this hit's emission with this multiple-importance
     /// weight (1 when no light sample could have found it).
     #[serde(skip_serializing_if = "Option::is_none")]

@@ -124,6 +124,7 @@ impl Recorder for TreeRecorder<'_> {
             sphere,
             depth_limited: false,
             total_internal_reflection: false,
+            negligible: false,
             emission_weight: None,
             roulette: None,
             absorbed: false,
@@ -144,6 +145,7 @@ impl Recorder for TreeRecorder<'_> {
             match note {
                 Note::DepthLimit => hit.depth_limited = true,
                 Note::TotalInternalReflection => hit.total_internal_reflection = true,
+                Note::Negligible => hit.negligible = true,
                 Note::Roulette { keep, survived } => {
                     hit.roulette = Some(Roulette { keep, survived });
                 }

@@ -22,7 +22,7 @@ mod whitted_packets;
 mod whitted_tree;
 
 pub use adaptive::Adaptive;
-pub use options::{Integrator, RenderOptions};
+pub use options::{Integrator, MIN_WEIGHT, RenderOptions};
 pub use path::{path, path_recorded};
 pub use recorder::{NoRecorder, Note, RayKind, Recorder};
 pub use sample_pixel::{TracedSample, sample_offset, sample_pixel, sample_pixel_recorded};

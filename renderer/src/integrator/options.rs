@@ -37,7 +37,18 @@ pub struct RenderOptions {
     /// Adaptive sampling: pixels below its error threshold stop receiving
     /// samples; `None` samples every pixel in every pass.
     pub adaptive: Option<Adaptive>,
+    /// Whitted: a reflected or refracted ray whose weight in the pixel (the
+    /// product of the reflectances and transmittances that led to it, its
+    /// largest channel) is below this is not traced but taken to see the
+    /// background (the ambient light and the sky) — Hall and Greenberg's
+    /// adaptive tree depth, POV-Ray's `adc_bailout`. 0 traces every ray to
+    /// `max_depth`.
+    pub min_weight: f32,
 }
+
+/// [`RenderOptions::min_weight`]'s default, POV-Ray's: one step of an
+/// 8-bit display.
+pub const MIN_WEIGHT: f32 = 1.0 / 255.0;
 
 impl Default for RenderOptions {
     fn default() -> Self {
@@ -48,6 +59,7 @@ impl Default for RenderOptions {
             seed: 0,
             sampling: Sampling::Independent,
             adaptive: None,
+            min_weight: MIN_WEIGHT,
         }
     }
 }

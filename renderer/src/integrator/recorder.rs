@@ -31,6 +31,10 @@ pub enum Note {
     DepthLimit,
     /// Glass reflected everything: no refracted ray exists (total internal reflection).
     TotalInternalReflection,
+    /// A reflection or refraction was not traced but taken to see the
+    /// background: its weight in the pixel was below
+    /// [`RenderOptions::min_weight`](super::RenderOptions::min_weight).
+    Negligible,
     /// The path tracer's Russian roulette at this hit: the path went on with
     /// probability `keep` (its throughput then divided by `keep`), and did
     /// when `survived`.

@@ -42,21 +42,58 @@ pub fn whitted_recorded<R: Recorder>(
     recorder: &mut R,
 ) -> Vec3 {
     let node = recorder.primary(ray);
-    trace(world, ray, options, 0, recorder, node, &mut Recursive)
+    trace(
+        world,
+        ray,
+        options,
+        Level::CAMERA,
+        recorder,
+        node,
+        &mut Recursive,
+    )
+}
+
+/// Where a ray is in its sample's tree: its bounces from the camera ray
+/// and its weight in the pixel, the product of the factors of the
+/// reflections and refractions that led to it (the camera ray's is 1).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Level {
+    /// Bounces from the camera ray (0).
+    pub(crate) depth: u32,
+    /// The ray's radiance's factor in the sample's, channel by channel.
+    pub(crate) weight: Vec3,
+}
+
+impl Level {
+    /// The camera ray's.
+    pub(crate) const CAMERA: Level = Level {
+        depth: 0,
+        weight: Vec3::ONE,
+    };
+
+    /// A reflected or refracted ray's, whose radiance counts `factor` times
+    /// in this ray's.
+    #[inline(always)]
+    fn child(self, factor: Vec3) -> Level {
+        Level {
+            depth: self.depth + 1,
+            weight: self.weight * factor,
+        }
+    }
 }
 
 /// Where a hit's reflected, refracted and shadow rays get their answers.
 /// Whitted's shading asks for them in an order that depends only on the hit
 /// (never on an answer), so they may be recorded first and answered later.
 pub(crate) trait Secondary {
-    /// The radiance arriving along the reflected or refracted ray `ray`,
-    /// `depth` bounces deep, recorded as `node`.
+    /// The radiance arriving along the reflected or refracted ray `ray`, at
+    /// `level` of its tree, recorded as `node`.
     fn radiance<R: Recorder>(
         &mut self,
         world: &World,
         ray: &Ray,
         options: &RenderOptions,
-        depth: u32,
+        level: Level,
         rec: &mut R,
         node: R::Node,
     ) -> Vec3;
@@ -75,11 +112,11 @@ impl Secondary for Recursive {
         world: &World,
         ray: &Ray,
         options: &RenderOptions,
-        depth: u32,
+        level: Level,
         rec: &mut R,
         node: R::Node,
     ) -> Vec3 {
-        trace(world, ray, options, depth, rec, node, self)
+        trace(world, ray, options, level, rec, node, self)
     }
 
     #[inline(always)]
@@ -103,7 +140,7 @@ pub(crate) fn whitted_from_hit(
         ray,
         hit,
         options,
-        0,
+        Level::CAMERA,
         &mut NoRecorder,
         (),
         &mut Recursive,
@@ -126,14 +163,14 @@ pub(crate) fn whitted_from_context(
         hit,
         at,
         options,
-        0,
+        Level::CAMERA,
         &mut NoRecorder,
         (),
         &mut Recursive,
     )
 }
 
-/// The radiance of the ray `ray`, `depth` bounces deep, whose hit `hit`
+/// The radiance of the ray `ray`, at `level` of its tree, whose hit `hit`
 /// has the shading context `at`, its reflected, refracted and shadow rays
 /// asked of `secondary`: with the answers the recursion would give, the
 /// radiance is [`whitted`]'s bit for bit.
@@ -145,7 +182,7 @@ pub(crate) fn whitted_at_hit<S: Secondary>(
     hit: Hit,
     at: &ShadingContext,
     options: &RenderOptions,
-    depth: u32,
+    level: Level,
     secondary: &mut S,
 ) -> Vec3 {
     shade_hit(
@@ -154,7 +191,7 @@ pub(crate) fn whitted_at_hit<S: Secondary>(
         hit,
         at,
         options,
-        depth,
+        level,
         &mut NoRecorder,
         (),
         secondary,
@@ -166,21 +203,21 @@ pub(crate) fn background(world: &World) -> Vec3 {
     world.ambient + world.sky
 }
 
-/// The radiance along `ray`, traced at `depth` bounces.
+/// The radiance along `ray`, traced at `level` of its tree.
 fn trace<R: Recorder, S: Secondary>(
     world: &World,
     ray: &Ray,
     options: &RenderOptions,
-    depth: u32,
+    level: Level,
     rec: &mut R,
     node: R::Node,
     secondary: &mut S,
 ) -> Vec3 {
     let hit = world.intersect(ray, options.method);
-    shade(world, ray, hit, options, depth, rec, node, secondary)
+    shade(world, ray, hit, options, level, rec, node, secondary)
 }
 
-/// The radiance along `ray` (at `depth` bounces) whose closest hit is
+/// The radiance along `ray` (at `level` of its tree) whose closest hit is
 /// `hit`: the background on a miss, else the hit shaded, recursing.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
@@ -189,7 +226,7 @@ fn shade<R: Recorder, S: Secondary>(
     ray: &Ray,
     hit: Option<Hit>,
     options: &RenderOptions,
-    depth: u32,
+    level: Level,
     rec: &mut R,
     node: R::Node,
     secondary: &mut S,
@@ -200,7 +237,7 @@ fn shade<R: Recorder, S: Secondary>(
         return background;
     };
     let at = ShadingContext::new(world, ray, &hit);
-    shade_hit(world, ray, hit, &at, options, depth, rec, node, secondary)
+    shade_hit(world, ray, hit, &at, options, level, rec, node, secondary)
 }
 
 /// [`shade`] of a hit whose shading context `at` is made.
@@ -212,7 +249,7 @@ fn shade_hit<R: Recorder, S: Secondary>(
     hit: Hit,
     at: &ShadingContext,
     options: &RenderOptions,
-    depth: u32,
+    level: Level,
     rec: &mut R,
     node: R::Node,
     secondary: &mut S,
@@ -222,12 +259,21 @@ fn shade_hit<R: Recorder, S: Secondary>(
     let mut radiance = if front { material.emission } else { Vec3::ZERO };
     rec.local(node, radiance);
 
-    let can_recurse = depth < options.max_depth;
-    // A reflected or refracted ray, recorded as `node`'s child carrying `factor`.
+    let can_recurse = level.depth < options.max_depth;
+    // A reflected or refracted ray, recorded as `node`'s child carrying
+    // `factor`. When its weight in the pixel is negligible (every channel
+    // below `options.min_weight`) it is not traced but taken to see the
+    // background, as if it escaped: a cut-off tree then keeps its energy
+    // (clear glass in a uniform sky stays invisible).
     let bounce = |rec: &mut R, secondary: &mut S, kind: RayKind, dir: Vec3, factor: Vec3| {
+        let child = level.child(factor);
+        if child.weight.max_element() < options.min_weight {
+            rec.note(node, Note::Negligible);
+            return background(world);
+        }
         let next = at.spawn(dir);
-        let child = rec.bounce(node, kind, &next, depth + 1, factor);
-        secondary.radiance(world, &next, options, depth + 1, rec, child)
+        let child_node = rec.bounce(node, kind, &next, child.depth, factor);
+        secondary.radiance(world, &next, options, child, rec, child_node)
     };
 
     // The hit as light from the point and directional lights shades it.

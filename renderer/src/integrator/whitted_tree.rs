@@ -16,7 +16,7 @@
 use super::RenderOptions;
 use super::recorder::Recorder;
 use super::shading_context::ShadingContext;
-use super::whitted::{Secondary, background, whitted_at_hit};
+use super::whitted::{Level, Secondary, background, whitted_at_hit};
 use super::whitted_packets::{packet_hits, shading_contexts};
 use crate::geometry::counters::{count_ray, count_shape_tests};
 use crate::geometry::ray::Ray;
@@ -31,8 +31,8 @@ use std::ops::Range;
 #[derive(Clone)]
 struct Node {
     ray: Ray,
-    /// Bounces from the camera ray (0).
-    depth: u32,
+    /// Where it is in its tree.
+    level: Level,
     /// The camera ray whose tree it is in: its index in the batch.
     sample: u32,
     /// Its reflected and refracted rays, in the order it asks for them.
@@ -43,8 +43,8 @@ struct Node {
 
 /// The rays a hit asks for, collected while it is shaded the first time.
 struct Record<'a> {
-    /// Each reflected or refracted ray and its depth.
-    rays: &'a mut Vec<(Ray, u32)>,
+    /// Each reflected or refracted ray and where it is in its tree.
+    rays: &'a mut Vec<(Ray, Level)>,
     /// Each shadow ray.
     shadows: &'a mut Vec<Ray>,
 }
@@ -56,11 +56,11 @@ impl Secondary for Record<'_> {
         _: &World,
         ray: &Ray,
         _: &RenderOptions,
-        depth: u32,
+        level: Level,
         _: &mut R,
         _: R::Node,
     ) -> Vec3 {
-        self.rays.push((*ray, depth));
+        self.rays.push((*ray, level));
         Vec3::ZERO
     }
 
@@ -85,7 +85,7 @@ impl Secondary for Replay<'_> {
         _: &World,
         _: &Ray,
         _: &RenderOptions,
-        _: u32,
+        _: Level,
         _: &mut R,
         _: R::Node,
     ) -> Vec3 {
@@ -113,8 +113,8 @@ pub(super) struct Trees<'w> {
     blocked: Vec<bool>,
     /// Each node's radiance.
     radiance: Vec<Vec3>,
-    /// The reflected and refracted rays one hit asks for, with their depth.
-    asked: Vec<(Ray, u32)>,
+    /// The reflected and refracted rays one hit asks for, with their level.
+    asked: Vec<(Ray, Level)>,
     /// The shadow rays one hit asks for.
     asked_shadows: Vec<Ray>,
 }
@@ -152,7 +152,7 @@ impl<'w> Trees<'w> {
         shadows.clear();
         nodes.extend((0..n).map(|k| Node {
             ray: rays[k],
-            depth: 0,
+            level: Level::CAMERA,
             sample: k as u32,
             children: 0..0,
             shadows: 0..0,
@@ -169,18 +169,18 @@ impl<'w> Trees<'w> {
                 let (Some(hit), Some(at)) = (node_hits[index], &node_contexts[index]) else {
                     continue;
                 };
-                let (ray, depth, sample) = (node.ray, node.depth, node.sample);
+                let (ray, level, sample) = (node.ray, node.level, node.sample);
                 let mut record = Record {
                     rays: asked,
                     shadows: asked_shadows,
                 };
-                whitted_at_hit(world, &ray, hit, at, options, depth, &mut record);
+                whitted_at_hit(world, &ray, hit, at, options, level, &mut record);
                 let first_child = nodes.len() as u32;
                 let first_shadow = shadows.len() as u32;
-                for (ray, depth) in asked.drain(..) {
+                for (ray, level) in asked.drain(..) {
                     nodes.push(Node {
                         ray,
-                        depth,
+                        level,
                         sample,
                         children: 0..0,
                         shadows: 0..0,
@@ -227,7 +227,7 @@ impl<'w> Trees<'w> {
                         radiance: radiance[range(&node.children)].iter(),
                         blocked: blocked[range(&node.shadows)].iter(),
                     };
-                    whitted_at_hit(world, &node.ray, hit, at, options, node.depth, &mut replay)
+                    whitted_at_hit(world, &node.ray, hit, at, options, node.level, &mut replay)
                 }
                 _ => background(world),
             };

@@ -17,6 +17,8 @@ pub struct RenderSettings {
     pub method: Method,
     /// Maximum reflection/refraction bounces.
     pub max_depth: u32,
+    /// Whitted: bounces whose weight in the pixel is below this are not traced.
+    pub min_weight: f32,
     /// Independent or Sobol samples.
     pub sampling: Sampling,
     /// Adaptive sampling, when on.
@@ -31,6 +33,7 @@ impl Default for RenderSettings {
             integrator: Integrator::Whitted,
             method: Method::Robust,
             max_depth: RenderOptions::default().max_depth,
+            min_weight: RenderOptions::default().min_weight,
             sampling: Sampling::Independent,
             adaptive: None,
             target_spp: Some(64),
@@ -45,6 +48,7 @@ impl RenderSettings {
             integrator: self.integrator,
             method: self.method,
             max_depth: self.max_depth,
+            min_weight: self.min_weight,
             sampling: self.sampling,
             adaptive: self.adaptive,
             ..RenderOptions::default()

@@ -355,6 +355,12 @@ fn details(ui: &mut egui::Ui, ray: &RayNode) {
                 if hit.total_internal_reflection {
                     row("note", "total internal reflection".to_owned());
                 }
+                if hit.negligible {
+                    row(
+                        "note",
+                        "a bounce left untraced: its weight in the pixel is negligible".to_owned(),
+                    );
+                }
                 if let Some(weight) = hit.emission_weight {
                     row("emission MIS weight", n(weight));
                 }

@@ -115,6 +115,24 @@ pub fn show(ui: &mut egui::Ui, settings: &mut RenderSettings) -> bool {
                 .changed();
             ui.end_row();
 
+            if settings.integrator == Integrator::Whitted {
+                ui.label("Min weight");
+                changed |= ui
+                    .add(
+                        widgets::drag(&mut settings.min_weight)
+                            .range(0.0..=1.0)
+                            .speed(0.0005)
+                            .max_decimals(4),
+                    )
+                    .on_hover_text(
+                        "a reflection or refraction whose weight in the pixel is below this \
+                         is not traced but sees the background (adaptive tree depth); \
+                         0 traces every bounce to the max depth",
+                    )
+                    .changed();
+                ui.end_row();
+            }
+
             ui.label("Samples per pixel");
             ui.horizontal(|ui| {
                 let mut forever = settings.target_spp.is_none();
