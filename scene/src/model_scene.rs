@@ -73,6 +73,7 @@ pub fn read_model_scene(path: &Path) -> Result<Scene, SceneError> {
             material: None,
             params: Default::default(),
         }],
+        view: Default::default(),
     })
 }
 

@@ -3,12 +3,15 @@
 
 use crate::color::format_color;
 use crate::model::defaults;
-use crate::model::{Camera, Light, LightKind, MaterialDef, MaterialParams, Object, Scene, Shape};
+use crate::model::{
+    Camera, Light, LightKind, MaterialDef, MaterialParams, Object, Scene, Shape, Tonemap,
+};
 use glam::Vec3;
 use std::fmt::Display;
 
 /// Writes a scene as XML, only non-default values, in a stable order: the
-/// camera (if not the default), then lights, the sky (if any), materials and
+/// camera (if not the default), then lights, the sky (if any), the view (if
+/// not the default), materials and
 /// objects in model order. Reading the result gives back an equal [`Scene`].
 pub fn write_string(scene: &Scene) -> String {
     let mut out = String::from("<scene>\n");
@@ -22,6 +25,14 @@ pub fn write_string(scene: &Scene) -> String {
         Tag::new(&mut out, "sky")
             .attr("color", format_color(color))
             .close();
+    }
+    if !scene.view.is_identity() {
+        let mut tag = Tag::new(&mut out, "view");
+        tag.num("exposure", scene.view.exposure, Some(0.0));
+        if scene.view.tonemap != Tonemap::default() {
+            tag.attr("tonemap", scene.view.tonemap.name());
+        }
+        tag.close();
     }
     for m in &scene.materials {
         material(&mut out, m);

@@ -64,7 +64,7 @@ fn unknown_element_points_at_its_tag_and_suggests_the_nearest() {
         &in_scene("  <wibble/>"),
         2,
         3,
-        "expected one of: camera, light, sky, material",
+        "expected one of: camera, light, sky, view, material",
     );
     assert_error(
         &in_scene("  <sphere/></spere>"),

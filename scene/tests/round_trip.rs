@@ -6,7 +6,7 @@ use proptest::prelude::*;
 use scene::color::srgb_to_linear;
 use scene::{
     BaseMaterial, Camera, Light, LightKind, MaterialDef, MaterialParams, Object, Scene, Shape,
-    read_str, write_string,
+    Tonemap, View, read_str, write_string,
 };
 
 /// Any number a scene may hold (within ±1e6): mostly human-sized, sometimes
@@ -219,8 +219,10 @@ fn scene() -> impl Strategy<Value = Scene> {
     );
     let lights = prop::collection::vec(light(), 0..4);
     let sky = prop::option::of(color());
-    (camera(), lights, sky, materials, objects).prop_map(
-        |(camera, lights, sky, materials, objects)| {
+    let view = (-20.0f32..=20.0, prop::sample::select(Tonemap::ALL.to_vec()))
+        .prop_map(|(exposure, tonemap)| View { exposure, tonemap });
+    (camera(), lights, sky, materials, objects, view).prop_map(
+        |(camera, lights, sky, materials, objects, view)| {
             let builtins: Vec<String> = BaseMaterial::ALL
                 .iter()
                 .map(|m| m.name().to_owned())
@@ -258,6 +260,7 @@ fn scene() -> impl Strategy<Value = Scene> {
                 sky,
                 materials: defs,
                 objects,
+                view,
             }
         },
     )
@@ -326,4 +329,50 @@ fn sky_round_trips() {
         ..Scene::default()
     });
     assert_eq!(text, "<scene>\n  <sky color=\"0.5 0.7 1\"/>\n</scene>\n");
+}
+
+/// `<view>` keeps the exposure and the curve; the default view is not
+/// written; a bad one is an error at its value, saying what is accepted.
+#[test]
+fn view_round_trips_and_bad_views_say_why() {
+    let s = Scene {
+        view: View {
+            exposure: -1.5,
+            tonemap: Tonemap::Neutral,
+        },
+        ..Scene::default()
+    };
+    let text = write_string(&s);
+    assert_eq!(
+        text,
+        "<scene>\n  <view exposure=\"-1.5\" tonemap=\"neutral\"/>\n</scene>\n"
+    );
+    assert_eq!(read_str(&text, "view.xml"), Ok(s));
+    assert_eq!(write_string(&Scene::default()), "<scene>\n</scene>\n");
+    let error = |text: &str| read_str(text, "v.xml").expect_err(text).to_string();
+    let e = error("<scene>\n  <view tonemap=\"neutrall\"/>\n</scene>");
+    assert!(
+        e.contains("2:")
+            && e.contains("clamp or neutral")
+            && e.contains("did you mean \"neutral\""),
+        "{e}"
+    );
+    let e = error("<scene><view exposure=\"30\"/></scene>");
+    assert!(e.contains("from -20 to 20"), "{e}");
+    let e = error("<scene><view exposure=\"NaN\"/></scene>");
+    assert!(e.contains("exposure"), "{e}");
+    let e = error("<scene><view/><view/></scene>");
+    assert!(e.contains("view"), "{e}");
+}
+
+/// A scene shown differently renders the same samples; any other edit does not.
+#[test]
+fn the_view_is_not_part_of_what_is_rendered() {
+    let a = read_str("<scene><sphere/></scene>", "a.xml").expect("valid");
+    let mut b = a.clone();
+    b.view.exposure = 2.0;
+    b.view.tonemap = Tonemap::Neutral;
+    assert!(a.renders_like(&b) && a != b);
+    b.sky = Some(Vec3::ONE);
+    assert!(!a.renders_like(&b));
 }

@@ -6,6 +6,9 @@
 //! omits values equal to it, so a saved scene says no more than it needs.
 
 pub mod model_file;
+mod view;
+
+pub use view::{Tonemap, View};
 
 use glam::Vec3;
 use model_file::ModelFile;
@@ -24,6 +27,29 @@ pub struct Scene {
     pub materials: Vec<MaterialDef>,
     /// The objects to render, in document order.
     pub objects: Vec<Object>,
+    /// `<view>`: the exposure and view transform it is shown with (a
+    /// display setting: it changes no sample).
+    pub view: View,
+}
+
+impl Scene {
+    /// True when `self` and `other` render the same samples: equal but for
+    /// how they are shown ([`Scene::view`]).
+    pub fn renders_like(&self, other: &Scene) -> bool {
+        let Scene {
+            camera,
+            lights,
+            sky,
+            materials,
+            objects,
+            view: _,
+        } = self;
+        *camera == other.camera
+            && *lights == other.lights
+            && *sky == other.sky
+            && *materials == other.materials
+            && *objects == other.objects
+    }
 }
 
 /// The camera as the lecture specifies it; angles in degrees.

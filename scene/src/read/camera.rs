@@ -3,7 +3,7 @@
 use super::element::Element;
 use super::values::{self, Range, parallel};
 use crate::SceneError;
-use crate::model::{Camera, Light, LightKind, defaults};
+use crate::model::{Camera, Light, LightKind, Tonemap, View, defaults};
 use crate::suggest::did_you_mean;
 use glam::Vec3;
 
@@ -22,6 +22,9 @@ pub(crate) const LIGHT_ATTRS: [&str; 6] = [
 
 /// The attributes `<sky>` takes.
 pub(crate) const SKY_ATTRS: [&str; 1] = ["color"];
+
+/// The attributes of `<view>`.
+pub(crate) const VIEW_ATTRS: [&str; 2] = ["exposure", "tonemap"];
 
 /// The light types, by their scene-file names.
 const LIGHT_TYPES: [&str; 3] = ["point", "directional", "ambient"];
@@ -123,5 +126,27 @@ pub(crate) fn sky(el: &Element<'_>) -> Result<Vec3, SceneError> {
             "<sky> needs a color attribute: the radiance arriving from every direction no object \
              blocks, such as \"0.5 0.7 1\"",
         )
+    })
+}
+
+/// A `<view>`: unset attributes keep [`View::default`] (as rendered, clamped).
+pub(crate) fn view(el: &Element<'_>) -> Result<View, SceneError> {
+    let exposure = el.number("exposure", Range::Exposure)?;
+    let tonemap = match el.string("tonemap") {
+        None => Tonemap::default(),
+        Some(name) => Tonemap::from_name(&name).ok_or_else(|| {
+            el.error_at(
+                "tonemap",
+                format!(
+                    "tonemap must be {}, got {name:?}{}",
+                    Tonemap::ALL.map(Tonemap::name).join(" or "),
+                    did_you_mean(&name, Tonemap::ALL.map(Tonemap::name))
+                ),
+            )
+        })?,
+    };
+    Ok(View {
+        exposure: exposure.unwrap_or(0.0),
+        tonemap,
     })
 }

@@ -9,7 +9,7 @@ mod objects;
 mod position;
 mod values;
 
-use camera::{CAMERA_ATTRS, LIGHT_ATTRS, SKY_ATTRS};
+use camera::{CAMERA_ATTRS, LIGHT_ATTRS, SKY_ATTRS, VIEW_ATTRS};
 pub use file::read_file;
 use objects::{MATERIAL_ATTRS, shape_attrs};
 
@@ -44,6 +44,7 @@ pub fn read_str(text: &str, file: &str) -> Result<Scene, SceneError> {
         phase: Phase::Before,
         camera_at: None,
         sky_at: None,
+        view_at: None,
         material_names: Vec::new(),
         material_refs: Vec::new(),
         dir: Path::new(file)
@@ -86,9 +87,9 @@ enum Phase {
 }
 
 /// The children `<scene>` may have.
-const CHILDREN: [&str; 13] = [
-    "camera", "light", "sky", "material", "sphere", "box", "cylinder", "cone", "torus", "triangle",
-    "plane", "floor", "mesh",
+const CHILDREN: [&str; 14] = [
+    "camera", "light", "sky", "view", "material", "sphere", "box", "cylinder", "cone", "torus",
+    "triangle", "plane", "floor", "mesh",
 ];
 
 /// The reader's state while walking the events.
@@ -100,6 +101,8 @@ struct Document<'a> {
     camera_at: Option<usize>,
     /// Offset of the `<sky>` seen so far.
     sky_at: Option<usize>,
+    /// Offset of the `<view>` seen so far.
+    view_at: Option<usize>,
     /// Names of the `<material>`s so far, with their name offsets.
     material_names: Vec<(String, usize)>,
     /// Material names used by shapes, with their value offsets (checked at the end).
@@ -158,6 +161,11 @@ impl Document<'_> {
                 only_one(loc, "sky", &mut self.sky_at, at)?;
                 let el = Element::parse(start, loc, &SKY_ATTRS)?;
                 self.scene.sky = Some(camera::sky(&el)?);
+            }
+            "view" => {
+                only_one(loc, "view", &mut self.view_at, at)?;
+                let el = Element::parse(start, loc, &VIEW_ATTRS)?;
+                self.scene.view = camera::view(&el)?;
             }
             "material" => {
                 let el = Element::parse(start, loc, &MATERIAL_ATTRS)?;

@@ -20,6 +20,8 @@ pub(crate) enum Range {
     /// An index of refraction from 0.1 to 10 (real materials lie within 1 to
     /// 4; below 1 models a thinner medium inside a denser one).
     Ior,
+    /// An exposure in stops, within ±[`View::MAX_EXPOSURE`](crate::View::MAX_EXPOSURE).
+    Exposure,
 }
 
 impl Range {
@@ -32,6 +34,7 @@ impl Range {
             Range::Unit => (0.0..=1.0).contains(&x),
             Range::OpenQuarterTurn => x > 0.0 && x < 90.0,
             Range::Ior => (0.1..=10.0).contains(&x),
+            Range::Exposure => x.abs() <= crate::View::MAX_EXPOSURE,
         }
     }
 
@@ -44,6 +47,7 @@ impl Range {
             Range::Unit => "a number from 0 to 1",
             Range::OpenQuarterTurn => "an angle in degrees strictly between 0 and 90",
             Range::Ior => "an index of refraction from 0.1 to 10",
+            Range::Exposure => "an exposure in stops from -20 to 20",
         }
     }
 }
