@@ -268,8 +268,11 @@ fn shade_hit<R: Recorder, S: Secondary>(
     let bounce = |rec: &mut R, secondary: &mut S, kind: RayKind, dir: Vec3, factor: Vec3| {
         let child = level.child(factor);
         if child.weight.max_element() < options.min_weight {
+            let seen = background(world);
             rec.note(node, Note::Negligible);
-            return background(world);
+            // What it adds to the sample, told to the recorder as `node`'s own.
+            rec.local(node, factor * seen);
+            return seen;
         }
         let next = at.spawn(dir);
         let child_node = rec.bounce(node, kind, &next, child.depth, factor);
