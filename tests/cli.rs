@@ -769,3 +769,82 @@ fn stability_without_an_output_name_picks_a_free_one() {
         "the pair stays together"
     );
 }
+
+/// 8-bit sRGB of linear `x`, from the sRGB formula in f64.
+fn srgb8(x: f64) -> u8 {
+    let v = if x <= 0.003_130_8 {
+        12.92 * x
+    } else {
+        1.055 * x.powf(1.0 / 2.4) - 0.055
+    };
+    (255.0 * v.clamp(0.0, 1.0)).round() as u8
+}
+
+/// A PNG's exposure scales its radiance by 2^EV before the curve: a grey
+/// sky of 0.2 is written as the sRGB of 0.2, 0.4 (+1 EV) and 0.1 (−1 EV),
+/// and through Khronos PBR Neutral as the sRGB of 0.4 − 0.04 (a grey below
+/// its compression keeps all but the toe's offset). The scene's `<view>` is
+/// the default the flags override, and the PNG records the view it was
+/// shown with.
+#[test]
+fn exposure_doubles_the_radiance_of_a_png_before_its_tone_curve() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let scene = dir.path().join("grey.xml");
+    let write = |view: &str| {
+        std::fs::write(
+            &scene,
+            format!(
+                "<scene>\n  <camera width=\"8\" height=\"6\"/>\n  <sky color=\"0.2 0.2 0.2\"/>\n{view}</scene>\n"
+            ),
+        )
+        .expect("scene written");
+    };
+    let grey = |extra: &[&str]| -> u8 {
+        let out = dir.path().join("grey.png");
+        render(&scene, &out, &[&["--spp", "1"], extra].concat());
+        let image = read_png(&out);
+        let first = image.get_pixel(0, 0).0;
+        assert!(image.pixels().all(|p| p.0 == first), "a uniform grey");
+        assert!(first[0] == first[1] && first[1] == first[2]);
+        first[0]
+    };
+    write("");
+    assert_eq!(grey(&[]), srgb8(0.2));
+    assert_eq!(grey(&["--exposure", "1"]), srgb8(0.4));
+    assert_eq!(grey(&["--exposure", "-1"]), srgb8(0.1));
+    assert_eq!(
+        grey(&["--exposure", "1", "--tonemap", "neutral"]),
+        srgb8(0.36)
+    );
+    write("  <view exposure=\"1\"/>\n");
+    assert_eq!(grey(&[]), srgb8(0.4), "the scene's view");
+    assert_eq!(grey(&["--exposure", "0"]), srgb8(0.2), "the flag wins");
+    let out = dir.path().join("grey.png");
+    render(&scene, &out, &["--spp", "1"]);
+    let decoder = png::Decoder::new(std::io::BufReader::new(
+        std::fs::File::open(&out).expect("the PNG exists"),
+    ));
+    let reader = decoder.read_info().expect("a PNG");
+    let view = reader
+        .info()
+        .utf8_text
+        .iter()
+        .find(|c| c.keyword == "raylab:view")
+        .map(|c| c.get_text().expect("utf-8"));
+    assert_eq!(view.as_deref(), Some("exposure=+1 EV tonemap=clamp"));
+
+    let refused = raylab(&[
+        "render",
+        scene.to_str().expect("utf-8"),
+        "-o",
+        out.to_str().expect("utf-8"),
+        "--exposure",
+        "30",
+    ]);
+    assert!(!refused.status.success());
+    let message = String::from_utf8_lossy(&refused.stderr);
+    assert!(
+        message.contains("--exposure 30") && message.contains("-20 to 20"),
+        "{message}"
+    );
+}

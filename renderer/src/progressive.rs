@@ -21,6 +21,7 @@ use crate::film::preview::{PreviewSamples, expand_blocks};
 use crate::integrator::RenderOptions;
 use crate::world::World;
 use glam::Vec3;
+use scene::View;
 use std::borrow::Cow;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -117,6 +118,8 @@ pub struct RenderedFrame {
     pub srgba8: Vec<[u8; 4]>,
     /// What `srgba8`'s colours mean, for a legend.
     pub legend: Legend,
+    /// The exposure and tone curve `srgba8`'s colour was shown with.
+    pub view: View,
     /// Which step this is.
     pub step: Step,
     /// Time from the submit to this frame.
@@ -170,6 +173,8 @@ struct Inbox {
     target: Option<Option<u32>>,
     /// A new display mode, when one was set.
     display: Option<Display>,
+    /// A new view transform, when one was set.
+    view: Option<View>,
     paused: bool,
     shutdown: bool,
 }
@@ -265,6 +270,15 @@ impl ProgressiveRenderer {
         self.shared.wake.notify_all();
     }
 
+    /// Shows the colour of later frames through `view` (exposure and tone
+    /// curve), without restarting: like [`ProgressiveRenderer::set_display`],
+    /// the current state is published again as soon as the step in
+    /// progress ends.
+    pub fn set_view(&self, view: View) {
+        lock(&self.shared.inbox).view = Some(view);
+        self.shared.wake.notify_all();
+    }
+
     /// The newest frame not yet taken, if any; never blocks on rendering.
     pub fn take_frame(&self) -> Option<RenderedFrame> {
         lock(&self.shared.slot).take()
@@ -314,9 +328,17 @@ impl Current {
     }
 }
 
+/// How the worker shows its frames: the display mode, and the view
+/// transform of the colour.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct Shown {
+    display: Display,
+    view: View,
+}
+
 fn work(shared: &Shared) {
     let mut current: Option<Current> = None;
-    let mut display = Display::default();
+    let mut shown = Shown::default();
     // The wall-clock time per traced sample of the last step, any job's,
     // and how long its conversion for display took.
     let mut per_sample: Option<Duration> = None;
@@ -338,9 +360,15 @@ fn work(shared: &Shared) {
                     c.job.target_spp = target;
                 }
                 if let Some(new) = inbox.display.take()
-                    && new != display
+                    && new != shown.display
                 {
-                    display = new;
+                    shown.display = new;
+                    republish = current.as_ref().is_some_and(|c| c.shown.is_some());
+                }
+                if let Some(new) = inbox.view.take()
+                    && new != shown.view
+                {
+                    shown.view = new;
                     republish = current.as_ref().is_some_and(|c| c.shown.is_some());
                 }
                 // A cancelled job is dropped (a submitted one replaces it below).
@@ -385,8 +413,8 @@ fn work(shared: &Shared) {
         }
         if let Some(c) = current.as_mut() {
             if republish {
-                publish(shared, c, display);
-            } else if let Some((traced, published)) = step(shared, c, display, &mut spare) {
+                publish(shared, c, shown);
+            } else if let Some((traced, published)) = step(shared, c, shown, &mut spare) {
                 per_sample = Some(traced);
                 publish_time = published;
             }
@@ -403,7 +431,7 @@ fn work(shared: &Shared) {
 fn step(
     shared: &Shared,
     c: &mut Current,
-    display: Display,
+    shown: Shown,
     spare: &mut Option<Film>,
 ) -> Option<(Duration, Duration)> {
     let stale = || shared.generation.load(Ordering::SeqCst) != c.generation;
@@ -449,13 +477,14 @@ fn step(
     }
     let took = started.elapsed();
     let publishing = Instant::now();
-    publish(shared, c, display);
+    publish(shared, c, shown);
     (traced > 0).then(|| (took / traced as u32, publishing.elapsed()))
 }
 
 /// Publishes the step last rendered in `display` unless the job is stale
 /// (an AOV the mode needs is traced first, and abandoned if it goes stale).
-fn publish(shared: &Shared, c: &mut Current, display: Display) {
+fn publish(shared: &Shared, c: &mut Current, shown: Shown) {
+    let Shown { display, view } = shown;
     let stale = || shared.generation.load(Ordering::SeqCst) != c.generation;
     // An edit made while the step ran: its preview should not wait for
     // this step's conversion.
@@ -486,13 +515,14 @@ fn publish(shared: &Shared, c: &mut Current, display: Display) {
         .aov()
         .and_then(|a| c.aovs.get(&a))
         .map(Vec::as_slice);
-    let DisplayImage { srgba8, legend } = display_image(display, source, &pixels, aov);
+    let DisplayImage { srgba8, legend } = display_image(display, view, source, &pixels, aov);
     let frame = RenderedFrame {
         generation: c.generation,
         width: c.job.world.camera.w,
         height: c.job.world.camera.h,
         srgba8,
         legend,
+        view,
         pixels,
         step,
         since_submit: c.submitted.elapsed(),
@@ -527,6 +557,7 @@ mod tests {
                 range: None,
                 note: String::new(),
             },
+            view: View::default(),
             step,
             since_submit: Duration::ZERO,
             samples_per_second: 0.0,

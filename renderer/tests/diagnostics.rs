@@ -9,6 +9,7 @@ use renderer::integrator::sample_pixel;
 use renderer::progressive::{Job, ProgressiveRenderer, RenderedFrame, Step};
 use renderer::{Film, Method, RenderOptions, World};
 use scene::color::luminance;
+use scene::{Tonemap, View};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -217,6 +218,35 @@ fn a_finished_render_is_shown_again_at_once_in_a_new_mode() {
     let range = shown.legend.range.expect("a range");
     assert_eq!((range.min, range.max), (3.0, 3.0));
     assert_eq!(shown.pixels, done.pixels, "the colour stays the film's");
+}
+
+/// A new exposure and curve re-show the finished film at once, through the
+/// view (each pixel exactly as the sRGB encoding of its scaled radiance),
+/// without a new job or another pass; the linear pixels stay the film's.
+#[test]
+fn a_new_view_is_shown_at_once_without_restarting() {
+    let session = ProgressiveRenderer::new(|| {});
+    let generation = session.submit(Job {
+        world: Arc::new(sphere_world(16, 0)),
+        options: RenderOptions::default(),
+        target_spp: Some(2),
+    });
+    let done = frame_until(&session, |f| spp(f) == 2);
+    assert_eq!(done.view, View::default());
+    let view = View {
+        exposure: 1.0,
+        tonemap: Tonemap::Clamp,
+    };
+    session.set_view(view);
+    let shown = frame_until(&session, |f| f.view == view);
+    assert_eq!(shown.generation, generation, "no new job");
+    assert_eq!(shown.step, done.step, "no further pass");
+    assert_eq!(shown.pixels, done.pixels, "the colour stays the film's");
+    for (rgba, &c) in shown.srgba8.iter().zip(&done.pixels) {
+        let [r, g, b] = renderer::display::srgb::linear_to_srgb8(2.0 * c);
+        assert_eq!(*rgba, [r, g, b, 255], "{c}");
+    }
+    assert!(shown.srgba8 != done.srgba8, "a stop brighter");
 }
 
 #[test]

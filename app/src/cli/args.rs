@@ -268,6 +268,31 @@ pub struct RenderArgs {
     /// MSE, RMSE and mean FLIP (the pictures as shown) against it (colour only).
     #[arg(long, value_name = "REF.exr")]
     pub reference: Option<PathBuf>,
+    /// Exposure in stops of a PNG: its radiance × 2^EV before the tone
+    /// curve (an EXR stays linear). Overrides the scene's <view exposure>.
+    #[arg(long, value_name = "EV", allow_hyphen_values = true)]
+    pub exposure: Option<f32>,
+    /// The tone curve of a PNG. Overrides the scene's <view tonemap>.
+    #[arg(long, value_enum)]
+    pub tonemap: Option<TonemapArg>,
+}
+
+/// `--tonemap`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum TonemapArg {
+    /// Each channel clamped to [0, 1]: exact up to white, highlights clip.
+    Clamp,
+    /// Khronos PBR Neutral: colours exact up to 0.76, highlights rolled off toward white.
+    Neutral,
+}
+
+impl From<TonemapArg> for scene::Tonemap {
+    fn from(t: TonemapArg) -> Self {
+        match t {
+            TonemapArg::Clamp => scene::Tonemap::Clamp,
+            TonemapArg::Neutral => scene::Tonemap::Neutral,
+        }
+    }
 }
 
 /// `--method`.

@@ -41,7 +41,7 @@ pub struct ExportedInstance {
 /// Writes the OBJ files and `meshes.json` into `args.dir` (created if
 /// needed); returns the path of `meshes.json`.
 pub fn run(args: &ExportMeshesArgs) -> Result<PathBuf> {
-    let (world, _) = prepare(&args.scene)?;
+    let (world, ..) = prepare(&args.scene)?;
     std::fs::create_dir_all(&args.dir)
         .with_context(|| format!("creating {}", args.dir.display()))?;
     let models = export(&world, &args.dir)?;

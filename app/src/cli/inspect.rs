@@ -15,7 +15,7 @@ pub fn run(args: &InspectArgs) -> Result<String> {
         ))
         .into());
     };
-    let (world, options) = prepare(&args.scene)?;
+    let (world, options, _) = prepare(&args.scene)?;
     let inspection = inspect_pixel(&world, &options, i, j, args.sample)
         .map_err(|e| UserError(format!("{}: {e}", args.scene.scene.display())))?;
     Ok(serde_json::to_string_pretty(&inspection)?)

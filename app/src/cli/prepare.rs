@@ -12,7 +12,7 @@ pub struct UserError(pub String);
 
 /// Reads the scene with the size overrides applied and prepares it, with
 /// the options to trace it by; a scene that cannot be read or rendered is a [`UserError`].
-pub fn prepare(args: &SceneArgs) -> Result<(World, RenderOptions)> {
+pub fn prepare(args: &SceneArgs) -> Result<(World, RenderOptions, scene::View)> {
     let mut scene = scene::read_any(&args.scene).map_err(|e| UserError(e.to_string()))?;
     crate::io::output::warn_about_models(&scene);
     if let Some(w) = args.width {
@@ -52,5 +52,5 @@ pub fn prepare(args: &SceneArgs) -> Result<(World, RenderOptions)> {
             None => None,
         },
     };
-    Ok((world, options))
+    Ok((world, options, scene.view))
 }

@@ -9,14 +9,34 @@ use renderer::display::Display;
 use renderer::display::DisplayImage;
 use renderer::display::image::{Source, aov_image, display_image};
 use renderer::film::aov::{self, Aov};
+use scene::View;
 use std::time::{Duration, Instant};
+
+/// The view a PNG is written with: the scene's `<view>`, with what
+/// `--exposure` and `--tonemap` set instead.
+fn view_of(args: &RenderArgs, scene: View) -> Result<View> {
+    let exposure = args.exposure.unwrap_or(scene.exposure);
+    if !(exposure.abs() <= View::MAX_EXPOSURE) {
+        return Err(UserError(format!(
+            "--exposure {exposure}: the exposure must be a number of stops from -{max} to {max}",
+            max = View::MAX_EXPOSURE
+        ))
+        .into());
+    }
+    Ok(View {
+        exposure,
+        tonemap: args.tonemap.map_or(scene.tonemap, Into::into),
+    })
+}
 
 /// Renders `args.scene` to `args.output`; returns the time the render took.
 pub fn run(args: &RenderArgs) -> Result<Duration> {
     let format = Format::from_path(&args.output).map_err(|e| UserError(e.to_string()))?;
-    let (world, options) = prepare(&args.scene)?;
+    let (world, options, scene_view) = prepare(&args.scene)?;
+    let view = view_of(args, scene_view)?;
     let (w, h) = (world.camera.w, world.camera.h);
-    let provenance = Provenance::of_render(&world.camera, Some(&args.scene.scene), args.spp);
+    let provenance =
+        Provenance::of_render(&world.camera, Some(&args.scene.scene), args.spp).with_view(view);
     // A bad reference is an error before the render, not after it.
     let reference = match &args.reference {
         Some(path) => {
@@ -61,13 +81,13 @@ pub fn run(args: &RenderArgs) -> Result<Duration> {
                 _ => None,
             };
             match (format, diagnostic) {
-                (Format::Png, None) => write_png(&args.output, w, h, &pixels, &provenance)?,
+                (Format::Png, None) => write_png(&args.output, w, h, &pixels, view, &provenance)?,
                 (Format::Exr, None) => {
                     let values: Vec<f32> = pixels.iter().flat_map(|p| p.to_array()).collect();
                     write_exr(&args.output, w, h, &["R", "G", "B"], &values, &provenance)?
                 }
                 (Format::Png, Some((display, _))) => {
-                    let shown = display_image(display, Source::Film(&film), &pixels, None);
+                    let shown = display_image(display, view, Source::Film(&film), &pixels, None);
                     write_png_srgb8(&args.output, w, h, &rgb_bytes(&shown), &provenance)?
                 }
                 (Format::Exr, Some((display, channel))) => {

@@ -363,7 +363,7 @@ impl RaylabApp {
                     .size_range(160.0..=(ui.available_width() - 160.0).max(160.0))
                     .show(ui, |ui| self.debug_view(ui));
             }
-            let gestures = self.image.ui(ui);
+            let gestures = self.image.ui(ui, &mut self.doc.state.scene.view);
             self.inspector.mark(ui, &self.image);
             let dragging = ctx.input(|i| i.pointer.any_down());
             self.on_image(&gestures, dragging);

@@ -7,7 +7,7 @@ use super::doc::document::EditState;
 use renderer::display::Display;
 use renderer::progressive::{Job, ProgressiveRenderer, RenderedFrame};
 use renderer::{RenderOptions, World};
-use scene::{ResolvedScene, Scene};
+use scene::{ResolvedScene, Scene, View};
 use std::sync::Arc;
 
 /// A scene snapshot and the render copy prepared from it.
@@ -31,6 +31,8 @@ pub struct SessionSync {
     submitted_target: Option<Option<u32>>,
     /// The display mode the session was last given.
     submitted_display: Display,
+    /// The view transform (exposure, tone curve) the session was last given.
+    submitted_view: View,
     /// The generation of the newest submitted job.
     pub generation: u64,
     /// The newest frame on screen.
@@ -49,6 +51,7 @@ impl Default for SessionSync {
             submitted: None,
             submitted_target: None,
             submitted_display: Display::Color,
+            submitted_view: View::default(),
             generation: 0,
             frame: None,
             error: None,
@@ -73,7 +76,7 @@ impl SessionSync {
         let unchanged = self
             .submitted
             .as_ref()
-            .is_some_and(|(scene, o)| *o == options && *scene == state.scene);
+            .is_some_and(|(scene, o)| *o == options && scene.renders_like(&state.scene));
         let session = self.progressive.get_or_insert_with(|| {
             let ctx = ctx.clone();
             ProgressiveRenderer::new(move || ctx.request_repaint())
@@ -81,6 +84,12 @@ impl SessionSync {
         if self.submitted_display != display {
             session.set_display(display);
             self.submitted_display = display;
+        }
+        // How the picture is shown changes no sample: the frame on screen
+        // is shown again, the render goes on.
+        if self.submitted_view != state.scene.view {
+            session.set_view(state.scene.view);
+            self.submitted_view = state.scene.view;
         }
         if unchanged {
             if self.submitted_target != Some(target) {

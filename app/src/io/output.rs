@@ -70,6 +70,20 @@ impl Provenance {
         Provenance { entries }
     }
 
+    /// Records the exposure and tone curve a picture's colour is shown
+    /// with (nothing for the identity view: radiance as rendered, clamped).
+    pub fn with_view(mut self, view: scene::View) -> Self {
+        if !view.is_identity() {
+            let text = format!(
+                "exposure={:+} EV tonemap={}",
+                view.exposure,
+                view.tonemap.name()
+            );
+            self.entries.push(("raylab:view".to_owned(), text));
+        }
+        self
+    }
+
     /// Records which diagnostic display a picture shows (nothing for the colour).
     pub fn with_display(mut self, display: renderer::display::Display) -> Self {
         if display != renderer::display::Display::Color {
@@ -89,18 +103,22 @@ impl Provenance {
     }
 }
 
-/// Writes linear RGB pixels (row 0 at the top) as an 8-bit sRGB PNG, with
-/// `provenance` as UTF-8 text chunks.
+/// Writes linear RGB pixels (row 0 at the top) as an 8-bit sRGB PNG shown
+/// through `view` (exposure and tone curve), with `provenance` as UTF-8
+/// text chunks.
 pub fn write_png(
     path: &Path,
     width: u32,
     height: u32,
     pixels: &[Vec3],
+    view: scene::View,
     provenance: &Provenance,
 ) -> Result<()> {
     let bytes: Vec<u8> = pixels
         .iter()
-        .flat_map(|&c| renderer::display::srgb::linear_to_srgb8(c))
+        .flat_map(|&c| {
+            renderer::display::srgb::linear_to_srgb8(renderer::display::view::apply(view, c))
+        })
         .collect();
     write_png_srgb8(path, width, height, &bytes, provenance)
 }

@@ -11,6 +11,7 @@ use crate::film::Film;
 use crate::film::aov::{Aov, visualize};
 use crate::film::preview::PreviewSamples;
 use glam::Vec3;
+use scene::View;
 
 /// Shown where a mode has nothing to show yet (variance of one sample).
 const UNAVAILABLE: [u8; 4] = [48, 48, 48, 255];
@@ -41,9 +42,11 @@ impl Source<'_> {
 /// The picture of `display` from `source`: `color` is its linear colour
 /// at the source's resolution (a preview's one value per block, in the
 /// order of [`PreviewSamples::finite_values`]; a film's every pixel), `aov`
-/// the mode's AOV at full resolution (computed by the caller for the AOV modes).
+/// the mode's AOV at full resolution (computed by the caller for the AOV modes);
+/// `view` the exposure and curve the colour is shown with (the other modes ignore it).
 pub fn display_image(
     display: Display,
+    view: View,
     source: Source,
     color: &[Vec3],
     aov: Option<&[f32]>,
@@ -53,8 +56,8 @@ pub fn display_image(
         (Display::Color, ..) => DisplayImage {
             srgba8: match source {
                 // Each sample converted once, then repeated over its block.
-                Source::Preview(p) => p.blocks(&srgba8_of_linear(color)),
-                Source::Film(_) => srgba8_of_linear(color),
+                Source::Preview(p) => p.blocks(&srgba8_of_linear(color, view)),
+                Source::Film(_) => srgba8_of_linear(color, view),
             },
             legend: Legend {
                 display,
@@ -140,7 +143,7 @@ pub fn aov_image(aov: Aov, values: &[f32]) -> DisplayImage {
         ),
     };
     DisplayImage {
-        srgba8: srgba8_of_linear(&visualize(aov, values)),
+        srgba8: srgba8_of_linear(&visualize(aov, values), View::default()),
         legend: Legend {
             display,
             range: None,

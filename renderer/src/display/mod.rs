@@ -10,6 +10,7 @@ pub mod colormap;
 pub mod heatmap;
 pub mod image;
 pub mod srgb;
+pub mod view;
 
 use crate::film::aov::Aov;
 use colormap::Ramp;

@@ -5,6 +5,7 @@
 
 use glam::Vec3;
 use rayon::prelude::*;
+use scene::View;
 
 /// One linear channel to 8-bit sRGB the direct way: clamp to [0, 1], the
 /// sRGB transfer curve (`powf`), round. [`linear_to_srgb8`] gives the same bytes faster.
@@ -92,9 +93,9 @@ pub fn linear_to_srgb8(c: Vec3) -> [u8; 3] {
     ]
 }
 
-/// Linear radiance to opaque 8-bit sRGB RGBA, in parallel; a run of equal
-/// pixels (a preview's blocks) is converted once.
-pub fn srgba8_of_linear(pixels: &[Vec3]) -> Vec<[u8; 4]> {
+/// Linear radiance, as `view` shows it, to opaque 8-bit sRGB RGBA, in
+/// parallel; a run of equal pixels (a preview's blocks) is converted once.
+pub fn srgba8_of_linear(pixels: &[Vec3], view: View) -> Vec<[u8; 4]> {
     const CHUNK: usize = 4096;
     let mut out = vec![[0u8, 0, 0, 255]; pixels.len()];
     out.par_chunks_mut(CHUNK)
@@ -105,7 +106,7 @@ pub fn srgba8_of_linear(pixels: &[Vec3]) -> Vec<[u8; 4]> {
                 let rgba = match last {
                     Some((previous, rgba)) if previous == c => rgba,
                     _ => {
-                        let [r, g, b] = linear_to_srgb8(c);
+                        let [r, g, b] = linear_to_srgb8(super::view::apply(view, c));
                         let rgba = [r, g, b, 255];
                         last = Some((c, rgba));
                         rgba

@@ -148,6 +148,7 @@ mod tests {
                 range: None,
                 note: String::new(),
             },
+            view: scene::View::default(),
             step: Step::Passes { spp },
             since_submit: Duration::from_millis(u64::from(spp) * 10),
             samples_per_second: 0.0,

@@ -607,6 +607,83 @@ fn settle_display(h: &mut Harness<'static, RaylabApp>, display: renderer::displa
     panic!("the image never showed {display:?}");
 }
 
+/// Steps the UI until the frame on screen was shown through `view`.
+fn settle_view(h: &mut Harness<'static, RaylabApp>, view: scene::View) {
+    let deadline = Instant::now() + Duration::from_secs(60);
+    while Instant::now() < deadline {
+        h.step();
+        if h.state()
+            .session
+            .frame
+            .as_ref()
+            .is_some_and(|f| f.view == view)
+        {
+            return;
+        }
+        std::thread::sleep(Duration::from_millis(2));
+    }
+    panic!("the image was never shown through {view:?}");
+}
+
+/// The exposure and the tone curve in the image view's toolbar show the
+/// finished render again through the new view, without a new render: a
+/// stop brighter is each pixel's radiance doubled before sRGB. Each is an
+/// undo step.
+#[test]
+fn exposure_and_tone_curve_show_the_render_again_without_restarting() {
+    use scene::{Tonemap, View};
+    let mut h = harness(seed_app(48, 32));
+    settle(&mut h);
+    let generation = h.state().session.generation;
+    let before = h.state().session.frame.clone().expect("a frame");
+
+    h.get_by_label_contains("exposure").set_value_accesskit(1.0);
+    h.step();
+    let brighter = View {
+        exposure: 1.0,
+        tonemap: Tonemap::Clamp,
+    };
+    assert_eq!(h.state().doc.state.scene.view, brighter);
+    settle_view(&mut h, brighter);
+    let frame = h.state().session.frame.clone().expect("a frame");
+    assert_eq!(h.state().session.generation, generation, "no new render");
+    assert_eq!(frame.step, before.step, "the finished film, shown again");
+    assert_eq!(frame.pixels, before.pixels, "the radiance is the film's");
+    for (rgba, &c) in frame.srgba8.iter().zip(&before.pixels) {
+        let [r, g, b] = renderer::display::srgb::linear_to_srgb8(2.0 * c);
+        assert_eq!(*rgba, [r, g, b, 255], "{c}");
+    }
+
+    h.get_by_value("Clamp").click();
+    step_shown(&mut h);
+    h.get_by_label("Khronos PBR Neutral").click();
+    h.step();
+    let neutral = View {
+        tonemap: Tonemap::Neutral,
+        ..brighter
+    };
+    assert_eq!(h.state().doc.state.scene.view, neutral);
+    settle_view(&mut h, neutral);
+    assert_eq!(h.state().session.generation, generation, "no new render");
+
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.step();
+    assert_eq!(h.state().doc.state.scene.view, brighter, "undo: the curve");
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.step();
+    assert_eq!(
+        h.state().doc.state.scene.view,
+        View::default(),
+        "undo: the exposure"
+    );
+    settle_view(&mut h, View::default());
+    assert_eq!(
+        h.state().session.generation,
+        generation,
+        "still no new render"
+    );
+}
+
 #[test]
 fn choosing_a_display_mode_shows_it_with_its_legend_and_keeps_the_render() {
     use renderer::display::Display;

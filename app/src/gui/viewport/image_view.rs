@@ -4,6 +4,7 @@
 
 use renderer::display::{Display, Legend};
 use renderer::progressive::RenderedFrame;
+use scene::{Tonemap, View};
 
 /// Sampling of the image texture: single pixels stay crisp when magnified.
 const TEXTURE_OPTIONS: egui::TextureOptions = egui::TextureOptions {
@@ -174,8 +175,10 @@ impl ImageView {
         self.zoom = Zoom::Scale(new);
     }
 
-    /// Draws the image into the remaining space and reports the user's gestures.
-    pub fn ui(&mut self, ui: &mut egui::Ui) -> Gestures {
+    /// Draws the image into the remaining space, with the controls of how
+    /// it is shown (`shown`, the scene's exposure and tone curve, edited in
+    /// place), and reports the user's gestures.
+    pub fn ui(&mut self, ui: &mut egui::Ui, shown: &mut View) -> Gestures {
         let view = ui.available_rect_before_wrap();
         let response = ui.allocate_rect(view, egui::Sense::click_and_drag());
         let ppp = ui.ctx().pixels_per_point();
@@ -235,17 +238,18 @@ impl ImageView {
                 gestures.dolly -= scroll.y;
             }
         }
-        self.overlay(ui, view, scale);
+        self.overlay(ui, view, scale, shown);
         if let Some(legend) = &self.legend {
             super::legend::show(ui, view, legend);
         }
         gestures
     }
 
-    /// The zoom read-out, the Fit / 100 % buttons and the display mode in the view's corner.
-    fn overlay(&mut self, ui: &mut egui::Ui, view: egui::Rect, scale: f32) {
+    /// The zoom read-out, the Fit / 100 % buttons, the display mode and the
+    /// colour's exposure and tone curve in the view's corner.
+    fn overlay(&mut self, ui: &mut egui::Ui, view: egui::Rect, scale: f32, shown: &mut View) {
         let corner =
-            egui::Rect::from_min_size(view.min + egui::vec2(6.0, 6.0), egui::vec2(460.0, 24.0))
+            egui::Rect::from_min_size(view.min + egui::vec2(6.0, 6.0), egui::vec2(820.0, 52.0))
                 .intersect(view.shrink(6.0));
         // Within the view only: beside it may lie the debug view's own toolbar.
         ui.scope_builder(egui::UiBuilder::new().max_rect(corner), |ui| {
@@ -272,6 +276,8 @@ impl ImageView {
                     })
                     .response
                     .on_hover_text("What the image shows (M cycles)");
+                ui.separator();
+                view_controls(ui, shown);
             });
         });
     }
@@ -287,4 +293,34 @@ impl ImageView {
         self.zoom = Zoom::Scale(1.0);
         self.offset = egui::Vec2::ZERO;
     }
+}
+
+/// The exposure (stops) and tone curve of the colour, edited in place: a
+/// display setting saved with the scene, undoable, and never a restart.
+fn view_controls(ui: &mut egui::Ui, shown: &mut View) {
+    ui.add(
+        egui::DragValue::new(&mut shown.exposure)
+            .range(-View::MAX_EXPOSURE..=View::MAX_EXPOSURE)
+            .speed(0.02)
+            .max_decimals(2)
+            .prefix("exposure ")
+            .suffix(" EV"),
+    )
+    .on_hover_text(
+        "Exposure in stops: the colour × 2^EV before the tone curve \
+         (shown and saved as PNG; EXR stays linear; double-click to type)",
+    );
+    egui::ComboBox::from_id_salt("tone-curve")
+        .selected_text(shown.tonemap.label())
+        .width(150.0)
+        .show_ui(ui, |ui| {
+            for t in Tonemap::ALL {
+                ui.selectable_value(&mut shown.tonemap, t, t.label());
+            }
+        })
+        .response
+        .on_hover_text(
+            "How radiance above white is shown: clamped per channel, or rolled off \
+             toward white keeping hues (Khronos PBR Neutral)",
+        );
 }

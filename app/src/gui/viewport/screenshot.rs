@@ -48,7 +48,13 @@ pub fn save(path: &Path, frame: &RenderedFrame, provenance: &Provenance) -> anyh
                 .iter()
                 .flat_map(|p| [p[0], p[1], p[2]])
                 .collect();
-            let provenance = provenance.clone().with_display(frame.legend.display);
+            let provenance = provenance
+                .clone()
+                .with_display(frame.legend.display)
+                .with_view(match frame.legend.display {
+                    renderer::display::Display::Color => frame.view,
+                    _ => scene::View::default(),
+                });
             output::write_png_srgb8(path, w, h, &bytes, &provenance)
         }
         Format::Exr => {
