@@ -265,7 +265,8 @@ pub struct RenderArgs {
     #[arg(long, value_enum, default_value_t = AovArg::Color)]
     pub aov: AovArg,
     /// A linear EXR of the same scene and size: print the render's relative
-    /// MSE, RMSE and mean FLIP (the pictures as shown) against it (colour only).
+    /// MSE, RMSE and mean FLIP (of both clamped and sRGB-encoded, whatever
+    /// the view) against it (colour only).
     #[arg(long, value_name = "REF.exr")]
     pub reference: Option<PathBuf>,
     /// Exposure in stops of a PNG: its radiance × 2^EV before the tone
@@ -282,7 +283,7 @@ pub struct RenderArgs {
 pub enum TonemapArg {
     /// Each channel clamped to [0, 1]: exact up to white, highlights clip.
     Clamp,
-    /// Khronos PBR Neutral: colours exact up to 0.76, highlights rolled off toward white.
+    /// Khronos PBR Neutral: colours less a small offset up to 0.76, highlights rolled off toward white.
     Neutral,
 }
 

@@ -35,8 +35,7 @@ pub fn run(args: &RenderArgs) -> Result<Duration> {
     let (world, options, scene_view) = prepare(&args.scene)?;
     let view = view_of(args, scene_view)?;
     let (w, h) = (world.camera.w, world.camera.h);
-    let provenance =
-        Provenance::of_render(&world.camera, Some(&args.scene.scene), args.spp).with_view(view);
+    let provenance = Provenance::of_render(&world.camera, Some(&args.scene.scene), args.spp);
     // A bad reference is an error before the render, not after it.
     let reference = match &args.reference {
         Some(path) => {
@@ -81,7 +80,10 @@ pub fn run(args: &RenderArgs) -> Result<Duration> {
                 _ => None,
             };
             match (format, diagnostic) {
-                (Format::Png, None) => write_png(&args.output, w, h, &pixels, view, &provenance)?,
+                (Format::Png, None) => {
+                    let provenance = provenance.clone().with_view(view);
+                    write_png(&args.output, w, h, &pixels, view, &provenance)?
+                }
                 (Format::Exr, None) => {
                     let values: Vec<f32> = pixels.iter().flat_map(|p| p.to_array()).collect();
                     write_exr(&args.output, w, h, &["R", "G", "B"], &values, &provenance)?

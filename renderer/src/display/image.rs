@@ -39,6 +39,19 @@ impl Source<'_> {
     }
 }
 
+/// The colour legend's note: the view it is shown through, then sRGB.
+fn color_note(view: View) -> String {
+    if view.is_identity() {
+        "the final colour, sRGB".into()
+    } else {
+        format!(
+            "the final colour at {:+} EV, {}, sRGB",
+            view.exposure,
+            view.tonemap.label()
+        )
+    }
+}
+
 /// The picture of `display` from `source`: `color` is its linear colour
 /// at the source's resolution (a preview's one value per block, in the
 /// order of [`PreviewSamples::finite_values`]; a film's every pixel), `aov`
@@ -62,7 +75,7 @@ pub fn display_image(
             legend: Legend {
                 display,
                 range: None,
-                note: "the final colour, sRGB".into(),
+                note: color_note(view),
             },
         },
         (_, Some(kind), Some(values)) => aov_image(kind, values),

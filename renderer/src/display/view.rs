@@ -30,10 +30,12 @@ const DESATURATION: f32 = 0.15;
 
 /// The Khronos PBR Neutral tone mapper, as its specification defines it
 /// (KhronosGroup/ToneMapping, `PBR_Neutral/README.md`): linear Rec. 709 in
-/// (negatives and NaN taken as 0), linear Rec. 709 in [0, 1] out. Colours
-/// whose peak stays below K_s = 0.76 pass unchanged but for a small offset
-/// f that deepens the darkest channel; brighter ones are compressed toward
-/// white along the hue, and desaturated as they near it.
+/// (negatives and NaN taken as 0), linear Rec. 709 in [0, 1] out. An
+/// offset f (0.04 once the darkest channel reaches 0.08, less below) comes
+/// off every channel — the specification expects a PBR material's
+/// specular reflection to add it back — so a grey of 0.4 shows as 0.36;
+/// past K_s = 0.76 the peak is compressed toward white along the hue,
+/// and desaturated as it nears it. An infinite channel is white, the limit.
 pub fn pbr_neutral(c: Vec3) -> Vec3 {
     // max also maps NaN to 0.
     let c = c.max(Vec3::ZERO);
@@ -47,6 +49,10 @@ pub fn pbr_neutral(c: Vec3) -> Vec3 {
     let p = c.max_element();
     if p <= START_COMPRESSION {
         return c;
+    }
+    if p == f32::INFINITY {
+        // p_n → 1 and g → 0: the curve's limit is white (∞ · 0 would be NaN).
+        return Vec3::ONE;
     }
     let d = 1.0 - START_COMPRESSION;
     let p_n = 1.0 - d * d / (p + d - START_COMPRESSION);
@@ -107,13 +113,20 @@ mod tests {
     /// Every output lies in [0, 1]; a grey stays grey; brighter in, brighter out.
     #[test]
     fn neutral_maps_into_the_display_range_keeping_grey_and_order() {
-        for c in colours().chain([Vec3::splat(1e30), Vec3::splat(f32::NAN), Vec3::splat(-1.0)]) {
+        let extremes = [
+            Vec3::splat(1e30),
+            Vec3::splat(f32::NAN),
+            Vec3::splat(-1.0),
+            Vec3::new(f32::INFINITY, 0.5, 0.5),
+        ];
+        for c in colours().chain(extremes) {
             let out = pbr_neutral(c);
             assert!(
                 out.cmpge(Vec3::ZERO).all() && out.cmple(Vec3::ONE).all(),
                 "{c}: {out}"
             );
         }
+        assert_eq!(pbr_neutral(Vec3::new(f32::INFINITY, 0.5, 0.5)), Vec3::ONE);
         let mut last = -1.0;
         for k in 0..2000 {
             let grey = k as f32 * 0.01;

@@ -94,8 +94,9 @@ pub trait Recorder {
     /// `node` hit `hit`, at `surface`, on the front side when `front`.
     fn hit(&mut self, node: Self::Node, ray: &Ray, hit: Hit, surface: &Surface, front: bool);
 
-    /// `node`'s hit point adds `radiance` of its own: emission, or the
-    /// ambient term ambient·albedo·(1 − reflectivity).
+    /// `node`'s hit point adds `radiance` of its own: emission, the ambient
+    /// term ambient·albedo·(1 − reflectivity), or what a bounce Whitted
+    /// left untraced adds (its factor times the background).
     fn local(&mut self, node: Self::Node, radiance: Vec3);
 
     /// A shadow ray toward light `light` left `node`'s hit point. `lit` is

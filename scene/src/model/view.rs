@@ -34,7 +34,8 @@ pub enum Tonemap {
     /// Each channel clamped to [0, 1]: exact up to white, highlights clip.
     #[default]
     Clamp,
-    /// Khronos PBR Neutral: exact colours up to 0.76, highlights
+    /// Khronos PBR Neutral: below 0.76, colours less a small offset (up
+    /// to 0.04, which a PBR material's specular adds back); above, highlights
     /// compressed toward white and desaturated, hues kept.
     Neutral,
 }

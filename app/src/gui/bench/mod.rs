@@ -165,8 +165,10 @@ pub fn interactive(
     while Instant::now() < warm_up
         && !matches!(app.session.frame.as_ref().map(|f| f.step), Some(Step::Passes { spp }) if spp >= 2)
     {
-        let took = frame(&mut app);
-        wake.sleep(FRAME.saturating_sub(took));
+        frame(&mut app);
+        // Not measured; and the spinner shown before the first frame asks
+        // for a repaint every frame, which would make `wake` spin.
+        std::thread::sleep(Duration::from_millis(1));
     }
     let mut report = Report::default();
     let mut next_kind = 0;

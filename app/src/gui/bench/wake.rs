@@ -18,7 +18,10 @@ impl RepaintWake {
         let wake = Self::default();
         let due = Arc::clone(&wake.due);
         ctx.set_request_repaint_callback(move |info| {
-            let at = Instant::now() + info.delay;
+            // A delay past what an Instant holds is no request at all.
+            let Some(at) = Instant::now().checked_add(info.delay) else {
+                return;
+            };
             let (lock, signal) = &*due;
             let mut due = lock.lock().unwrap_or_else(PoisonError::into_inner);
             *due = Some(due.map_or(at, |d| d.min(at)));
