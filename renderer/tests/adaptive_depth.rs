@@ -9,7 +9,6 @@ use glam::Vec3;
 use renderer::inspect::inspect_pixel;
 use renderer::integrator::{Integrator, MIN_WEIGHT};
 use renderer::{Film, RenderOptions, World};
-use scene::{Camera, Light, LightKind, MaterialParams, Object, Scene, Shape};
 
 fn whitted(min_weight: f32) -> RenderOptions {
     RenderOptions {
@@ -105,36 +104,7 @@ fn the_inspector_shows_where_a_tree_was_cut() {
 #[test]
 fn a_weight_of_one_stops_every_tree_at_its_first_hit() {
     let sky = 0.75;
-    let scene = Scene {
-        camera: Camera {
-            eye: Some(Vec3::new(0.0, 0.0, 4.0)),
-            toward: Some(Vec3::NEG_Z),
-            theta_deg: 20.0,
-            width: 24,
-            height: 24,
-            ..Default::default()
-        },
-        lights: vec![Light {
-            name: None,
-            kind: LightKind::Ambient,
-            color: Vec3::ONE,
-            intensity: sky,
-        }],
-        objects: vec![Object {
-            name: None,
-            shape: Shape::Sphere {
-                center: Some(Vec3::ZERO),
-                radius: 1.0,
-            },
-            material: Some("glass".into()),
-            params: MaterialParams {
-                color: Some(Vec3::ONE),
-                ..Default::default()
-            },
-        }],
-        ..Default::default()
-    };
-    let world = World::from_scene(&scene).expect("valid");
+    let world = common::glass_sphere_under_sky(sky, 24);
     let film = Film::render(&world, &whitted(1.0), 1);
     assert_eq!(film.rays(), 24 * 24, "camera rays only");
     for value in film.linear() {

@@ -1,5 +1,7 @@
 //! The Whitted integrator against analytic radiance.
 
+mod common;
+
 use glam::Vec3;
 use renderer::integrator::sample_pixel;
 use renderer::{Film, RenderOptions, World};
@@ -127,27 +129,7 @@ fn surfaces_in_uniform_ambient_light_reflect_albedo_times_ambient() {
 fn clear_glass_in_a_uniform_environment_is_invisible() {
     // Fresnel reflection and refraction split energy without loss, so every
     // pixel of a glass sphere sees the environment's radiance (up to the depth cut-off).
-    let scene = Scene {
-        camera: Camera {
-            eye: Some(Vec3::new(0.0, 0.0, 4.0)),
-            toward: Some(Vec3::NEG_Z),
-            theta_deg: 20.0,
-            width: 24,
-            height: 24,
-            ..Default::default()
-        },
-        lights: vec![ambient(1.0)],
-        objects: vec![object(
-            Shape::Sphere {
-                center: Some(Vec3::ZERO),
-                radius: 1.0,
-            },
-            "glass",
-            Vec3::ONE,
-        )],
-        ..Default::default()
-    };
-    let world = World::from_scene(&scene).expect("valid");
+    let world = common::glass_sphere_under_sky(1.0, 24);
     let options = RenderOptions {
         max_depth: 24,
         ..Default::default()

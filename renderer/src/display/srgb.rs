@@ -97,6 +97,8 @@ pub fn linear_to_srgb8(c: Vec3) -> [u8; 3] {
 /// parallel; a run of equal pixels (a preview's blocks) is converted once.
 pub fn srgba8_of_linear(pixels: &[Vec3], view: View) -> Vec<[u8; 4]> {
     const CHUNK: usize = 4096;
+    // Decided once, not per pixel: most frames are shown as rendered.
+    let identity = view.is_identity();
     let mut out = vec![[0u8, 0, 0, 255]; pixels.len()];
     out.par_chunks_mut(CHUNK)
         .zip(pixels.par_chunks(CHUNK))
@@ -106,7 +108,12 @@ pub fn srgba8_of_linear(pixels: &[Vec3], view: View) -> Vec<[u8; 4]> {
                 let rgba = match last {
                     Some((previous, rgba)) if previous == c => rgba,
                     _ => {
-                        let [r, g, b] = linear_to_srgb8(super::view::apply(view, c));
+                        let shown = if identity {
+                            c
+                        } else {
+                            super::view::apply(view, c)
+                        };
+                        let [r, g, b] = linear_to_srgb8(shown);
                         let rgba = [r, g, b, 255];
                         last = Some((c, rgba));
                         rgba
