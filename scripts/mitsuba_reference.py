@@ -12,7 +12,8 @@ own noise: relMSE between two renders of half the samples, halved.
 Translated: the camera (eye, toward, up, theta, width, height), spheres, boxes and
 triangles; `<floor>` and `<plane>` as a square of side 2·10⁴ lying in the plane (raylab's is
 infinite); point and directional lights (W/sr and W/m², as raylab's: Mitsuba's `point` and
-`directional` emitters) and `<sky color>` (a `constant` emitter); matte, mirror and glass, and
+`directional` emitters), `<sky color>` (a `constant` emitter) and `<sky map rotate>` (an `envmap`
+emitter in the same latitude-longitude layout, turned alike; a grey `color` is its scale); matte, mirror and glass, and
 named `<material>`s derived from them (a shape's own parameters over its material's), with
 `roughness` (GGX α = roughness²: Mitsuba's roughconductor with material "none", i.e. Fresnel 1
 times `color`, and roughdielectric); emission as an area light on the front side. Colours are
@@ -193,6 +194,23 @@ def light_of(el):
     raise Untranslated(f"light type {kind!r}")
 
 
+def sky_of(el, scene_dir):
+    """The Mitsuba emitter of a raylab <sky>: `constant` for a colour; for a map, `envmap` (the
+    same lat-long layout) turned by `rotate` as raylab turns it (x, then y, then z) and scaled by
+    a grey `color` (Mitsuba's envmap takes a scalar scale, not a tint)."""
+    rgb = color(el.get("color", "1 1 1"))
+    if el.get("map") is None:
+        if el.get("rotate") is not None:
+            raise Untranslated("rotate without a map")
+        return {"type": "constant", "radiance": {"type": "rgb", "value": color(required(el, "color"))}}
+    if max(rgb) != min(rgb):
+        raise Untranslated("a tinted map: Mitsuba's envmap scales by a number, not a colour")
+    rx, ry, rz = floats(el.get("rotate", "0 0 0"))
+    to_world = T().rotate([0, 0, 1], rz) @ T().rotate([0, 1, 0], ry) @ T().rotate([1, 0, 0], rx)
+    return {"type": "envmap", "filename": os.path.join(scene_dir, el.get("map")),
+            "scale": rgb[0], "to_world": to_world}
+
+
 # The material parameters a <material> or a shape may set.
 MATERIAL_PARAMS = ("color", "roughness", "ior", "emission", "shininess", "specular", "reflectivity")
 # raylab's built-in materials.
@@ -286,8 +304,7 @@ def load(path, workdir):
                     raise Untranslated(f"base {base!r} is neither built in nor defined")
                 continue
             if el.tag == "sky":
-                scene["sky"] = {"type": "constant",
-                                "radiance": {"type": "rgb", "value": color(required(el, "color"))}}
+                scene["sky"] = sky_of(el, os.path.dirname(os.path.abspath(path)))
                 lit = True
                 continue
             if el.tag == "light":

@@ -22,10 +22,67 @@ fn samples() -> Option<PathBuf> {
     }
 }
 
-/// Pixels that differ from the top-left (background) pixel.
+/// Pixels that differ clearly from the leftmost pixel of their row: the
+/// background there (a model opened on its own sits in the middle, before
+/// the studio's gradient, which changes from row to row).
 fn covered(image: &image::RgbImage) -> usize {
-    let background = *image.get_pixel(0, 0);
-    image.pixels().filter(|p| **p != background).count()
+    model_pixels(image).len()
+}
+
+/// The pixels [`covered`] counts.
+fn model_pixels(image: &image::RgbImage) -> Vec<image::Rgb<u8>> {
+    image
+        .enumerate_pixels()
+        .filter(|(_, y, p)| {
+            let background = image.get_pixel(0, *y);
+            p.0.iter()
+                .zip(background.0)
+                .any(|(&a, b)| a.abs_diff(b) > 8)
+        })
+        .map(|(_, _, p)| *p)
+        .collect()
+}
+
+#[test]
+fn a_model_without_lights_is_lit_by_the_studio_in_both_integrators() {
+    let Some(dir) = samples() else { return };
+    let out = tempfile::tempdir().expect("tempdir");
+    for integrator in ["whitted", "path"] {
+        let png = out.path().join(format!("duck-{integrator}.png"));
+        render(
+            &dir.join("Duck.gltf"),
+            &png,
+            &[
+                "--width",
+                "96",
+                "--height",
+                "72",
+                "--spp",
+                "16",
+                "--integrator",
+                integrator,
+            ],
+        );
+        let image = read_png(&png);
+        let model = model_pixels(&image);
+        assert!(
+            model.len() > 96 * 72 / 25,
+            "{integrator}: the duck covers {}",
+            model.len()
+        );
+        // Mostly lit, not mostly black: the mean sRGB level of its pixels.
+        let mean = model
+            .iter()
+            .map(|p| f64::from(p.0[0]) + f64::from(p.0[1]) + f64::from(p.0[2]))
+            .sum::<f64>()
+            / (3.0 * model.len() as f64);
+        let dark = model.iter().filter(|p| p.0.iter().all(|&c| c < 20)).count();
+        assert!(
+            mean > 80.0 && dark * 10 < model.len(),
+            "{integrator}: the duck's mean level {mean:.0}, {dark} of {} pixels near black",
+            model.len()
+        );
+    }
 }
 
 #[test]

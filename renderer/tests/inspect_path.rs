@@ -35,6 +35,23 @@ fn room() -> World {
     World::from_scene(&scene).expect("the room is valid")
 }
 
+/// The room under an environment map (the reference scenes' sky and sun,
+/// dimmed and turned) instead of a constant sky: the path tracer samples it
+/// as a light.
+fn room_under_map() -> World {
+    let map = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../assets/reference/sky_map.exr"
+    );
+    let xml = ROOM.replace(
+        r#"<sky color="0.2 0.3 0.5"/>"#,
+        &format!(r#"<sky map="{map}" color="0.2 0.2 0.2" rotate="0 60 0"/>"#),
+    );
+    assert_ne!(xml, ROOM);
+    let scene = scene::read_str(&xml, "room.xml").expect("the room parses");
+    World::from_scene(&scene).expect("the room is valid")
+}
+
 /// A reference scene shipped with raylab, at `width` × `height`.
 fn reference(name: &str, width: u32, height: u32) -> World {
     common::asset_world("reference", name, width, height)
@@ -62,6 +79,7 @@ fn bits(v: Vec3) -> [u32; 3] {
 fn every_pixel_of_a_path_traced_pass_is_its_inspected_sample_bit_for_bit() {
     let worlds = [
         ("room", room()),
+        ("room under a map", room_under_map()),
         ("rough.xml", reference("rough.xml", 20, 20)),
     ];
     for (name, world) in &worlds {
@@ -103,6 +121,7 @@ struct Seen {
     refractions: usize,
     light_shadows: [usize; 2],
     emitter_shadows: [usize; 2],
+    sky_shadows: [usize; 2],
     weighted_emission: usize,
     roulette: [usize; 2],
     depth_limits: usize,
@@ -148,6 +167,11 @@ fn check_path_inspection(inspection: &Inspection, what: &str, seen: &mut Seen) {
                         assert!(e.pdf > 0.0, "{what}: {e:?}");
                         assert!((0.0..=1.0).contains(&e.mis_weight), "{what}: {e:?}");
                     }
+                    ShadowTarget::Environment(e) => {
+                        seen.sky_shadows[blocked] += 1;
+                        assert!(e.pdf > 0.0, "{what}: {e:?}");
+                        assert!((0.0..=1.0).contains(&e.mis_weight), "{what}: {e:?}");
+                    }
                 }
                 if test.blocked {
                     assert_eq!(ray.contribution, Vec3::ZERO, "{what}");
@@ -189,33 +213,35 @@ fn check_path_inspection(inspection: &Inspection, what: &str, seen: &mut Seen) {
 
 #[test]
 fn path_traced_contributions_add_up_and_weights_follow_the_samples() {
-    let world = room();
     let mut seen = Seen::default();
-    for sampling in [Sampling::Independent, Sampling::Sobol] {
-        for max_depth in [1, 2, 4, 12] {
-            let options = RenderOptions {
-                max_depth,
-                ..path_options(sampling, Method::Robust)
-            };
-            for j in 0..world.camera.h {
-                for i in 0..world.camera.w {
-                    for k in [None, Some(0), Some(3), Some(40)] {
-                        let inspection = inspect(&world, &options, i, j, k);
-                        let what = format!(
-                            "{sampling:?} max_depth {max_depth} pixel ({i}, {j}) sample {k:?}"
-                        );
-                        check_path_inspection(&inspection, &what, &mut seen);
+    for world in [room(), room_under_map()] {
+        for sampling in [Sampling::Independent, Sampling::Sobol] {
+            for max_depth in [1, 2, 4, 12] {
+                let options = RenderOptions {
+                    max_depth,
+                    ..path_options(sampling, Method::Robust)
+                };
+                for j in 0..world.camera.h {
+                    for i in 0..world.camera.w {
+                        for k in [None, Some(0), Some(3), Some(40)] {
+                            let inspection = inspect(&world, &options, i, j, k);
+                            let what = format!(
+                                "{sampling:?} max_depth {max_depth} pixel ({i}, {j}) sample {k:?}"
+                            );
+                            check_path_inspection(&inspection, &what, &mut seen);
+                        }
                     }
                 }
             }
         }
     }
-    // The room must exercise every kind of event, or the test proves little.
+    // The rooms must exercise every kind of event, or the test proves little.
     assert!(
         seen.lobes.iter().all(|&n| n > 0)
             && seen.refractions > 0
             && seen.light_shadows.iter().all(|&n| n > 0)
             && seen.emitter_shadows.iter().all(|&n| n > 0)
+            && seen.sky_shadows.iter().all(|&n| n > 0)
             && seen.weighted_emission > 0
             && seen.roulette.iter().all(|&n| n > 0)
             && seen.depth_limits > 0
@@ -246,7 +272,10 @@ fn a_directly_seen_emitter_counts_in_full_and_the_sky_fills_misses() {
                     bulb_seen = true;
                 }
                 Some(_) => {}
-                None => assert_eq!(primary.contribution, world.sky),
+                None => assert_eq!(
+                    primary.contribution,
+                    world.environment.radiance(primary.direction)
+                ),
             }
         }
     }

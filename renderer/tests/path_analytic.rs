@@ -51,7 +51,7 @@ fn white_furnace_a_white_sphere_in_a_uniform_sky_is_invisible() {
     let sky = 0.75;
     let scene = Scene {
         camera: camera(Vec3::new(0.0, 0.0, 3.0), Vec3::ZERO, 24),
-        sky: Some(Vec3::splat(sky)),
+        sky: Some(scene::Sky::constant(Vec3::splat(sky))),
         objects: vec![matte(
             Shape::Sphere {
                 center: Some(Vec3::ZERO),
@@ -81,7 +81,7 @@ fn a_grey_sphere_in_a_uniform_sky_reflects_albedo_times_the_sky() {
             theta_deg: 5.0,
             ..camera(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, 8)
         },
-        sky: Some(Vec3::splat(sky)),
+        sky: Some(scene::Sky::constant(Vec3::splat(sky))),
         objects: vec![matte(
             Shape::Sphere {
                 center: Some(Vec3::ZERO),

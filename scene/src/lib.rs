@@ -20,6 +20,7 @@ mod numbers;
 mod read;
 mod resolve;
 mod resolved;
+mod sky_map;
 mod suggest;
 mod write;
 
@@ -35,4 +36,5 @@ pub use numbers::MAX_MAGNITUDE;
 pub use read::{read_file, read_str};
 pub use resolve::resolve;
 pub use resolved::*;
+pub use sky_map::{MAX_TEXELS as MAX_SKY_MAP_TEXELS, load_sky_map};
 pub use write::write_string;

@@ -3,7 +3,9 @@
 
 use crate::SceneError;
 use crate::gltf::load_model;
-use crate::model::{Camera, MeshSource, Object, Scene, Shape};
+use crate::model::{
+    Camera, Light, LightKind, MeshSource, Object, STUDIO_KEY_DIRECTION, Scene, Shape, Sky,
+};
 use glam::Vec3;
 use std::path::Path;
 use std::sync::Arc;
@@ -25,11 +27,16 @@ pub fn read_any(path: &Path) -> Result<Scene, SceneError> {
     }
 }
 
+/// The irradiance (W/m²) of the studio's key light.
+const STUDIO_KEY_IRRADIANCE: f32 = 1.5;
+
 /// The scene for a model file: one `<mesh>` at the origin (unscaled,
 /// unrotated), viewed through the file's first perspective camera (P0, t, u,
 /// θ = yfov / 2; the image keeps raylab's default height and takes the
 /// file's aspect ratio) and lit by the file's lights. A file without a
-/// camera is framed, and one without lights gets raylab's default lighting.
+/// camera is framed, and one that brings no light (no punctual light, no
+/// emissive material) is lit by raylab's studio environment
+/// ([`Sky::studio`]) and a key light from its softbox.
 pub fn read_model_scene(path: &Path) -> Result<Scene, SceneError> {
     let model = load_model(path).map_err(|e| SceneError {
         file: path.display().to_string(),
@@ -53,11 +60,32 @@ pub fn read_model_scene(path: &Path) -> Result<Scene, SceneError> {
         |n| n.to_string_lossy().into_owned(),
     );
     let name = path.file_stem().map(|n| n.to_string_lossy().into_owned());
-    let lights = model.lights.clone();
+    // A model that brings no light of its own is shown as glTF viewers show
+    // it: in a studio environment, with a key light from its softbox (which
+    // gives Whitted, whose sky is only a background and an ambient term,
+    // shading and shadows).
+    let unlit = model.lights.is_empty()
+        && model
+            .materials
+            .iter()
+            .all(|m| m.material.emission == Vec3::ZERO);
+    let (lights, sky) = if unlit {
+        let key = Light {
+            name: Some("studio key light".into()),
+            kind: LightKind::Directional {
+                direction: -STUDIO_KEY_DIRECTION,
+            },
+            color: Vec3::ONE,
+            intensity: STUDIO_KEY_IRRADIANCE,
+        };
+        (vec![key], Some(Sky::studio()))
+    } else {
+        (model.lights.clone(), None)
+    };
     Ok(Scene {
         camera,
         lights,
-        sky: None,
+        sky,
         materials: Vec::new(),
         objects: vec![Object {
             name,

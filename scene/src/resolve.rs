@@ -3,7 +3,7 @@
 use crate::InvalidScene;
 use crate::layout::{self, Aabb};
 use crate::materials;
-use crate::model::{Light, LightKind, Scene, Shape};
+use crate::model::{Light, LightKind, Scene, Shape, Sky};
 use crate::resolved::{Geometry, ResolvedCamera, ResolvedObject, ResolvedScene};
 use glam::Vec3;
 
@@ -69,7 +69,7 @@ pub fn resolve(scene: &Scene) -> Result<ResolvedScene, InvalidScene> {
     Ok(ResolvedScene {
         camera,
         lights,
-        sky: scene.sky.unwrap_or(Vec3::ZERO),
+        sky: scene.sky.clone().unwrap_or_else(Sky::black),
         objects,
     })
 }
@@ -217,18 +217,18 @@ mod tests {
     fn a_sky_switches_default_lights_off() {
         let sky = Vec3::new(0.5, 0.7, 1.0);
         let r = resolve(&Scene {
-            sky: Some(sky),
+            sky: Some(Sky::constant(sky)),
             objects: vec![object("sphere")],
             ..Default::default()
         })
         .expect("resolves");
         assert!(r.lights.is_empty());
-        assert_eq!(r.sky, sky);
+        assert_eq!(r.sky, Sky::constant(sky));
     }
 
     #[test]
     fn no_sky_resolves_to_a_black_background() {
         let r = resolve(&Scene::default()).expect("resolves");
-        assert_eq!(r.sky, Vec3::ZERO);
+        assert_eq!(r.sky, Sky::black());
     }
 }

@@ -1,7 +1,7 @@
 //! The scene with every default filled in: what a renderer consumes.
 
 use crate::model::model_file::ModelFile;
-use crate::model::{Light, Material};
+use crate::model::{Light, Material, Sky};
 use glam::{Mat4, Vec3};
 use std::sync::Arc;
 
@@ -12,8 +12,9 @@ pub struct ResolvedScene {
     pub camera: ResolvedCamera,
     /// The lights to shade with (the scene's own, or the default key + ambient).
     pub lights: Vec<Light>,
-    /// Radiance of the constant environment; zero = black background.
-    pub sky: Vec3,
+    /// What rays that escape see: a colour or an environment map; black
+    /// when the scene has no sky.
+    pub sky: Sky,
     /// The objects in document order; an object's index is its object id.
     pub objects: Vec<ResolvedObject>,
 }

@@ -21,10 +21,16 @@ pub fn write_string(scene: &Scene) -> String {
     for l in &scene.lights {
         light(&mut out, l);
     }
-    if let Some(color) = scene.sky {
-        Tag::new(&mut out, "sky")
-            .attr("color", format_color(color))
-            .close();
+    if let Some(sky) = &scene.sky {
+        let mut tag = Tag::new(&mut out, "sky");
+        if sky.map.is_none() || sky.color != Vec3::ONE {
+            tag.attr("color", format_color(sky.color));
+        }
+        if let Some(map) = &sky.map {
+            tag.text("map", Some(&map.src));
+        }
+        tag.vec("rotate", Some(sky.rotate), Some(Vec3::ZERO));
+        tag.close();
     }
     if !scene.view.is_identity() {
         let mut tag = Tag::new(&mut out, "view");

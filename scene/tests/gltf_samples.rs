@@ -414,3 +414,24 @@ fn orientation_test_places_13_meshes_through_trs_and_matrix_nodes() {
     );
     assert!(model.warnings.is_empty(), "{:?}", model.warnings);
 }
+
+/// A model opened on its own that brings no light is lit by the studio
+/// environment and its key light; the scene saves with the built-in map's name.
+#[test]
+fn a_model_without_lights_opens_in_the_studio() {
+    let Some(dir) = samples() else { return };
+    let scene = scene::read_any(&dir.join("Box.gltf")).expect("Box.gltf opens");
+    let sky = scene.sky.clone().expect("the studio sky");
+    assert_eq!(
+        sky.map.as_ref().map(|m| m.src.as_str()),
+        Some(scene::STUDIO_MAP)
+    );
+    assert_eq!(scene.lights.len(), 1);
+    match scene.lights[0].kind {
+        scene::LightKind::Directional { direction } => {
+            assert!((direction + scene::STUDIO_KEY_DIRECTION).length() < 1e-6);
+        }
+        ref other => panic!("a directional key light, got {other:?}"),
+    }
+    assert!(scene::write_string(&scene).contains(r#"<sky map="raylab:studio"/>"#));
+}

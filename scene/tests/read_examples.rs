@@ -277,14 +277,14 @@ fn a_sky_loads_as_linear_radiance_in_any_colour_syntax() {
     let sky = |text: &str| read(text).sky;
     assert_eq!(
         sky(r#"<scene><sky color="0.5, 0.7 1"/></scene>"#),
-        Some(Vec3::new(0.5, 0.7, 1.0))
+        Some(scene::Sky::constant(Vec3::new(0.5, 0.7, 1.0)))
     );
     assert_eq!(
         sky(r##"<scene><sky color="#87CEEB"></sky></scene>"##),
-        Some(hex(0x87, 0xce, 0xeb))
+        Some(scene::Sky::constant(hex(0x87, 0xce, 0xeb)))
     );
     // Unclosed, as the lecture writes elements; the sphere after it still loads.
     let scene = read(r#"<scene> <sky color="skyblue"> <sphere> </scene>"#);
-    assert_eq!(scene.sky, Some(hex(0x87, 0xce, 0xeb)));
+    assert_eq!(scene.sky, Some(scene::Sky::constant(hex(0x87, 0xce, 0xeb))));
     assert_eq!(scene.objects.len(), 1);
 }

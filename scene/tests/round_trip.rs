@@ -5,7 +5,7 @@ use glam::Vec3;
 use proptest::prelude::*;
 use scene::color::srgb_to_linear;
 use scene::{
-    BaseMaterial, Camera, Light, LightKind, MaterialDef, MaterialParams, Object, Scene, Shape,
+    BaseMaterial, Camera, Light, LightKind, MaterialDef, MaterialParams, Object, Scene, Shape, Sky,
     Tonemap, View, read_str, write_string,
 };
 
@@ -218,7 +218,11 @@ fn scene() -> impl Strategy<Value = Scene> {
         0..8,
     );
     let lights = prop::collection::vec(light(), 0..4);
-    let sky = prop::option::of(color());
+    let sky = prop::option::of((color(), rotate()).prop_map(|(color, rotate)| Sky {
+        color,
+        map: None,
+        rotate,
+    }));
     let view = (-20.0f32..=20.0, prop::sample::select(Tonemap::ALL.to_vec()))
         .prop_map(|(exposure, tonemap)| View { exposure, tonemap });
     (camera(), lights, sky, materials, objects, view).prop_map(
@@ -317,7 +321,7 @@ fn sky_round_trips() {
         Vec3::new(srgb_to_linear(0x87 as f32 / 255.0), 0.1, 1e-30),
     ] {
         let s = Scene {
-            sky: Some(color),
+            sky: Some(Sky::constant(color)),
             ..Scene::default()
         };
         let text = write_string(&s);
@@ -325,10 +329,85 @@ fn sky_round_trips() {
         assert_eq!(read_str(&text, "sky.xml"), Ok(s), "{text}");
     }
     let text = write_string(&Scene {
-        sky: Some(Vec3::new(0.5, 0.7, 1.0)),
+        sky: Some(Sky::constant(Vec3::new(0.5, 0.7, 1.0))),
         ..Scene::default()
     });
     assert_eq!(text, "<scene>\n  <sky color=\"0.5 0.7 1\"/>\n</scene>\n");
+}
+
+/// A sky with a map keeps the file's name as written (relative to the
+/// scene), its tint and rotation; white is not written with a map.
+#[test]
+fn sky_map_round_trips() {
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let maps = dir.path().join("maps");
+    std::fs::create_dir(&maps).expect("a folder");
+    exr::prelude::write_rgb_file(maps.join("sky & sun.exr"), 4, 2, |x, y| {
+        (x as f32, y as f32, 0.5)
+    })
+    .expect("written");
+    let file = dir.path().join("scene.xml");
+    let file = file.to_str().expect("a UTF-8 path");
+    let text = r#"<scene><sky map="maps/sky &amp; sun.exr" rotate="0 90 0"/></scene>"#;
+    let scene = read_str(text, file).expect("a valid map");
+    let sky = scene.sky.clone().expect("a sky");
+    assert_eq!(
+        (sky.color, sky.rotate),
+        (Vec3::ONE, Vec3::new(0.0, 90.0, 0.0))
+    );
+    let map = sky.map.expect("a map");
+    assert_eq!(map.src, "maps/sky & sun.exr");
+    assert_eq!((map.image.width, map.image.height), (4, 2));
+    assert_eq!(map.image.texel(3, 1), [3.0, 1.0, 0.5]);
+    let written = write_string(&scene);
+    assert_eq!(
+        written,
+        "<scene>\n  <sky map=\"maps/sky &amp; sun.exr\" rotate=\"0 90 0\"/>\n</scene>\n"
+    );
+    assert_eq!(read_str(&written, file), Ok(scene.clone()));
+    let mut tinted = scene;
+    tinted.sky.as_mut().expect("a sky").color = Vec3::new(0.5, 0.25, 1.0);
+    let written = write_string(&tinted);
+    assert!(
+        written.contains(r#"<sky color="0.5 0.25 1" map="#),
+        "{written}"
+    );
+    assert_eq!(read_str(&written, file), Ok(tinted));
+}
+
+/// raylab's studio environment is named, not a file: it reads anywhere and
+/// writes back as it was written.
+#[test]
+fn the_studio_sky_round_trips_without_a_file() {
+    let text = "<scene>\n  <sky map=\"raylab:studio\" rotate=\"0 45 0\"/>\n</scene>\n";
+    let scene = read_str(text, "/nowhere/scene.xml").expect("the built-in map");
+    let sky = scene.sky.clone().expect("a sky");
+    assert_eq!(
+        sky.map.as_ref().map(|m| m.src.as_str()),
+        Some("raylab:studio")
+    );
+    assert_eq!(write_string(&scene), text);
+}
+
+/// A bad map is an error at the `map` attribute that names the file and why.
+#[test]
+fn a_bad_sky_map_is_an_error_at_its_attribute() {
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let file = dir.path().join("scene.xml");
+    let file = file.to_str().expect("a UTF-8 path");
+    let error = |text: &str| read_str(text, file).expect_err(text).to_string();
+    let e = error("<scene>\n  <sky map=\"missing.hdr\"/>\n</scene>");
+    assert!(
+        e.contains(":2:13") && e.contains("\"missing.hdr\"") && e.contains("cannot read"),
+        "{e}"
+    );
+    std::fs::write(dir.path().join("flat.png"), b"\x89PNG\r\n\x1a\n").expect("written");
+    let e = error(r#"<scene><sky map="flat.png"/></scene>"#);
+    assert!(e.contains("high dynamic range"), "{e}");
+    let e = error(r#"<scene><sky map="https://example.com/sky.hdr"/></scene>"#);
+    assert!(e.contains("network"), "{e}");
+    let e = error(r#"<scene><sky rotate="0 1 0"/></scene>"#);
+    assert!(e.contains("a color or a map"), "{e}");
 }
 
 /// `<view>` keeps the exposure and the curve; the default view is not
@@ -373,6 +452,6 @@ fn the_view_is_not_part_of_what_is_rendered() {
     b.view.exposure = 2.0;
     b.view.tonemap = Tonemap::Neutral;
     assert!(a.renders_like(&b) && a != b);
-    b.sky = Some(Vec3::ONE);
+    b.sky = Some(Sky::constant(Vec3::ONE));
     assert!(!a.renders_like(&b));
 }

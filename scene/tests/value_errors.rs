@@ -258,8 +258,8 @@ fn material_parameters_are_range_checked() {
 }
 
 #[test]
-fn sky_color_is_required_and_validated() {
-    assert_error(&in_scene("  <sky/>"), 2, 3, "<sky> needs a color attribute");
+fn sky_needs_a_color_or_a_map_and_its_color_is_validated() {
+    assert_error(&in_scene("  <sky/>"), 2, 3, "<sky> needs a color or a map");
     assert_error(
         &in_scene(r#"  <sky color="-0.1 0 0"/>"#),
         2,

@@ -7,7 +7,7 @@ use super::commands::{self, Command};
 use super::crash_recovery::CrashRecovery;
 use super::debug_view::{DebugRenderer, DebugView, Inputs};
 use super::doc::document::{Document, RenderSettings};
-use super::doc::edits::{self, Selection};
+use super::doc::edits::{self, Action, Selection};
 use super::files::dialogs::DialogKind;
 use super::files::{FileWorkflow, Files, Outcome, Pending};
 use super::inspector::Inspector;
@@ -187,6 +187,9 @@ impl RaylabApp {
                 self.camera_drag.end();
                 self.doc.history.redo(&mut self.doc.state);
             }
+            Command::Edit(Action::ChooseSkyMap) => {
+                self.files().start_dialog(ctx, DialogKind::SkyMap);
+            }
             Command::Edit(action) => {
                 let resolved = self.session.prepared.as_ref().map(|p| &p.resolved);
                 self.selection =
@@ -231,6 +234,54 @@ impl RaylabApp {
             Outcome::Done => {}
             Outcome::Replace(doc) => self.replace_document(*doc),
             Outcome::LoadReference(path) => self.load_reference(&path),
+            Outcome::LoadSkyMap(path) => self.load_sky_map(&path),
+        }
+    }
+
+    /// Makes the map in `path` the sky's (a sky added if there is none,
+    /// keeping its tint and rotation), named relative to the scene's folder
+    /// when it lies inside it; a bad file is a message and changes nothing.
+    pub fn load_sky_map(&mut self, path: &Path) {
+        match scene::load_sky_map(path) {
+            Ok(image) => {
+                let src = self
+                    .doc
+                    .path
+                    .as_deref()
+                    .and_then(Path::parent)
+                    .and_then(|folder| path.strip_prefix(folder).ok())
+                    .unwrap_or(path)
+                    .to_string_lossy()
+                    .into_owned();
+                let map = scene::SkyMap {
+                    src,
+                    image: std::sync::Arc::new(image),
+                };
+                let scene = &mut self.doc.state.scene;
+                match &mut scene.sky {
+                    Some(sky) => {
+                        // A constant colour's radiance is not a sensible tint.
+                        if sky.map.is_none() {
+                            sky.color = glam::Vec3::ONE;
+                        }
+                        sky.map = Some(map);
+                    }
+                    None => {
+                        scene.sky = Some(scene::Sky {
+                            color: glam::Vec3::ONE,
+                            map: Some(map),
+                            rotate: glam::Vec3::ZERO,
+                        });
+                    }
+                }
+                self.selection = Selection::Sky;
+            }
+            Err(error) => {
+                self.files.message = Some(format!(
+                    "Cannot use {} as the environment map: {error}",
+                    path.display()
+                ));
+            }
         }
     }
 

@@ -90,6 +90,26 @@ impl AliasTable {
             bin.alias as usize
         }
     }
+
+    /// The index drawn with `u`, as [`AliasTable::sample`] draws it, and a
+    /// fresh uniform number in [0, 1) made of what is left of `u` (where in
+    /// its bin's kept or aliased part it fell), so one number also places
+    /// a point within the drawn entry.
+    #[inline]
+    pub fn sample_with_remainder(&self, u: f32) -> (usize, f32) {
+        const BELOW_ONE: f32 = 1.0 - f32::EPSILON / 2.0;
+        let n = self.bins.len();
+        let x = u * n as f32;
+        let i = (x as usize).min(n - 1);
+        let bin = self.bins[i];
+        let f = x - i as f32;
+        if f < bin.keep {
+            (i, (f / bin.keep).min(BELOW_ONE))
+        } else {
+            let rest = ((f - bin.keep) / (1.0 - bin.keep)).clamp(0.0, BELOW_ONE);
+            (bin.alias as usize, rest)
+        }
+    }
 }
 
 #[cfg(test)]
@@ -106,6 +126,30 @@ mod tests {
             p[bin.alias as usize] += (1.0 - f64::from(bin.keep)) / n;
         }
         p
+    }
+
+    /// The remainder places points evenly: drawing with `u` on a fine grid,
+    /// each index's remainders cover [0, 1) uniformly.
+    #[test]
+    fn remainders_are_uniform_within_each_drawn_index() {
+        let table = AliasTable::new(&[1.0, 3.0, 0.5, 2.5]).expect("positive weights");
+        let n = 100_000;
+        let mut sums = [(0.0f64, 0usize); 4];
+        for k in 0..n {
+            let u = (k as f32 + 0.5) / n as f32;
+            let (i, rest) = table.sample_with_remainder(u);
+            assert_eq!(i, table.sample(u));
+            assert!((0.0..1.0).contains(&rest), "{rest}");
+            sums[i].0 += f64::from(rest);
+            sums[i].1 += 1;
+        }
+        for (i, (sum, count)) in sums.into_iter().enumerate() {
+            let mean = sum / count as f64;
+            assert!(
+                (mean - 0.5).abs() < 0.01,
+                "index {i}: mean remainder {mean}"
+            );
+        }
     }
 
     proptest! {

@@ -2,7 +2,7 @@
 //! blocked it, its weight and the colour it adds to the sample.
 
 use crate::integrator::RayKind;
-use crate::integrator::recorder::EmitterLightSample;
+use crate::integrator::recorder::{EmitterLightSample, EnvironmentLightSample};
 use crate::shading::bsdf::Lobe;
 use crate::shapes::SphereQuadratic;
 use glam::Vec3;
@@ -157,6 +157,8 @@ pub enum ShadowTarget {
     Light(usize),
     /// A point the path tracer drew on an emitter.
     Emitter(EmitterLightSample),
+    /// A direction the path tracer drew toward the environment (`<sky>`).
+    Environment(EnvironmentLightSample),
 }
 
 /// The light test of a shadow ray.

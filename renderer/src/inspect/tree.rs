@@ -6,7 +6,7 @@ use super::node::{
     ShadowTest, SurfaceHit,
 };
 use crate::geometry::ray::Ray;
-use crate::integrator::recorder::EmitterLightSample;
+use crate::integrator::recorder::{EmitterLightSample, EnvironmentLightSample};
 use crate::integrator::{Note, RayKind, Recorder};
 use crate::shading::bsdf::BsdfSample;
 use crate::shapes::{Method, Shape, Surface};
@@ -192,6 +192,16 @@ impl Recorder for TreeRecorder<'_> {
         lit: Option<Vec3>,
     ) {
         self.push_shadow(at, ShadowTarget::Emitter(sample), ray, 1.0, lit);
+    }
+
+    fn environment_shadow(
+        &mut self,
+        at: usize,
+        sample: EnvironmentLightSample,
+        ray: &Ray,
+        lit: Option<Vec3>,
+    ) {
+        self.push_shadow(at, ShadowTarget::Environment(sample), ray, 1.0, lit);
     }
 }
 

@@ -9,7 +9,7 @@
 //! and [`super::whitted`].
 
 use super::RenderOptions;
-use super::recorder::{EmitterLightSample, Recorder};
+use super::recorder::{EmitterLightSample, EnvironmentLightSample, Recorder};
 use super::sampler::Sampler;
 use crate::geometry::ray::Ray;
 use crate::world::{Hit, World};
@@ -83,6 +83,8 @@ pub(crate) enum ShadowTarget {
     Light(usize),
     /// A point the path tracer drew on an emitter.
     Emitter(EmitterLightSample),
+    /// A direction the path tracer drew toward the environment.
+    Environment(EnvironmentLightSample),
 }
 
 /// Whether a lane has another ray to trace after [`Lane::shade`].

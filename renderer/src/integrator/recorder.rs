@@ -62,6 +62,16 @@ pub struct EmitterLightSample {
     pub mis_weight: f32,
 }
 
+/// A direction the path tracer drew toward the environment (`<sky>`), as
+/// its shadow ray tests it.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct EnvironmentLightSample {
+    /// The density in solid angle of the drawn direction.
+    pub pdf: f32,
+    /// Its multiple-importance weight against BSDF sampling (power heuristic).
+    pub mis_weight: f32,
+}
+
 /// An observer of an integrator. Every call is made beside the radiance
 /// computation, never inside it, so a recorder cannot change the result;
 /// nodes are the recorder's handles to the rays it was told about.
@@ -88,7 +98,10 @@ pub trait Recorder {
         factor: Vec3,
     ) -> Self::Node;
 
-    /// `node` left the scene and sees `radiance` (the ambient background).
+    /// `node` left the scene and sees `radiance`: the background (Whitted),
+    /// or the sky times its multiple-importance weight against the sky's
+    /// light sample (the path tracer; 1 for the camera ray and after a
+    /// delta lobe).
     fn miss(&mut self, node: Self::Node, radiance: Vec3);
 
     /// `node` hit `hit`, at `surface`, on the front side when `front`.
@@ -134,6 +147,17 @@ pub trait Recorder {
         ray: &Ray,
         lit: Option<Vec3>,
     );
+
+    /// The path tracer: a shadow ray toward the direction `sample` drew
+    /// toward the environment left `node`'s hit point; `lit` as in
+    /// [`Recorder::emitter_shadow`].
+    fn environment_shadow(
+        &mut self,
+        node: Self::Node,
+        sample: EnvironmentLightSample,
+        ray: &Ray,
+        lit: Option<Vec3>,
+    );
 }
 
 /// The recorder of the image: keeps nothing, costs nothing.
@@ -172,4 +196,7 @@ impl Recorder for NoRecorder {
 
     #[inline(always)]
     fn emitter_shadow(&mut self, _: (), _: EmitterLightSample, _: &Ray, _: Option<Vec3>) {}
+
+    #[inline(always)]
+    fn environment_shadow(&mut self, _: (), _: EnvironmentLightSample, _: &Ray, _: Option<Vec3>) {}
 }

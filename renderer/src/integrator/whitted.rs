@@ -198,9 +198,11 @@ pub(crate) fn whitted_at_hit<S: Secondary>(
     )
 }
 
-/// The radiance of a ray that hits nothing: the ambient light and the sky.
-pub(crate) fn background(world: &World) -> Vec3 {
-    world.ambient + world.sky
+/// The radiance of a ray in direction `dir` that hits nothing: the ambient
+/// light and the sky in that direction.
+#[inline]
+pub(crate) fn background(world: &World, dir: Vec3) -> Vec3 {
+    world.ambient + world.environment.radiance(dir)
 }
 
 /// The radiance along `ray`, traced at `level` of its tree.
@@ -232,7 +234,7 @@ fn shade<R: Recorder, S: Secondary>(
     secondary: &mut S,
 ) -> Vec3 {
     let Some(hit) = hit else {
-        let background = background(world);
+        let background = background(world, ray.dir);
         rec.miss(node, background);
         return background;
     };
@@ -268,7 +270,7 @@ fn shade_hit<R: Recorder, S: Secondary>(
     let bounce = |rec: &mut R, secondary: &mut S, kind: RayKind, dir: Vec3, factor: Vec3| {
         let child = level.child(factor);
         if child.weight.max_element() < options.min_weight {
-            let seen = background(world);
+            let seen = background(world, dir);
             rec.note(node, Note::Negligible);
             // What it adds to the sample, told to the recorder as `node`'s own.
             rec.local(node, factor * seen);
@@ -289,7 +291,7 @@ fn shade_hit<R: Recorder, S: Secondary>(
         BaseMaterial::Matte | BaseMaterial::Plastic | BaseMaterial::Marble => {
             let albedo = at.albedo();
             let diffuse_weight = 1.0 - material.reflectivity;
-            rec.local(node, diffuse_weight * (albedo * world.ambient));
+            rec.local(node, diffuse_weight * (albedo * world.shading_ambient()));
             let at = shading(albedo);
             radiance +=
                 diffuse_weight * direct(world, options, &at, diffuse_weight, rec, node, secondary);
@@ -393,7 +395,7 @@ fn direct<R: Recorder, S: Secondary>(
     secondary: &mut S,
 ) -> Vec3 {
     let (material, albedo, n) = (at.hit.material, at.albedo, at.hit.shading_normal);
-    let ambient = albedo * world.ambient;
+    let ambient = albedo * world.shading_ambient();
     ambient
         + lights(
             world,
@@ -472,7 +474,7 @@ fn rough_conductor_direct<R: Recorder, S: Secondary>(
     let n = at.hit.shading_normal;
     let frame = ShadingFrame::new(n);
     let wo = frame.to_local(at.to_eye);
-    let ambient = roughness * (conductor.f0 * world.ambient);
+    let ambient = roughness * (conductor.f0 * world.shading_ambient());
     rec.local(node, ambient);
     ambient
         + lights(

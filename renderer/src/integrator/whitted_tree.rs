@@ -229,7 +229,7 @@ impl<'w> Trees<'w> {
                     };
                     whitted_at_hit(world, &node.ray, hit, at, options, node.level, &mut replay)
                 }
-                _ => background(world),
+                _ => background(world, node.ray.dir),
             };
         }
         let mut out = [Vec3::ZERO; WIDTH];

@@ -4,6 +4,7 @@
 
 use super::blas_cache;
 use super::emitters::Emitters;
+use super::environment::Environment;
 use super::light::Light;
 use super::placed_mesh::PlacedMesh;
 use super::top_level::{BAKED_TRIANGLES, GroupedTriangle, Lone, TopLevels};
@@ -140,10 +141,12 @@ impl World {
             })
             .collect();
         let emitters = Emitters::new(&emissive_shapes, &meshes);
+        let environment = Environment::new(&resolved.sky);
         Ok(World {
             camera,
             emitters,
-            sky: resolved.sky,
+            sky_ambient: environment.mean(),
+            environment,
             objects,
             materials: resolved.objects.iter().map(|o| o.material).collect(),
             bsdfs: resolved

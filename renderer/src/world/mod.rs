@@ -8,6 +8,7 @@ mod batch;
 pub mod blas_cache;
 mod build;
 pub mod emitters;
+pub mod environment;
 mod hit;
 mod hit_surface;
 mod intersect;
@@ -17,6 +18,7 @@ pub mod placed_mesh;
 mod top_level;
 
 pub use batch::BATCHED_INSTANCES;
+pub use environment::{Environment, EnvironmentSample};
 pub use hit::{Hit, TriangleRef};
 pub use hit_surface::HitSurface;
 pub(crate) use top_level::GroupedTriangle;
@@ -95,8 +97,11 @@ pub struct World {
     /// Total ambient radiance: lights every surface unshadowed, and is what
     /// rays escaping the scene see (Whitted only; the path tracer has no ambient term).
     pub ambient: Vec3,
-    /// Radiance of the constant environment (`<sky>`), zero without one.
-    pub sky: Vec3,
+    /// What escaping rays see (`<sky>`: a colour or a map; black without one).
+    pub environment: Environment,
+    /// The sky's mean radiance: the ambient light Whitted's shading adds
+    /// for it (zero without a sky).
+    pub sky_ambient: Vec3,
     /// Every emissive surface, as area lights.
     pub emitters: Emitters,
     /// The top level over every bounded item, as each method traces it.
@@ -133,6 +138,13 @@ impl Clone for WorldId {
 }
 
 impl World {
+    /// The ambient light Whitted's shading adds: the ambient lights' and
+    /// the sky's mean radiance.
+    #[inline]
+    pub fn shading_ambient(&self) -> Vec3 {
+        self.ambient + self.sky_ambient
+    }
+
     /// A number no other world in this process has, a clone included:
     /// what the renderer keys what it derives from a world by, so that it
     /// is derived once per world.

@@ -6,8 +6,10 @@
 //! omits values equal to it, so a saved scene says no more than it needs.
 
 pub mod model_file;
+mod sky;
 mod view;
 
+pub use sky::{EnvImage, STUDIO_KEY_DIRECTION, STUDIO_MAP, Sky, SkyMap, studio_image};
 pub use view::{Tonemap, View};
 
 use glam::Vec3;
@@ -21,8 +23,9 @@ pub struct Scene {
     pub camera: Camera,
     /// Light sources; none (and nothing emissive, and no sky) means default lighting.
     pub lights: Vec<Light>,
-    /// `<sky color=…>`: constant radiance (linear RGB) arriving from every direction no object blocks; `None` is a black background.
-    pub sky: Option<Vec3>,
+    /// `<sky>`: radiance arriving from every direction no object blocks (a
+    /// colour or an environment map); `None` is a black background.
+    pub sky: Option<Sky>,
     /// `<material name=… base=…>` definitions, in document order.
     pub materials: Vec<MaterialDef>,
     /// The objects to render, in document order.

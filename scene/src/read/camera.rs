@@ -3,9 +3,14 @@
 use super::element::Element;
 use super::values::{self, Range, parallel};
 use crate::SceneError;
-use crate::model::{Camera, Light, LightKind, Tonemap, View, defaults};
+use crate::model::{
+    Camera, Light, LightKind, STUDIO_MAP, Sky, SkyMap, Tonemap, View, defaults, studio_image,
+};
+use crate::sky_map::load_sky_map;
 use crate::suggest::did_you_mean;
 use glam::Vec3;
+use std::path::Path;
+use std::sync::Arc;
 
 /// The attributes `<camera>` takes, in writing order.
 pub(crate) const CAMERA_ATTRS: [&str; 7] = ["eye", "toward", "up", "theta", "d", "width", "height"];
@@ -20,8 +25,8 @@ pub(crate) const LIGHT_ATTRS: [&str; 6] = [
     "name",
 ];
 
-/// The attributes `<sky>` takes.
-pub(crate) const SKY_ATTRS: [&str; 1] = ["color"];
+/// The attributes `<sky>` takes, in writing order.
+pub(crate) const SKY_ATTRS: [&str; 3] = ["color", "map", "rotate"];
 
 /// The attributes of `<view>`.
 pub(crate) const VIEW_ATTRS: [&str; 2] = ["exposure", "tonemap"];
@@ -118,15 +123,49 @@ pub(crate) fn light(el: &Element<'_>) -> Result<Light, SceneError> {
     })
 }
 
-/// A `<sky>`: its `color` (required), the radiance arriving from every
-/// direction that no object blocks.
-pub(crate) fn sky(el: &Element<'_>) -> Result<Vec3, SceneError> {
-    el.color("color")?.ok_or_else(|| {
-        el.error(
-            "<sky> needs a color attribute: the radiance arriving from every direction no object \
-             blocks, such as \"0.5 0.7 1\"",
-        )
-    })
+/// A `<sky>`: a constant `color`, or an environment `map` (a file relative
+/// to `dir`, the scene file's folder, loaded here so that a bad one is an
+/// error at its attribute) tinted by `color` (white by default) and turned
+/// by `rotate`.
+pub(crate) fn sky(el: &Element<'_>, dir: &Path) -> Result<Sky, SceneError> {
+    let color = el.color("color")?;
+    let rotate = el.vector("rotate")?.unwrap_or(Vec3::ZERO);
+    let map = match el.string("map") {
+        None => None,
+        Some(src) => {
+            if let Some((scheme, _)) = src.split_once("://")
+                && scheme != "file"
+            {
+                return Err(el.error_at(
+                    "map",
+                    format!(
+                        "\"{scheme}://…\" is a network address; raylab never fetches files \
+                         from the network (download the map and name the file)"
+                    ),
+                ));
+            }
+            let image =
+                if src == STUDIO_MAP {
+                    studio_image()
+                } else {
+                    Arc::new(load_sky_map(&dir.join(&src)).map_err(|why| {
+                        el.error_at("map", format!("environment map {src:?}: {why}"))
+                    })?)
+                };
+            Some(SkyMap { src, image })
+        }
+    };
+    let color = match (color, &map) {
+        (Some(color), _) => color,
+        (None, Some(_)) => Vec3::ONE,
+        (None, None) => {
+            return Err(el.error(
+                "<sky> needs a color or a map: the radiance arriving from every direction no \
+                 object blocks, such as color=\"0.5 0.7 1\" or map=\"studio.exr\"",
+            ));
+        }
+    };
+    Ok(Sky { color, map, rotate })
 }
 
 /// A `<view>`: unset attributes keep [`View::default`] (as rendered, clamped).

@@ -160,7 +160,7 @@ impl Document<'_> {
             "sky" => {
                 only_one(loc, "sky", &mut self.sky_at, at)?;
                 let el = Element::parse(start, loc, &SKY_ATTRS)?;
-                self.scene.sky = Some(camera::sky(&el)?);
+                self.scene.sky = Some(camera::sky(&el, &self.dir)?);
             }
             "view" => {
                 only_one(loc, "view", &mut self.view_at, at)?;

@@ -124,7 +124,7 @@ impl Document {
     /// the document (still unsaved, still pointing where it did).
     pub fn save_as(&mut self, path: &Path) -> std::io::Result<()> {
         let mut scene = self.state.scene.clone();
-        rebase_mesh_sources(&mut scene, path);
+        rebase_file_sources(&mut scene, path);
         let text = scene::write_string(&scene);
         crate::io::atomic_file::replace_keeping_backup(path, text.as_bytes())?;
         self.state.scene = scene;
@@ -155,10 +155,12 @@ impl Document {
     }
 }
 
-/// Points every `<mesh src>` at its model file from the folder `scene_path`
-/// is in: just the file name when the model lies in that folder, else the
-/// model's absolute path (so a scene saved elsewhere still finds its models).
-pub(super) fn rebase_mesh_sources(scene: &mut Scene, scene_path: &Path) {
+/// Points every `<mesh src>` at its model file, and the `<sky map>` at its
+/// image, from the folder `scene_path` is in: just the file name when the
+/// file lies in that folder, else its absolute path (so a scene saved
+/// elsewhere, or autosaved to the recovery folder, still finds them). A
+/// built-in map (`raylab:studio`) is no file and keeps its name.
+pub(super) fn rebase_file_sources(scene: &mut Scene, scene_path: &Path) {
     let folder = scene_path.parent().and_then(|f| {
         std::fs::canonicalize(if f.as_os_str().is_empty() {
             Path::new(".")
@@ -167,18 +169,27 @@ pub(super) fn rebase_mesh_sources(scene: &mut Scene, scene_path: &Path) {
         })
         .ok()
     });
+    let rebased = |file: &Path| -> Option<String> {
+        let file = std::fs::canonicalize(file).ok()?;
+        Some(match (file.parent(), file.file_name(), &folder) {
+            (Some(dir), Some(name), Some(folder)) if dir == folder => {
+                name.to_string_lossy().into_owned()
+            }
+            _ => file.display().to_string(),
+        })
+    };
     for object in &mut scene.objects {
-        if let scene::Shape::Mesh { source, .. } = &mut object.shape {
-            let Ok(model) = std::fs::canonicalize(&source.model.path) else {
-                continue;
-            };
-            source.src = match (model.parent(), model.file_name(), &folder) {
-                (Some(dir), Some(name), Some(folder)) if dir == folder => {
-                    name.to_string_lossy().into_owned()
-                }
-                _ => model.display().to_string(),
-            };
+        if let scene::Shape::Mesh { source, .. } = &mut object.shape
+            && let Some(src) = rebased(&source.model.path)
+        {
+            source.src = src;
         }
+    }
+    if let Some(map) = scene.sky.as_mut().and_then(|sky| sky.map.as_mut())
+        && map.src != scene::STUDIO_MAP
+        && let Some(src) = rebased(&map.image.path)
+    {
+        map.src = src;
     }
 }
 
@@ -215,10 +226,10 @@ mod tests {
             _ => unreachable!(),
         };
         // Beside the model: its file name.
-        rebase_mesh_sources(&mut scene, &models.join("scene.xml"));
+        rebase_file_sources(&mut scene, &models.join("scene.xml"));
         assert_eq!(src(&scene), "box.gltf");
         // In another folder: the model's absolute path, which still opens.
-        rebase_mesh_sources(&mut scene, &dir.path().join("scene.xml"));
+        rebase_file_sources(&mut scene, &dir.path().join("scene.xml"));
         let absolute = PathBuf::from(src(&scene));
         assert!(absolute.is_absolute(), "{absolute:?}");
         assert_eq!(
@@ -262,5 +273,49 @@ mod tests {
         assert!(doc.save_as(&missing).is_err());
         assert!(doc.is_modified());
         assert_eq!(doc.path, None);
+    }
+
+    #[test]
+    fn saving_elsewhere_points_the_sky_map_at_its_file_and_keeps_the_studio() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let maps = dir.path().join("maps");
+        std::fs::create_dir(&maps).expect("mkdir");
+        let map_path = maps.join("sky.exr");
+        std::fs::write(&map_path, "not read here").expect("write");
+        let image = scene::EnvImage {
+            path: map_path.clone(),
+            width: 2,
+            height: 2,
+            texels: vec![[1.0; 3]; 4],
+        };
+        let mut scene = Scene {
+            sky: Some(scene::Sky {
+                color: glam::Vec3::ONE,
+                map: Some(scene::SkyMap {
+                    src: "maps/sky.exr".into(),
+                    image: std::sync::Arc::new(image),
+                }),
+                rotate: glam::Vec3::ZERO,
+            }),
+            ..Scene::default()
+        };
+        let src = |scene: &Scene| {
+            scene
+                .sky
+                .as_ref()
+                .and_then(|s| s.map.as_ref())
+                .map(|m| m.src.clone())
+        };
+        rebase_file_sources(&mut scene, &maps.join("scene.xml"));
+        assert_eq!(src(&scene).as_deref(), Some("sky.exr"));
+        rebase_file_sources(&mut scene, &dir.path().join("other").join("scene.xml"));
+        let absolute = std::fs::canonicalize(&map_path).expect("exists");
+        assert_eq!(src(&scene), Some(absolute.display().to_string()));
+        let mut studio = Scene {
+            sky: Some(scene::Sky::studio()),
+            ..Scene::default()
+        };
+        rebase_file_sources(&mut studio, &dir.path().join("scene.xml"));
+        assert_eq!(src(&studio).as_deref(), Some(scene::STUDIO_MAP));
     }
 }

@@ -4,7 +4,7 @@
 
 use glam::Vec3;
 use scene::layout::{self, Aabb};
-use scene::{Light, LightKind, Object, ResolvedScene, Scene, Shape};
+use scene::{Light, LightKind, Object, ResolvedScene, Scene, Shape, Sky};
 
 /// What is selected in the scene panel (and highlighted in the list).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -16,6 +16,8 @@ pub enum Selection {
     Object(usize),
     /// The light at this index of `scene.lights`.
     Light(usize),
+    /// The sky (`scene.sky`).
+    Sky,
 }
 
 impl Selection {
@@ -24,6 +26,7 @@ impl Selection {
         match self {
             Selection::Object(i) if i < scene.objects.len() => self,
             Selection::Light(i) if i < scene.lights.len() => self,
+            Selection::Sky if scene.sky.is_some() => self,
             _ => Selection::None,
         }
     }
@@ -36,11 +39,19 @@ pub enum Action {
     AddObject(&'static str),
     /// Add a light of this kind with default parameters.
     AddLight(LightKind),
+    /// Add a sky of a constant colour (when the scene has none).
+    AddSky,
+    /// Ask for an environment map file for the sky (a file dialog, not an
+    /// edit: the app carries it out).
+    ChooseSkyMap,
     /// Duplicate the selection.
     Duplicate,
     /// Delete the selection.
     Delete,
 }
+
+/// The colour of a sky added from the menu: a clear day's blue.
+const DEFAULT_SKY: Vec3 = Vec3::new(0.5, 0.7, 1.0);
 
 /// Gap left between a new object and its neighbours.
 const GAP: f32 = 0.3;
@@ -85,6 +96,11 @@ pub fn apply(
             });
             Selection::Light(scene.lights.len() - 1)
         }
+        Action::AddSky => {
+            scene.sky.get_or_insert_with(|| Sky::constant(DEFAULT_SKY));
+            Selection::Sky
+        }
+        Action::ChooseSkyMap => selection,
         Action::Duplicate => match selection.valid_in(scene) {
             Selection::Object(i) => {
                 let mut copy = scene.objects[i].clone();
@@ -102,7 +118,7 @@ pub fn apply(
                 scene.lights.insert(i + 1, copy);
                 Selection::Light(i + 1)
             }
-            Selection::None => Selection::None,
+            Selection::Sky | Selection::None => selection.valid_in(scene),
         },
         Action::Delete => {
             match selection.valid_in(scene) {
@@ -112,6 +128,7 @@ pub fn apply(
                 Selection::Light(i) => {
                     scene.lights.remove(i);
                 }
+                Selection::Sky => scene.sky = None,
                 Selection::None => {}
             }
             Selection::None

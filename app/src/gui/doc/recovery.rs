@@ -97,7 +97,7 @@ pub fn write(file: &Path, scene: &Scene, source: Option<&Path>) -> std::io::Resu
         Some(_) => scene::write_string(scene),
         None => {
             let mut scene = scene.clone();
-            super::document::rebase_mesh_sources(&mut scene, file);
+            super::document::rebase_file_sources(&mut scene, file);
             scene::write_string(&scene)
         }
     };

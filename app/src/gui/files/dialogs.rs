@@ -16,6 +16,8 @@ pub enum DialogKind {
     SaveImage,
     /// Pick a reference image (linear EXR) for the live error plot.
     Reference,
+    /// Pick an environment map (HDR, latitude-longitude) for the sky.
+    SkyMap,
 }
 
 /// A dialog that answered too quickly to have been shown: no dialog service.
@@ -74,6 +76,10 @@ impl Dialogs {
                 DialogKind::SaveScene => dialog.add_filter("raylab scene", &["xml"]).save_file(),
                 DialogKind::Reference => dialog
                     .add_filter("OpenEXR image (linear float)", &["exr"])
+                    .pick_file(),
+                DialogKind::SkyMap => dialog
+                    .add_filter("HDR environment map (OpenEXR, Radiance)", &["exr", "hdr"])
+                    .add_filter("any file", &["*"])
                     .pick_file(),
                 DialogKind::SaveImage => dialog
                     .add_filter("PNG image (8-bit sRGB)", &["png"])

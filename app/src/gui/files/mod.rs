@@ -43,6 +43,8 @@ pub enum Outcome {
     Replace(Box<Document>),
     /// Load this reference image for the live error plot.
     LoadReference(PathBuf),
+    /// Make the environment map in this file the sky's.
+    LoadSkyMap(PathBuf),
 }
 
 /// The workflow's state between frames.
@@ -200,7 +202,7 @@ impl Files<'_> {
     /// so accepting the suggestion never replaces an earlier image.
     fn suggested_name(&self, kind: DialogKind, folder: Option<&Path>) -> Option<String> {
         match kind {
-            DialogKind::Open | DialogKind::Reference => None,
+            DialogKind::Open | DialogKind::Reference | DialogKind::SkyMap => None,
             DialogKind::SaveScene => Some(self.doc.display_name()).map(|n| {
                 if n.ends_with(".xml") {
                     n
@@ -233,7 +235,7 @@ impl Files<'_> {
     /// can be shown; a save starts from the name a dialog would suggest.
     pub fn prompt_for_path(&mut self, kind: DialogKind) {
         let start = match kind {
-            DialogKind::Open => String::new(),
+            DialogKind::Open | DialogKind::SkyMap => String::new(),
             _ => {
                 let folder = self.dialog_folder();
                 let name = self.suggested_name(kind, folder.as_deref());
@@ -276,6 +278,7 @@ impl Files<'_> {
                 Outcome::Done
             }
             DialogKind::Reference => Outcome::LoadReference(path),
+            DialogKind::SkyMap => Outcome::LoadSkyMap(path),
         }
     }
 }

@@ -90,6 +90,7 @@ impl FileWorkflow {
                 DialogKind::SaveScene => "Save scene as:",
                 DialogKind::SaveImage => "Save image as (.png or .exr):",
                 DialogKind::Reference => "Reference image (linear .exr):",
+                DialogKind::SkyMap => "Environment map (.exr or .hdr):",
             });
             ui.weak("No file dialog is available here (xdg-desktop-portal or zenity).");
             let edit = ui.add(egui::TextEdit::singleline(text).desired_width(480.0));

@@ -282,6 +282,7 @@ fn target_label(target: ShadowTarget, cx: &Context<'_>) -> String {
             .map(|light| light_label(k, light))
             .unwrap_or_else(|| format!("light {k}")),
         ShadowTarget::Emitter(sample) => format!("emitter {}", sample.index),
+        ShadowTarget::Environment(_) => "sky".to_string(),
     }
 }
 
@@ -394,6 +395,11 @@ fn details(ui: &mut egui::Ui, ray: &RayNode) {
                     ShadowTarget::Light(k) => row("light", format!("#{k}")),
                     ShadowTarget::Emitter(e) => {
                         row("emitter", format!("#{}", e.index));
+                        row("pdf (solid angle)", n(e.pdf));
+                        row("MIS weight", n(e.mis_weight));
+                    }
+                    ShadowTarget::Environment(e) => {
+                        row("toward", "the sky".to_string());
                         row("pdf (solid angle)", n(e.pdf));
                         row("MIS weight", n(e.mis_weight));
                     }

@@ -1,7 +1,7 @@
 //! The scene panel: the objects and lights, the buttons that add, duplicate
 //! and delete them, and the editor of the selected one.
 
-use super::{light_editor, object_editor};
+use super::{light_editor, object_editor, sky_editor};
 use crate::gui::doc::edits::{Action, Selection};
 use scene::{BaseMaterial, LightKind, ResolvedScene, Scene, Shape};
 
@@ -39,6 +39,13 @@ pub fn add_menu(ui: &mut egui::Ui) -> Option<Action> {
         if ui.button(label).clicked() {
             action = Some(Action::AddLight(kind));
         }
+    }
+    if ui
+        .button("Sky")
+        .on_hover_text("a constant colour or an HDR environment map around the scene")
+        .clicked()
+    {
+        action = Some(Action::AddSky);
     }
     action
 }
@@ -119,6 +126,15 @@ pub fn show(
                     *selection = Selection::Light(i);
                 }
             }
+            if let Some(sky) = &scene.sky {
+                let selected = *selection == Selection::Sky;
+                if ui
+                    .selectable_label(selected, sky_editor::label(sky))
+                    .clicked()
+                {
+                    *selection = Selection::Sky;
+                }
+            }
         });
     ui.separator();
     let names = material_names(scene);
@@ -128,8 +144,16 @@ pub fn show(
             object_editor::show(ui, &mut scene.objects[i], resolved, &names)
         }
         Selection::Light(i) => light_editor::show(ui, &mut scene.lights[i]),
+        Selection::Sky => match &mut scene.sky {
+            Some(sky) => {
+                let (changed, asked) = sky_editor::show(ui, sky);
+                action = asked.or(action);
+                changed
+            }
+            None => false,
+        },
         Selection::None => {
-            ui.weak("Select an object or light to edit it (or click it in the image).");
+            ui.weak("Select an object, light or the sky to edit it (or click it in the image).");
             false
         }
     };

@@ -3,14 +3,14 @@
 use super::{harness, seed_app, seed_path, settle, step_shown};
 use crate::gui::RaylabApp;
 use crate::gui::commands::Command;
-use crate::gui::doc::edits::Selection;
+use crate::gui::doc::edits::{self, Selection};
 use egui::{Key, Modifiers, PointerButton};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glam::Vec3;
 use renderer::integrator::adaptive::Adaptive;
 use renderer::progressive::Step;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 /// The linear pixels on screen.
@@ -854,4 +854,76 @@ fn ticking_roughness_on_the_glass_cone_sets_it_and_re_renders() {
         None,
         "undone"
     );
+}
+
+/// The reference scenes' environment map.
+fn reference_sky_map() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../assets/reference/sky_map.exr")
+}
+
+#[test]
+fn a_sky_added_from_the_menu_is_listed_edited_given_a_map_and_undone() {
+    let mut h = harness(seed_app(48, 32));
+    settle(&mut h);
+    let before = pixels(&h);
+    h.get_by_label("Add").click();
+    step_shown(&mut h);
+    h.get_by_label("Sky").click();
+    h.step();
+    assert!(h.state().doc.state.scene.sky.is_some());
+    assert_eq!(h.state().selection, Selection::Sky);
+    settle(&mut h);
+    // Listed with the lights, its editor open; the image changed.
+    h.get_by_label("sky");
+    h.get_by_label("Choose map…");
+    assert_ne!(pixels(&h), before);
+    // A map chosen (as the file dialog hands it over) replaces the colour,
+    // named by its path; the rotation appears in the editor.
+    h.state_mut().load_sky_map(&reference_sky_map());
+    h.step();
+    let sky = h.state().doc.state.scene.sky.clone().expect("a sky");
+    assert_eq!(sky.color, Vec3::ONE);
+    assert!(
+        sky.map
+            .as_ref()
+            .is_some_and(|m| m.src.ends_with("sky_map.exr"))
+    );
+    settle(&mut h);
+    h.get_by_label("sky: sky_map.exr");
+    h.get_by_label("Rotate (°)");
+    let lit = pixels(&h);
+    // Undo takes the map back off; the sky stays.
+    let ctx = h.ctx.clone();
+    h.state_mut().run(&ctx, Command::Undo);
+    settle(&mut h);
+    assert!(
+        h.state()
+            .doc
+            .state
+            .scene
+            .sky
+            .as_ref()
+            .is_some_and(|s| s.map.is_none())
+    );
+    assert_ne!(pixels(&h), lit);
+    // Delete removes the selected sky.
+    h.state_mut().selection = Selection::Sky;
+    h.state_mut()
+        .run(&ctx, Command::Edit(edits::Action::Delete));
+    h.step();
+    assert_eq!(h.state().doc.state.scene.sky, None);
+}
+
+#[test]
+fn a_file_that_is_not_an_environment_map_is_a_message_and_changes_nothing() {
+    let mut app = seed_app(48, 32);
+    let before = app.doc.state.scene.clone();
+    let png = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/seed.xml");
+    app.load_sky_map(&png);
+    let message = app.files.message.clone().expect("a message");
+    assert!(
+        message.contains("seed.xml") && message.contains("environment map"),
+        "{message}"
+    );
+    assert_eq!(app.doc.state.scene, before);
 }

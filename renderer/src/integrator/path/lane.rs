@@ -10,7 +10,7 @@ use crate::geometry::offset::offset_ray_origin;
 use crate::geometry::ray::Ray;
 use crate::integrator::RenderOptions;
 use crate::integrator::lanes::{Lane, Next, ShadowRay, ShadowTarget};
-use crate::integrator::recorder::{EmitterLightSample, Note, Recorder};
+use crate::integrator::recorder::{EmitterLightSample, EnvironmentLightSample, Note, Recorder};
 use crate::integrator::sampler::{BounceDraw, Sampler};
 use crate::integrator::shading_context::ShadingContext;
 use crate::shading::bsdf::{Bsdf, BsdfSample, ShadingFrame};
@@ -141,8 +141,9 @@ impl<N: Copy> Lane<N> for PathLane<N> {
     ) -> Next {
         let ray = self.ray;
         let Some(hit) = hit else {
-            self.radiance += self.throughput * world.sky;
-            rec.miss(self.node, world.sky);
+            let seen = escaped(world, &ray, self.previous);
+            self.radiance += self.throughput * seen;
+            rec.miss(self.node, seen);
             return Next::Done;
         };
         let at = ShadingContext::new(world, &ray, &hit);
@@ -170,7 +171,16 @@ impl<N: Copy> Lane<N> for PathLane<N> {
         let bsdf = at.bsdf();
         if bsdf.has_smooth() {
             self.sampler.seek_bounce(self.depth, BounceDraw::Light);
-            light_samples(world, &at, frame, wo, &bsdf, &mut self.sampler, shadows);
+            light_samples(
+                world,
+                &at,
+                frame,
+                wo,
+                &bsdf,
+                self.depth,
+                &mut self.sampler,
+                shadows,
+            );
             self.vertex = Some(PendingVertex {
                 lit_by: Some(self.throughput),
                 next: None,
@@ -233,6 +243,9 @@ impl<N: Copy> Lane<N> for PathLane<N> {
                     ShadowTarget::Emitter(drawn) => {
                         rec.emitter_shadow(vertex_node, drawn, &shadow.ray, lit);
                     }
+                    ShadowTarget::Environment(drawn) => {
+                        rec.environment_shadow(vertex_node, drawn, &shadow.ray, lit);
+                    }
                 }
             }
             self.radiance += throughput * sum;
@@ -243,16 +256,35 @@ impl<N: Copy> Lane<N> for PathLane<N> {
     }
 }
 
+/// What a ray that escapes the scene brings back: the sky's radiance in its
+/// direction, weighted by the power heuristic against the sky's light
+/// sample when the ray was drawn from a BSDF that competes with it
+/// (`previous`: not the camera ray, not after a delta lobe).
+#[inline]
+pub(crate) fn escaped(world: &World, ray: &Ray, previous: Option<(Vec3, f32)>) -> Vec3 {
+    let environment = &world.environment;
+    let weight = match previous {
+        Some((_, bsdf_pdf)) if environment.is_sampled() => {
+            power_heuristic(bsdf_pdf, environment.pdf(ray.dir))
+        }
+        _ => 1.0,
+    };
+    weight * environment.radiance(ray.dir)
+}
+
 /// The shadow rays of a vertex with a smooth lobe: one toward every point
 /// and directional light, then one toward a point drawn on the emitters,
-/// weighted by the power heuristic against BSDF sampling. Lights the BSDF
-/// does not reflect toward the eye get no ray.
+/// then one toward a direction drawn from the sky's map, the last two weighted by
+/// the power heuristic against BSDF sampling. Lights the BSDF does not
+/// reflect toward the eye get no ray.
+#[allow(clippy::too_many_arguments)]
 fn light_samples(
     world: &World,
     at: &ShadingContext,
     frame: ShadingFrame,
     wo: Vec3,
     bsdf: &Bsdf,
+    depth: u32,
     sampler: &mut Sampler,
     shadows: &mut Vec<ShadowRay>,
 ) {
@@ -302,6 +334,27 @@ fn light_samples(
                 lit: f * s.radiance * (mis_weight / s.pdf),
                 target: ShadowTarget::Emitter(EmitterLightSample {
                     index: s.index,
+                    pdf: s.pdf,
+                    mis_weight,
+                }),
+            });
+        }
+    }
+    if !world.environment.is_sampled() {
+        return;
+    }
+    sampler.seek_environment(depth);
+    if let Some(s) = world.environment.sample(sampler.next_2d())
+        && let Some(origin) = origin_toward(s.dir)
+    {
+        let wi = frame.to_local(s.dir);
+        let f = bsdf.eval(wo, wi);
+        if f != Vec3::ZERO {
+            let mis_weight = power_heuristic(s.pdf, bsdf.pdf(wo, wi));
+            shadows.push(ShadowRay {
+                ray: Ray::new(origin, s.dir),
+                lit: f * s.radiance * (mis_weight / s.pdf),
+                target: ShadowTarget::Environment(EnvironmentLightSample {
                     pdf: s.pdf,
                     mis_weight,
                 }),

@@ -271,6 +271,15 @@ impl Sampler {
         }
     }
 
+    /// Moves to the environment's light sample of bounce `depth`
+    /// ([`environment_draw`]). A general-purpose stream just goes on.
+    #[inline]
+    pub fn seek_environment(&mut self, depth: u32) {
+        if let Source::Pixel(stream) = &mut self.source {
+            stream.draw = environment_draw(depth);
+        }
+    }
+
     /// A uniform number in [0, 1).
     #[inline]
     pub fn next_f32(&mut self) -> f32 {
@@ -303,6 +312,19 @@ impl Sampler {
             }
         }
     }
+}
+
+/// The first draw of the environment's light samples: one 2D point per
+/// bounce from here on (`ENVIRONMENT_DRAWS + depth`), apart from the
+/// bounces' own draws so that a scene without a sky draws exactly the
+/// numbers it drew before there was one. Past [`SOBOL_DRAWS`], so they are
+/// independent numbers.
+const ENVIRONMENT_DRAWS: u32 = 1 << 28;
+
+/// The draw of the environment's light sample at bounce `depth`.
+#[inline(always)]
+pub(crate) fn environment_draw(depth: u32) -> u32 {
+    ENVIRONMENT_DRAWS + depth
 }
 
 /// The index of the first draw of `at` at bounce `depth`.

@@ -7,7 +7,7 @@
 use super::emitter_table::EmitterTable;
 use crate::geometry::warp::{COS_TERMS, SIN_TERMS};
 use crate::integrator::sampler::lanes::StreamLanes;
-use crate::integrator::sampler::{BounceDraw, bounce_draw};
+use crate::integrator::sampler::{BounceDraw, bounce_draw, environment_draw};
 use crate::packet::{FloatLanes, IntLanes, MaskLanes, Vec3s, WIDTH, lane_set, mask_from};
 use crate::world::World;
 use glam::{Vec2, Vec3};
@@ -126,6 +126,64 @@ fn other_emitter_draws<F: FloatLanes>(
         found: mask_from::<F>(|k| found[k]),
         to_light: Vec3s::from_lanes(&to_light),
         distance: F::from_array(distance),
+        radiance: Vec3s::from_lanes(&radiance),
+        pdf: F::from_array(pdf),
+    }
+}
+
+/// Each lane's direction drawn toward the environment (`<sky>`).
+pub(super) struct EnvironmentDraws<F: FloatLanes> {
+    /// Lanes that drew a direction (`Environment::sample` gave one).
+    pub(super) found: F::Mask,
+    /// Unit directions, world space.
+    pub(super) dir: Vec3s<F>,
+    /// Radiance arriving from them.
+    pub(super) radiance: Vec3s<F>,
+    /// Densities in solid angle.
+    pub(super) pdf: F,
+}
+
+/// For each lane of `lanes`, its sample of the environment at bounce
+/// `depth`: the bounce's environment numbers (drawn on lanes) warped by
+/// `Environment::sample` lane by lane, so bit for bit the scalar path's.
+/// Nothing is drawn when the environment is not sampled (no map, or black).
+#[inline(always)]
+pub(super) fn environment_draws<F: FloatLanes>(
+    world: &World,
+    lanes: F::Mask,
+    streams: &StreamLanes<F>,
+    depth: &[u32; WIDTH],
+) -> EnvironmentDraws<F> {
+    let environment = &world.environment;
+    if !environment.is_sampled() || !lanes.any() {
+        return EnvironmentDraws {
+            found: F::Mask::NONE,
+            dir: Vec3s::splat(Vec3::Y),
+            radiance: Vec3s::ZERO,
+            pdf: F::ONE,
+        };
+    }
+    let mut draws = [0i32; WIDTH];
+    for k in 0..WIDTH {
+        draws[k] = environment_draw(depth[k]) as i32;
+    }
+    let (ux, uy) = streams.numbers(F::Ints::from_array(draws));
+    let (ux, uy) = (ux.as_array(), uy.as_array());
+    let mut found = 0u32;
+    let mut dir = [Vec3::Y; WIDTH];
+    let mut radiance = [Vec3::ZERO; WIDTH];
+    let mut pdf = [1.0f32; WIDTH];
+    for k in (0..WIDTH).filter(|&k| lane_set(lanes, k)) {
+        if let Some(s) = environment.sample(Vec2::new(ux[k], uy[k])) {
+            found |= 1 << k;
+            dir[k] = s.dir;
+            radiance[k] = s.radiance;
+            pdf[k] = s.pdf;
+        }
+    }
+    EnvironmentDraws {
+        found: F::Mask::from_bitmask(found),
+        dir: Vec3s::from_lanes(&dir),
         radiance: Vec3s::from_lanes(&radiance),
         pdf: F::from_array(pdf),
     }

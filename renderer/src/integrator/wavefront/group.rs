@@ -1,7 +1,7 @@
 //! Sixteen paths in flight, one per lane, and one bounce of all of them.
 
 use super::delta::{dielectric_samples, fresnel_schlick, mirrored};
-use super::draws::{cosine_warps, emitter_draws, roulette_draws, scatter_draws};
+use super::draws::{cosine_warps, emitter_draws, environment_draws, roulette_draws, scatter_draws};
 use super::glossy::{Highlights, RoughConductors};
 use super::handover::{Handover, Target};
 use super::lane_math::{Frame, offset_origins, power_heuristics};
@@ -12,7 +12,7 @@ use super::surfaces::Surfaces;
 use super::tracing;
 use crate::geometry::ray::Ray;
 use crate::integrator::lanes::{SampleRef, SampleResult};
-use crate::integrator::path::{RR_DEPTH, SHADOW_SHORTENING};
+use crate::integrator::path::{RR_DEPTH, SHADOW_SHORTENING, escaped};
 use crate::integrator::sampler::PixelStream;
 use crate::integrator::sampler::lanes::StreamLanes;
 use crate::integrator::{RenderOptions, path::power_heuristic};
@@ -170,8 +170,24 @@ impl<F: FloatLanes> PathGroup<F> {
         let hit = live & hits.alpha.simd_lt(F::INFINITY);
         // A ray that escapes sees the sky.
         let miss = live & !hit;
-        let sky = self.paths.radiance + self.paths.throughput.mul_lanes(Vec3s::splat(world.sky));
-        self.paths.radiance = Vec3s::select(miss, sky, self.paths.radiance);
+        if let Some(sky) = world.environment.constant_radiance() {
+            let seen = self.paths.radiance + self.paths.throughput.mul_lanes(Vec3s::splat(sky));
+            self.paths.radiance = Vec3s::select(miss, seen, self.paths.radiance);
+        } else {
+            // The sky in each ray's direction, weighted against its light
+            // sample lane by lane as `PathLane` weighs it.
+            for k in (0..WIDTH).filter(|&k| lane_set(miss, k)) {
+                let previous = lane_set(self.paths.has_previous, k).then(|| {
+                    (
+                        self.paths.previous_point.lane(k),
+                        self.paths.previous_pdf.as_array()[k],
+                    )
+                });
+                let seen = escaped(world, &self.paths.rays.lane(k), previous);
+                let radiance = self.paths.radiance.lane(k) + self.paths.throughput.lane(k) * seen;
+                self.paths.radiance.set_lane(k, radiance);
+            }
+        }
         let mut finished = miss.to_bitmask();
         if !hit.any() {
             return finished;
@@ -299,6 +315,26 @@ impl<F: FloatLanes> PathGroup<F> {
         let light_through = f.mul_lanes(light.radiance) * (mis / light.pdf);
         let shadowed = lit & light.found & (toward | rough_glass) & f.nonzero();
         let light_origin = Vec3s::select(toward, above, below);
+        // The sky map's light sample: a direction drawn from it, its BSDF
+        // value and MIS weight, and the shadow ray toward it (nothing for a
+        // constant sky or none, which BSDF sampling alone sees).
+        let sampled_sky = world.environment.is_sampled();
+        let (sky_dir, sky_through, sky_shadowed, sky_origin) = if sampled_sky {
+            let sky = environment_draws(world, lit, &self.paths.streams, &self.paths.depth);
+            let toward = sky.dir.dot(n).simd_gt(F::ZERO);
+            let (f, bsdf_pdf) = lobes.eval_pdf(wo, frame.to_local(sky.dir));
+            let mis = power_heuristics(sky.pdf, bsdf_pdf);
+            let through = f.mul_lanes(sky.radiance) * (mis / sky.pdf);
+            let shadowed = lit & sky.found & (toward | rough_glass) & f.nonzero();
+            (
+                sky.dir,
+                through,
+                shadowed,
+                Vec3s::select(toward, above, below),
+            )
+        } else {
+            (Vec3s::ZERO, Vec3s::ZERO, F::Mask::NONE, Vec3s::ZERO)
+        };
         let lit_by = self.paths.throughput;
 
         // The BSDF sample. A layered lane picks its mirror lobe when the
@@ -425,16 +461,32 @@ impl<F: FloatLanes> PathGroup<F> {
             traced,
             &mut self.shape_tests,
         );
-        let sum = sum + Vec3s::select(shadowed & !blocked, light_through, Vec3s::ZERO);
+        let mut sum = sum + Vec3s::select(shadowed & !blocked, light_through, Vec3s::ZERO);
+        let mut sky_blocked = F::Mask::NONE;
+        if sampled_sky {
+            let rays = Rays {
+                origin: sky_origin,
+                dir: sky_dir,
+                t_max: sky_shadowed.select(F::INFINITY, F::ZERO),
+            };
+            let rays = self.handover.add_shadow_rays(Target::Environment, rays);
+            let traced = sky_shadowed | self.handover.shadowed::<F>(Target::Environment);
+            sky_blocked =
+                tracing::occluded(world, scene, method, &rays, traced, &mut self.shape_tests);
+            sum = sum + Vec3s::select(sky_shadowed & !sky_blocked, sky_through, Vec3s::ZERO);
+        }
         self.paths.radiance = Vec3s::select(
             lit,
             self.paths.radiance + lit_by.mul_lanes(sum),
             self.paths.radiance,
         );
         finished
-            | self
-                .handover
-                .finish(&mut self.paths, &self.blocked_toward_lights, blocked)
+            | self.handover.finish(
+                &mut self.paths,
+                &self.blocked_toward_lights,
+                blocked,
+                sky_blocked,
+            )
     }
 }
 

@@ -31,6 +31,8 @@ pub(super) enum Target {
     Light(usize),
     /// Toward a point drawn on the emitters.
     Emitter,
+    /// Toward a direction drawn from the environment.
+    Environment,
 }
 
 impl Target {
@@ -39,6 +41,7 @@ impl Target {
         match shadow.target {
             ShadowTarget::Light(index) => Target::Light(index),
             ShadowTarget::Emitter(_) => Target::Emitter,
+            ShadowTarget::Environment(_) => Target::Environment,
         }
     }
 }
@@ -51,7 +54,7 @@ pub(super) struct Handover {
     handed: u32,
     pending: [Option<Pending>; WIDTH],
     /// Per lane, its shadow rays: at most one toward each light, then one
-    /// toward the emitters, in that order (empty for a lane not handed over).
+    /// toward the emitters, then one toward the environment, in that order (empty for a lane not handed over).
     shadows: [Vec<ShadowRay>; WIDTH],
     /// Per shadow ray of a lane, whether it is blocked (scratch).
     blocked: Vec<bool>,
@@ -153,7 +156,8 @@ impl Handover {
     }
 
     /// Gives each handed-over lane its shadow rays' answers (`toward_lights`
-    /// per light, `toward_emitter`: the lanes blocked in each packet), puts
+    /// per light, `toward_emitter`, `toward_environment`: the lanes blocked
+    /// in each packet), puts
     /// its state back into `group` and returns the lanes that finished (bit
     /// k for lane k).
     #[inline(always)]
@@ -162,6 +166,7 @@ impl Handover {
         group: &mut Paths<F>,
         toward_lights: &[F::Mask],
         toward_emitter: F::Mask,
+        toward_environment: F::Mask,
     ) -> u32 {
         let mut finished = 0;
         let mut handed = std::mem::take(&mut self.handed);
@@ -177,6 +182,7 @@ impl Handover {
                 let packet = match Target::of(s) {
                     Target::Light(index) => toward_lights[index],
                     Target::Emitter => toward_emitter,
+                    Target::Environment => toward_environment,
                 };
                 lane_set(packet, k)
             }));

@@ -16,6 +16,24 @@ fn world_from(xml: &str, width: u32, height: u32) -> World {
     World::from_scene(&scene).expect("scene is valid")
 }
 
+/// The reference scenes' environment map (`assets/reference/sky_map.exr`:
+/// a sky, a ground and a small bright sun) turned by `rotate` degrees.
+fn sky_map(rotate: glam::Vec3) -> ::scene::Sky {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../assets/reference/sky_map.exr"
+    );
+    let image = ::scene::load_sky_map(std::path::Path::new(path)).expect("the reference map");
+    ::scene::Sky {
+        color: glam::Vec3::new(0.9, 1.0, 0.8),
+        map: Some(::scene::SkyMap {
+            src: path.into(),
+            image: std::sync::Arc::new(image),
+        }),
+        rotate,
+    }
+}
+
 fn cornell(width: u32, height: u32) -> World {
     world_from(
         include_str!("../../../../assets/reference/cornell.xml"),
@@ -516,6 +534,36 @@ fn mesh_hits_on_lanes_and_handed_over_match_too() {
     assert_eq!(shaded, expected, "which instances the lanes shade");
     assert_every_pixel_matches(&world, &[(8, 21), (3, 5)], 2);
     assert_every_pixel_matches_in(&world, &[(8, 21)], 2, true);
+    // Under an environment map too: the handed-over lane's sky sample goes
+    // in the lanes' packet toward the sky.
+    scene.sky = Some(sky_map(glam::Vec3::new(0.0, 200.0, 10.0)));
+    let world = World::from_scene(&scene).expect("valid");
+    assert_every_pixel_matches(&world, &[(8, 21)], 2);
+}
+
+#[test]
+fn every_material_under_an_environment_map_matches_too() {
+    let mut scene = ::scene::read_str(
+        r#"<scene>
+  <camera eye="0 1.5 7" toward="0 -0.3 -1" up="0 1 0" theta="28" width="20" height="14"/>
+  <sphere center="-2.4 0 0" radius="0.7" material="mirror" color="0.9 0.8 0.7"/>
+  <sphere center="-0.8 0 0" radius="0.7" material="glass" ior="1.5"/>
+  <sphere center="0.8 0 0" radius="0.7" material="plastic" color="0.2 0.4 0.8"/>
+  <sphere center="2.4 0 0" radius="0.7" material="marble"/>
+  <sphere center="0 -0.3 2" radius="0.4" material="glass" roughness="0.3"/>
+  <box center="0 1.6 -1" size="1 0.5 0.5" material="metal" color="0.9 0.6 0.3" roughness="0.2"/>
+  <box center="1.5 1.6 -1" size="0.6 0.6 0.6" rotate="0 45 0" material="matte" color="0.7 0.7 0.7" reflectivity="0.3"/>
+  <triangle t0="-1 3 -2" t1="1 3 -2" t2="0 3 0" material="matte" emission="6 6 5"/>
+  <light position="2 4 3" intensity="20"/>
+  <floor y="-0.7" material="matte" color="0.6 0.6 0.6"/>
+</scene>"#,
+        "map.xml",
+    )
+    .expect("parses");
+    scene.sky = Some(sky_map(glam::Vec3::new(15.0, -40.0, 0.0)));
+    let world = World::from_scene(&scene).expect("valid");
+    assert!(world.environment.is_sampled());
+    assert_every_pixel_matches(&world, &[(12, 4), (3, 8)], 3);
 }
 
 #[test]

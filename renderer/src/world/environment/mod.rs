@@ -1,0 +1,215 @@
+//! The environment: what a ray that leaves the scene sees (`<sky>`), as a
+//! light. A constant colour, or an HDR map turned by the sky's rotation and
+//! tinted by its colour. The path tracer samples a map as a light, by
+//! radiance, and weighs what its escaping rays see against that by multiple
+//! importance sampling. A constant colour is left to BSDF sampling, as
+//! pbrt-v4's path tracer leaves its uniform infinite light: drawing
+//! directions uniformly over the sphere never beats a BSDF's own sampling
+//! of a uniform sky (a cosine-weighted Lambertian sample sees it with no
+//! variance at all; weighing in a uniform sample adds variance), which is
+//! what MIS compensation (Karlík et al. 2019: sample ∝ max(L − mean L, 0))
+//! reduces to for a constant.
+
+mod cache;
+mod map;
+
+pub use map::EnvMap;
+
+use crate::shapes::placement::Placement;
+use glam::{Mat3, Vec2, Vec3};
+use std::sync::Arc;
+
+/// The environment of a world.
+#[derive(Clone, Debug)]
+pub struct Environment {
+    /// The constant radiance, or the map's tint.
+    color: Vec3,
+    /// The prepared map, if the sky has one.
+    map: Option<Arc<EnvMap>>,
+    /// World directions into the map's frame (the inverse of `rotate`).
+    map_from_world: Mat3,
+    /// The map's frame into world directions.
+    world_from_map: Mat3,
+}
+
+/// A direction drawn toward the environment.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EnvironmentSample {
+    /// Unit direction, world space.
+    pub dir: Vec3,
+    /// The radiance arriving from it.
+    pub radiance: Vec3,
+    /// Its density in solid angle.
+    pub pdf: f32,
+}
+
+impl Environment {
+    /// The environment of a resolved sky (its map prepared once per image).
+    pub fn new(sky: &scene::Sky) -> Environment {
+        let world_from_map =
+            Placement::from_euler_degrees(Vec3::ZERO, sky.rotate).world_from_object;
+        Environment {
+            color: sky.color,
+            map: sky.map.as_ref().map(|m| cache::map_for(&m.image)),
+            map_from_world: world_from_map.transpose(),
+            world_from_map,
+        }
+    }
+
+    /// A constant environment of radiance `color`.
+    pub fn constant(color: Vec3) -> Environment {
+        Environment {
+            color,
+            map: None,
+            map_from_world: Mat3::IDENTITY,
+            world_from_map: Mat3::IDENTITY,
+        }
+    }
+
+    /// True when no light comes from it (no sky, a black one, or a black
+    /// tint): rays that escape see black and it is never sampled.
+    pub fn is_black(&self) -> bool {
+        self.color == Vec3::ZERO || self.map.as_ref().is_some_and(|m| m.mean() == Vec3::ZERO)
+    }
+
+    /// The radiance arriving from direction `dir` (world space, any length).
+    #[inline]
+    pub fn radiance(&self, dir: Vec3) -> Vec3 {
+        match &self.map {
+            None => self.color,
+            Some(map) => self.color * map.radiance((self.map_from_world * dir).normalize()),
+        }
+    }
+
+    /// The mean radiance over all directions: Whitted's ambient term from
+    /// the sky (the light a white Lambertian surface under it receives,
+    /// unshadowed).
+    pub fn mean(&self) -> Vec3 {
+        match &self.map {
+            None => self.color,
+            Some(map) => self.color * map.mean(),
+        }
+    }
+
+    /// True when the path tracer samples it as a light: a map that gives
+    /// light (a constant colour is left to BSDF sampling).
+    #[inline]
+    pub fn is_sampled(&self) -> bool {
+        self.map.is_some() && !self.is_black()
+    }
+
+    /// The constant radiance of a sky without a map.
+    #[inline]
+    pub fn constant_radiance(&self) -> Option<Vec3> {
+        self.map.is_none().then_some(self.color)
+    }
+
+    /// A direction drawn from the uniform point `u` with density ∝ the
+    /// map's radiance; `None` when it is not sampled ([`Environment::is_sampled`]).
+    #[inline]
+    pub fn sample(&self, u: Vec2) -> Option<EnvironmentSample> {
+        if !self.is_sampled() {
+            return None;
+        }
+        let map = self.map.as_ref()?;
+        let s = map.sample(u)?;
+        Some(EnvironmentSample {
+            dir: self.world_from_map * s.dir,
+            radiance: self.color * map.radiance(s.dir),
+            pdf: s.pdf,
+        })
+    }
+
+    /// The density in solid angle with which [`Environment::sample`] draws
+    /// direction `dir` (world space, any length); 0 when it is not sampled.
+    #[inline]
+    pub fn pdf(&self, dir: Vec3) -> f32 {
+        match &self.map {
+            Some(map) if self.is_sampled() => map.pdf((self.map_from_world * dir).normalize()),
+            _ => 0.0,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use scene::{EnvImage, Sky, SkyMap};
+    use std::f32::consts::PI;
+
+    fn sky_with_map(rotate: Vec3) -> Sky {
+        // Bright toward +x in the map's frame (azimuth π/2: column 1 of 4).
+        let image = EnvImage {
+            path: "m.exr".into(),
+            width: 4,
+            height: 3,
+            texels: (0..12)
+                .map(|i| {
+                    if i % 4 == 1 {
+                        [8.0, 8.0, 8.0]
+                    } else {
+                        [0.5, 0.5, 0.5]
+                    }
+                })
+                .collect(),
+        };
+        Sky {
+            color: Vec3::new(1.0, 0.5, 0.25),
+            map: Some(SkyMap {
+                src: "m.exr".into(),
+                image: Arc::new(image),
+            }),
+            rotate,
+        }
+    }
+
+    #[test]
+    fn rotation_turns_the_map_as_a_box_turns() {
+        let plain = Environment::new(&sky_with_map(Vec3::ZERO));
+        // Column 1's centre is at u = 1.5 / 4: φ = 3π/4, between +x and +z.
+        let bright = Vec3::new((0.75 * PI).sin(), 0.0, -(0.75 * PI).cos());
+        assert_eq!(plain.radiance(bright), Vec3::new(8.0, 4.0, 2.0));
+        // Turned 90° about y, what was toward `bright` is now toward R·bright.
+        let turned = Environment::new(&sky_with_map(Vec3::new(0.0, 90.0, 0.0)));
+        let r = Mat3::from_rotation_y(PI / 2.0);
+        assert!(
+            (turned.radiance(r * bright) - Vec3::new(8.0, 4.0, 2.0))
+                .abs()
+                .max_element()
+                < 1e-4
+        );
+        assert!(
+            (turned.radiance(bright) - Vec3::new(8.0, 4.0, 2.0))
+                .abs()
+                .max_element()
+                > 1.0
+        );
+    }
+
+    #[test]
+    fn samples_are_in_world_space_with_their_densities() {
+        let env = Environment::new(&sky_with_map(Vec3::new(10.0, 70.0, -30.0)));
+        let mut sampler = crate::integrator::sampler::Sampler::for_sample(1, 2, 3, 4);
+        let mut agree = 0;
+        for _ in 0..1000 {
+            let s = env.sample(sampler.next_2d()).expect("lit");
+            let radiance = env.radiance(s.dir);
+            assert!((s.radiance - radiance).abs().max_element() < 1e-3 * radiance.max_element());
+            // The turned direction lands in the drawn cell but for rounding
+            // on a cell's edge.
+            agree += usize::from((env.pdf(s.dir) - s.pdf).abs() < 1e-4 * s.pdf);
+        }
+        assert!(agree >= 990, "{agree} of 1000");
+    }
+
+    #[test]
+    fn a_constant_sky_is_left_to_bsdf_sampling() {
+        let env = Environment::constant(Vec3::splat(0.5));
+        assert!(!env.is_sampled() && !env.is_black());
+        assert_eq!(env.sample(Vec2::new(0.25, 0.5)), None);
+        assert_eq!(env.pdf(Vec3::X), 0.0);
+        assert_eq!(env.radiance(Vec3::new(0.3, -2.0, 1.0)), Vec3::splat(0.5));
+        assert_eq!(env.mean(), Vec3::splat(0.5));
+        assert!(Environment::constant(Vec3::ZERO).is_black());
+    }
+}
