@@ -21,9 +21,12 @@ pub fn show(ui: &mut egui::Ui, sky: &mut Sky) -> (bool, Option<Action>) {
             ui.label("Map");
             ui.horizontal(|ui| match &sky.map {
                 Some(map) => {
+                    // The file's name; its path as the scene names it on hover.
                     let image = &map.image;
-                    ui.label(&map.src)
-                        .on_hover_text(format!("{} × {} pixels", image.width, image.height));
+                    ui.label(file_name(&map.src)).on_hover_text(format!(
+                        "{}\n{} × {} pixels",
+                        map.src, image.width, image.height
+                    ));
                 }
                 None => {
                     ui.weak("none: a constant colour");
@@ -58,12 +61,14 @@ pub fn show(ui: &mut egui::Ui, sky: &mut Sky) -> (bool, Option<Action>) {
 /// The list label of the sky.
 pub fn label(sky: &Sky) -> String {
     match &sky.map {
-        Some(map) => {
-            let name = std::path::Path::new(&map.src)
-                .file_name()
-                .map_or_else(|| map.src.clone(), |n| n.to_string_lossy().into_owned());
-            format!("sky: {name}")
-        }
+        Some(map) => format!("sky: {}", file_name(&map.src)),
         None => "sky".to_string(),
     }
+}
+
+/// The last component of a map's path (a built-in map's whole name).
+fn file_name(src: &str) -> String {
+    std::path::Path::new(src)
+        .file_name()
+        .map_or_else(|| src.to_string(), |n| n.to_string_lossy().into_owned())
 }

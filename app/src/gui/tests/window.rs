@@ -927,3 +927,30 @@ fn a_file_that_is_not_an_environment_map_is_a_message_and_changes_nothing() {
     );
     assert_eq!(app.doc.state.scene, before);
 }
+
+#[test]
+fn the_sky_editor_renders_with_wgpu_beside_a_path_traced_map() {
+    use eframe::egui_wgpu::{RendererOptions, WgpuSetup};
+    use egui_kittest::wgpu::{WgpuTestRenderer, create_render_state, default_wgpu_setup};
+    let mut setup = default_wgpu_setup();
+    if let WgpuSetup::CreateNew(new) = &mut setup {
+        new.instance_descriptor.backends = eframe::wgpu::Backends::VULKAN;
+    }
+    let render_state = create_render_state(setup, RendererOptions::PREDICTABLE);
+    let mut app = seed_app(160, 120).with_gpu(Some(render_state.clone()));
+    app.load_sky_map(&reference_sky_map());
+    app.doc.state.render.integrator = renderer::integrator::Integrator::Path;
+    let mut h = Harness::builder()
+        .with_size(egui::Vec2::new(1280.0, 800.0))
+        .renderer(WgpuTestRenderer::from_render_state(render_state))
+        .build_ui_state(|ui, app: &mut RaylabApp| app.show(ui), app);
+    settle(&mut h);
+    h.get_by_label("sky: sky_map.exr");
+    h.get_by_label("Rotate (°)");
+    let image = h.render().expect("the window renders");
+    let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/tmp");
+    std::fs::create_dir_all(&out).expect("target/tmp");
+    image.save(out.join("window_sky.png")).expect("saved");
+    let distinct: std::collections::HashSet<[u8; 4]> = image.pixels().map(|p| p.0).collect();
+    assert!(distinct.len() > 500, "only {} colours", distinct.len());
+}
