@@ -263,13 +263,12 @@ impl<N: Copy> Lane<N> for PathLane<N> {
 #[inline]
 pub(crate) fn escaped(world: &World, ray: &Ray, previous: Option<(Vec3, f32)>) -> Vec3 {
     let environment = &world.environment;
+    let (radiance, pdf) = environment.radiance_and_pdf(ray.dir);
     let weight = match previous {
-        Some((_, bsdf_pdf)) if environment.is_sampled() => {
-            power_heuristic(bsdf_pdf, environment.pdf(ray.dir))
-        }
+        Some((_, bsdf_pdf)) if environment.is_sampled() => power_heuristic(bsdf_pdf, pdf),
         _ => 1.0,
     };
-    weight * environment.radiance(ray.dir)
+    weight * radiance
 }
 
 /// The shadow rays of a vertex with a smooth lobe: one toward every point

@@ -45,6 +45,8 @@ pub struct MapSample {
     pub dir: Vec3,
     /// Its density in solid angle.
     pub pdf: f32,
+    /// The radiance arriving from it.
+    pub radiance: Vec3,
 }
 
 impl EnvMap {
@@ -148,23 +150,35 @@ impl EnvMap {
     /// interpolation of the four texels around it.
     #[inline]
     pub fn radiance(&self, v: Vec3) -> Vec3 {
+        self.radiance_and_pdf(v).0
+    }
+
+    /// The density in solid angle with which [`EnvMap::sample`] draws `v`.
+    #[inline]
+    pub fn pdf(&self, v: Vec3) -> f32 {
+        self.radiance_and_pdf(v).1
+    }
+
+    /// [`EnvMap::radiance`] and [`EnvMap::pdf`] of `v`, its texel
+    /// coordinates found once (an escaping ray needs both: the arc tangent
+    /// and cosine were a fifth of a path-traced pass under a map).
+    #[inline]
+    pub fn radiance_and_pdf(&self, v: Vec3) -> (Vec3, f32) {
         let (x, y) = self.coordinates(v);
         let (column, band) = self.cell(x, y);
-        let (fx, fy) = (x - column as f32, y - band as f32);
+        let radiance = self.bilinear(column, band, x - column as f32, y - band as f32);
+        (radiance, self.density[band * self.width as usize + column])
+    }
+
+    /// The texels of cell (`column`, `band`) interpolated at (fx, fy) within it.
+    #[inline]
+    fn bilinear(&self, column: usize, band: usize, fx: f32, fy: f32) -> Vec3 {
         let stride = self.width as usize + 1;
         let at = band * stride + column;
         let t = &self.texels;
         let top = t[at] * (1.0 - fx) + t[at + 1] * fx;
         let bottom = t[at + stride] * (1.0 - fx) + t[at + stride + 1] * fx;
         top * (1.0 - fy) + bottom * fy
-    }
-
-    /// The density in solid angle with which [`EnvMap::sample`] draws `v`.
-    #[inline]
-    pub fn pdf(&self, v: Vec3) -> f32 {
-        let (x, y) = self.coordinates(v);
-        let (column, band) = self.cell(x, y);
-        self.density[band * self.width as usize + column]
     }
 
     /// A direction drawn with density ∝ radiance (luminance) from the
@@ -180,9 +194,14 @@ impl EnvMap {
         let cos_theta = (cos0 + (cos1 - cos0) * v).clamp(-1.0, 1.0);
         let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
         let (sin_phi, cos_phi) = phi.sin_cos();
+        // The radiance there, read in the drawn cell: across, where the
+        // point was placed; down, from its polar angle.
+        let y = cos_theta.acos() * (1.0 / PI) * (self.height as f32 - 1.0);
+        let fy = (y - band as f32).clamp(0.0, 1.0);
         Some(MapSample {
             dir: Vec3::new(sin_theta * sin_phi, cos_theta, -sin_theta * cos_phi),
             pdf: self.density[band * self.width as usize + column],
+            radiance: self.bilinear(column, band, s, fy),
         })
     }
 }

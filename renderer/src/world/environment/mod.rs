@@ -115,9 +115,24 @@ impl Environment {
         let s = map.sample(u)?;
         Some(EnvironmentSample {
             dir: self.world_from_map * s.dir,
-            radiance: self.color * map.radiance(s.dir),
+            radiance: self.color * s.radiance,
             pdf: s.pdf,
         })
+    }
+
+    /// [`Environment::radiance`] and [`Environment::pdf`] of `dir` at once.
+    #[inline]
+    pub fn radiance_and_pdf(&self, dir: Vec3) -> (Vec3, f32) {
+        match &self.map {
+            None => (self.color, 0.0),
+            Some(map) => {
+                let (radiance, pdf) = map.radiance_and_pdf((self.map_from_world * dir).normalize());
+                (
+                    self.color * radiance,
+                    if self.is_sampled() { pdf } else { 0.0 },
+                )
+            }
+        }
     }
 
     /// The density in solid angle with which [`Environment::sample`] draws
