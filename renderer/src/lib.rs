@@ -34,4 +34,4 @@ pub use inspect::{Inspection, inspect_pixel};
 pub use integrator::RenderOptions;
 pub use integrator::sampler::Sampling;
 pub use shapes::Method;
-pub use world::{RenderError, World};
+pub use world::{Environment, MapOrientation, RenderError, World};

@@ -18,7 +18,7 @@ pub mod placed_mesh;
 mod top_level;
 
 pub use batch::BATCHED_INSTANCES;
-pub use environment::{Environment, EnvironmentSample};
+pub use environment::{Environment, EnvironmentSample, MapOrientation};
 pub use hit::{Hit, TriangleRef};
 pub use hit_surface::HitSurface;
 pub(crate) use top_level::GroupedTriangle;

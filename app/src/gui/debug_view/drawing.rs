@@ -1,7 +1,7 @@
 //! What the debug view draws, built on the CPU from the prepared world: the
 //! scene's shapes, a ground grid and world axes, the ray-tracing camera at P0
 //! with t, u, r, the view volume, the view window at distance d with its
-//! pixel grid, C00 and P_ij, and rays. Everything comes from the tracer's own
+//! pixel grid, C00 and P_ij, rays, and an environment map's orientation. Everything comes from the tracer's own
 //! [`Camera`], so the picture is the lecture's geometry, not a copy of it.
 
 use super::gpu::{GpuSegment, GpuVertex};
@@ -42,6 +42,8 @@ pub mod palette {
     pub const NORMAL: Color32 = Color32::from_rgb(250, 250, 250);
     /// The selected object.
     pub const SELECTED: Color32 = Color32::from_rgb(255, 160, 30);
+    /// An environment map's frame.
+    pub const SKY: Color32 = Color32::from_rgb(150, 190, 255);
 }
 
 /// Which primary rays to draw besides the selected pixel's.
@@ -220,6 +222,7 @@ pub fn build(inputs: &Inputs<'_>) -> Drawing {
             drawing.label(*position, format!("light {k}"), palette::SHADOW_FREE);
         }
     }
+    sky(&mut drawing, &inputs.world.environment, centre, radius);
     fan(&mut drawing, inputs, radius);
     if let Some([i, j]) = inputs.pixel {
         let p_ij = camera.pixel_center(i, j);
@@ -346,6 +349,37 @@ fn ground(drawing: &mut Drawing, centre: Vec3, radius: f32) {
         drawing.line(Vec3::ZERO, axis * length, color, 2.0);
         drawing.label(axis * length, name, color);
     }
+}
+
+/// An environment map's orientation around the scene's centre: its
+/// horizon (the map's middle row) as a circle, arrows to its zenith (the
+/// top row), its azimuth origin (column 0's edge, φ = 0) and φ = 90°, and a
+/// line toward its brightest texel (a sun).
+fn sky(drawing: &mut Drawing, environment: &renderer::Environment, centre: Vec3, radius: f32) {
+    let Some(o) = environment.map_orientation() else {
+        return;
+    };
+    let reach = 1.4 * radius;
+    let color = palette::SKY;
+    let (a, b) = (o.azimuth_zero, o.azimuth_quarter);
+    let segments = 64;
+    for k in 0..segments {
+        let angle = |k: i32| std::f32::consts::TAU * k as f32 / segments as f32;
+        let at = |t: f32| centre + reach * (t.cos() * a + t.sin() * b);
+        drawing.line(at(angle(k)), at(angle(k + 1)), color, 1.0);
+    }
+    for (dir, name) in [
+        (o.zenith, "sky θ = 0"),
+        (o.azimuth_zero, "sky φ = 0"),
+        (o.azimuth_quarter, "sky φ = 90°"),
+    ] {
+        drawing.line(centre, centre + reach * dir, color, 2.0);
+        drawing.label(centre + reach * dir, name, color);
+    }
+    let sun = centre + 1.8 * radius * o.brightest;
+    drawing.line(centre, sun, palette::PRIMARY, 1.0);
+    drawing.marker(sun, palette::PRIMARY);
+    drawing.label(sun, "sky's brightest", palette::PRIMARY);
 }
 
 /// The camera at P0 with t, u, r, the view volume and the view window.

@@ -122,6 +122,29 @@ impl EnvMap {
         }
     }
 
+    /// The direction (map frame) of the texel of highest luminance; the
+    /// first of equals, on the equator row's first column for a black map.
+    pub fn brightest_direction(&self) -> Vec3 {
+        let stride = self.width as usize + 1;
+        let mut best = (f32::NEG_INFINITY, 0, (self.height as usize - 1) / 2);
+        for y in 0..self.height as usize {
+            for x in 0..self.width as usize {
+                let l = luminance(self.texels[y * stride + x]);
+                if l > best.0 {
+                    best = (l, x, y);
+                }
+            }
+        }
+        let (_, x, y) = best;
+        let phi = TAU * (x as f32 + 0.5) / self.width as f32;
+        let theta = PI * y as f32 / (self.height - 1) as f32;
+        Vec3::new(
+            theta.sin() * phi.sin(),
+            theta.cos(),
+            -theta.sin() * phi.cos(),
+        )
+    }
+
     /// The mean radiance over all directions (1/4π ∫ L dω).
     pub fn mean(&self) -> Vec3 {
         self.mean

@@ -32,6 +32,20 @@ pub struct Environment {
     world_from_map: Mat3,
 }
 
+/// How a map lies around the scene ([`Environment::map_orientation`]),
+/// unit world-space directions.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MapOrientation {
+    /// The map's top row (θ = 0).
+    pub zenith: Vec3,
+    /// Azimuth φ = 0: the centre line of column 0's left edge.
+    pub azimuth_zero: Vec3,
+    /// Azimuth φ = 90°.
+    pub azimuth_quarter: Vec3,
+    /// Toward the brightest texel's centre.
+    pub brightest: Vec3,
+}
+
 /// A direction drawn toward the environment.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EnvironmentSample {
@@ -79,6 +93,21 @@ impl Environment {
             None => self.color,
             Some(map) => self.color * map.radiance((self.map_from_world * dir).normalize()),
         }
+    }
+
+    /// For a map, its frame in world space: where its zenith (θ = 0, the
+    /// top row), its azimuth origin (φ = 0, toward the map's −z, column 0)
+    /// and φ = 90° (its +x) point once turned, and the direction of its
+    /// brightest texel (a sun, say); `None` for a constant colour.
+    pub fn map_orientation(&self) -> Option<MapOrientation> {
+        let map = self.map.as_ref()?;
+        let turn = |v: Vec3| self.world_from_map * v;
+        Some(MapOrientation {
+            zenith: turn(Vec3::Y),
+            azimuth_zero: turn(Vec3::NEG_Z),
+            azimuth_quarter: turn(Vec3::X),
+            brightest: turn(map.brightest_direction()),
+        })
     }
 
     /// The mean radiance over all directions: Whitted's ambient term from
@@ -176,6 +205,33 @@ mod tests {
             }),
             rotate,
         }
+    }
+
+    #[test]
+    fn the_orientation_names_where_the_map_and_its_brightest_texel_point() {
+        // Only column 1 of the equator row is bright.
+        let equator_sun = |rotate| {
+            let mut sky = sky_with_map(rotate);
+            let map = sky.map.as_mut().expect("a map");
+            let mut image = (*map.image).clone();
+            for (i, t) in image.texels.iter_mut().enumerate() {
+                *t = if i == 5 { [8.0; 3] } else { [0.5; 3] };
+            }
+            map.image = Arc::new(image);
+            Environment::new(&sky)
+        };
+        let plain = equator_sun(Vec3::ZERO);
+        let o = plain.map_orientation().expect("a map");
+        assert_eq!((o.zenith, o.azimuth_zero), (Vec3::Y, Vec3::NEG_Z));
+        // The bright column 1 is centred at φ = 3π/4 (on the equator row).
+        let bright = Vec3::new((0.75 * PI).sin(), 0.0, -(0.75 * PI).cos());
+        assert!((o.brightest - bright).length() < 1e-5, "{}", o.brightest);
+        let turned = equator_sun(Vec3::new(0.0, 90.0, 0.0));
+        let t = turned.map_orientation().expect("a map");
+        let r = Mat3::from_rotation_y(PI / 2.0);
+        assert!((t.azimuth_zero - r * Vec3::NEG_Z).length() < 1e-6);
+        assert!((t.brightest - r * bright).length() < 1e-5);
+        assert_eq!(Environment::constant(Vec3::ONE).map_orientation(), None);
     }
 
     #[test]

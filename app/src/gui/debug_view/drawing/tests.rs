@@ -154,3 +154,41 @@ fn a_sparse_fan_draws_one_ray_per_fan_pixel() {
     let expected = (50..w).step_by(100).count() * (50..h).step_by(100).count();
     assert_eq!(with_fan.segments.len() - plain.segments.len(), expected);
 }
+
+#[test]
+fn an_environment_map_is_drawn_with_its_zenith_azimuth_and_brightest_texel() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/reference/sky.xml");
+    let scene = scene::read_file(&path).expect("the sky scene loads");
+    let resolved = scene::resolve(&scene).expect("resolves");
+    let world = World::new(&resolved).expect("renders");
+    let drawing = build(&Inputs {
+        world: &world,
+        objects: &resolved.objects,
+        selected_object: None,
+        pixel: None,
+        rays: &[],
+        options: DrawOptions::default(),
+    });
+    let at = |name: &str| {
+        drawing
+            .labels
+            .iter()
+            .find(|l| l.text == name)
+            .unwrap_or_else(|| panic!("no label {name}"))
+            .at
+    };
+    let (centre, radius) = scene_sphere(&resolved.objects, world.camera.p0);
+    // The map is turned 30° about y: φ = 0 points at −z turned by 30°.
+    let zero = (at("sky φ = 0") - centre).normalize();
+    let expected = glam::Mat3::from_rotation_y(30f32.to_radians()) * Vec3::NEG_Z;
+    assert!((zero - expected).length() < 1e-4, "{zero} vs {expected}");
+    assert!(((at("sky θ = 0") - centre).normalize() - Vec3::Y).length() < 1e-4);
+    // The sun of scripts/make_sky_map.py, 40° above the horizon at 60° of
+    // azimuth, turned with the map; its plateau is 4° wide.
+    let sun = ((at("sky's brightest") - centre) / (1.8 * radius)).normalize();
+    let (e, a) = (40f32.to_radians(), 60f32.to_radians());
+    let true_sun = glam::Mat3::from_rotation_y(30f32.to_radians())
+        * Vec3::new(e.cos() * a.sin(), e.sin(), -e.cos() * a.cos());
+    let off = sun.dot(true_sun).clamp(-1.0, 1.0).acos().to_degrees();
+    assert!(off < 5.0, "{sun} is {off}° from the sun {true_sun}");
+}
