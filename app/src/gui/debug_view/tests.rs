@@ -92,3 +92,47 @@ fn debug_view_snapshot_shows_camera_window_c00_and_a_ray() {
     assert!(distinct.len() > 200, "only {} colours", distinct.len());
     harness.snapshot("debug_view_seed");
 }
+
+/// The debug view of a scene under an environment map shows the map's
+/// frame (saved for a look, not compared with a snapshot).
+#[test]
+fn debug_view_of_a_sky_map_draws_its_frame() {
+    let render_state = vulkan_render_state();
+    DebugRenderer::install(&render_state);
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/reference/sky.xml");
+    let scene = scene::read_file(&path).expect("the sky scene loads");
+    let resolved = scene::resolve(&scene).expect("resolves");
+    let world = World::new(&resolved).expect("renders");
+    assert!(world.environment.map_orientation().is_some());
+    let state = State {
+        view: DebugView::default(),
+        world,
+        objects: resolved.objects,
+        pixel: [0, 0],
+        rays: Vec::new(),
+    };
+    let mut harness = Harness::builder()
+        .with_size(egui::vec2(720.0, 480.0))
+        .renderer(WgpuTestRenderer::from_render_state(render_state))
+        .build_ui_state(
+            |ui, s: &mut State| {
+                let inputs = Inputs {
+                    world: &s.world,
+                    objects: &s.objects,
+                    selected_object: None,
+                    pixel: None,
+                    rays: &s.rays,
+                    options: s.view.options,
+                };
+                s.view.show(ui, &inputs, true);
+            },
+            state,
+        );
+    harness.run_steps(2);
+    let image = harness.render().expect("the view renders");
+    let out = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/tmp");
+    std::fs::create_dir_all(&out).expect("target/tmp");
+    image.save(out.join("debug_view_sky.png")).expect("saved");
+    let distinct: std::collections::HashSet<[u8; 4]> = image.pixels().map(|p| p.0).collect();
+    assert!(distinct.len() > 200, "only {} colours", distinct.len());
+}
