@@ -145,7 +145,6 @@ impl World {
         Ok(World {
             camera,
             emitters,
-            sky_ambient: environment.mean(),
             environment,
             objects,
             materials: resolved.objects.iter().map(|o| o.material).collect(),

@@ -99,9 +99,6 @@ pub struct World {
     pub ambient: Vec3,
     /// What escaping rays see (`<sky>`: a colour or a map; black without one).
     pub environment: Environment,
-    /// The sky's mean radiance: the ambient light Whitted's shading adds
-    /// for it (zero without a sky).
-    pub sky_ambient: Vec3,
     /// Every emissive surface, as area lights.
     pub emitters: Emitters,
     /// The top level over every bounded item, as each method traces it.
@@ -142,7 +139,7 @@ impl World {
     /// the sky's mean radiance.
     #[inline]
     pub fn shading_ambient(&self) -> Vec3 {
-        self.ambient + self.sky_ambient
+        self.ambient + self.environment.mean()
     }
 
     /// A number no other world in this process has, a clone included:

@@ -124,8 +124,8 @@ impl PartialEq for SkyMap {
 }
 
 /// A decoded latitude-longitude HDR image: linear RGB, row 0 at the top
-/// (the direction +y before `rotate`), column 0 at the azimuth of −z, as
-/// Mitsuba 3's `envmap` lays it out.
+/// (the direction +y before `rotate`), column 0 starting at the azimuth of
+/// −z and going toward +x, as Mitsuba 3's `envmap` lays it out.
 #[derive(Clone, Debug, PartialEq)]
 pub struct EnvImage {
     /// The file it was read from.

@@ -36,14 +36,44 @@ struct State {
     view: DebugView,
     world: World,
     objects: Vec<ResolvedObject>,
-    pixel: [u32; 2],
+    pixel: Option<[u32; 2]>,
     rays: Vec<DrawnRay>,
+}
+
+/// A 720 × 480 harness drawing the debug view of `state` with wgpu, run two
+/// frames, its picture saved as `target/tmp/NAME.png`; the harness and the
+/// number of distinct colours in the picture.
+fn draw(state: State, name: &str) -> (Harness<'static, State>, usize) {
+    let render_state = vulkan_render_state();
+    DebugRenderer::install(&render_state);
+    let mut harness = Harness::builder()
+        .with_size(egui::vec2(720.0, 480.0))
+        .renderer(WgpuTestRenderer::from_render_state(render_state))
+        .build_ui_state(
+            |ui, s: &mut State| {
+                let inputs = Inputs {
+                    world: &s.world,
+                    objects: &s.objects,
+                    selected_object: None,
+                    pixel: s.pixel,
+                    rays: &s.rays,
+                    options: s.view.options,
+                };
+                s.view.show(ui, &inputs, true);
+            },
+            state,
+        );
+    harness.run_steps(2);
+    let image = harness.render().expect("the view renders");
+    let out = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/tmp");
+    std::fs::create_dir_all(&out).expect("target/tmp");
+    image.save(out.join(format!("{name}.png"))).expect("saved");
+    let distinct: std::collections::HashSet<[u8; 4]> = image.pixels().map(|p| p.0).collect();
+    (harness, distinct.len())
 }
 
 #[test]
 fn debug_view_snapshot_shows_camera_window_c00_and_a_ray() {
-    let render_state = vulkan_render_state();
-    DebugRenderer::install(&render_state);
     let (world, objects) = small_seed();
     // A pixel on the red sphere: its primary ray, the shadow ray to the
     // light and the reflection (the sphere is reflective plastic).
@@ -62,34 +92,12 @@ fn debug_view_snapshot_shows_camera_window_c00_and_a_ray() {
         view: DebugView::default(),
         world,
         objects,
-        pixel,
+        pixel: Some(pixel),
         rays,
     };
-    let mut harness = Harness::builder()
-        .with_size(egui::vec2(720.0, 480.0))
-        .renderer(WgpuTestRenderer::from_render_state(render_state))
-        .build_ui_state(
-            |ui, s: &mut State| {
-                let inputs = Inputs {
-                    world: &s.world,
-                    objects: &s.objects,
-                    selected_object: None,
-                    pixel: Some(s.pixel),
-                    rays: &s.rays,
-                    options: s.view.options,
-                };
-                s.view.show(ui, &inputs, true);
-            },
-            state,
-        );
-    harness.run_steps(2);
-    let image = harness.render().expect("the view renders");
-    let out = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/tmp");
-    std::fs::create_dir_all(&out).expect("target/tmp");
-    image.save(out.join("debug_view.png")).expect("saved");
     // The 3D drawing is there, not a blank: the background and many other colours.
-    let distinct: std::collections::HashSet<[u8; 4]> = image.pixels().map(|p| p.0).collect();
-    assert!(distinct.len() > 200, "only {} colours", distinct.len());
+    let (mut harness, distinct) = draw(state, "debug_view");
+    assert!(distinct > 200, "only {distinct} colours");
     harness.snapshot("debug_view_seed");
 }
 
@@ -97,8 +105,6 @@ fn debug_view_snapshot_shows_camera_window_c00_and_a_ray() {
 /// frame (saved for a look, not compared with a snapshot).
 #[test]
 fn debug_view_of_a_sky_map_draws_its_frame() {
-    let render_state = vulkan_render_state();
-    DebugRenderer::install(&render_state);
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/reference/sky.xml");
     let scene = scene::read_file(&path).expect("the sky scene loads");
     let resolved = scene::resolve(&scene).expect("resolves");
@@ -108,31 +114,9 @@ fn debug_view_of_a_sky_map_draws_its_frame() {
         view: DebugView::default(),
         world,
         objects: resolved.objects,
-        pixel: [0, 0],
+        pixel: None,
         rays: Vec::new(),
     };
-    let mut harness = Harness::builder()
-        .with_size(egui::vec2(720.0, 480.0))
-        .renderer(WgpuTestRenderer::from_render_state(render_state))
-        .build_ui_state(
-            |ui, s: &mut State| {
-                let inputs = Inputs {
-                    world: &s.world,
-                    objects: &s.objects,
-                    selected_object: None,
-                    pixel: None,
-                    rays: &s.rays,
-                    options: s.view.options,
-                };
-                s.view.show(ui, &inputs, true);
-            },
-            state,
-        );
-    harness.run_steps(2);
-    let image = harness.render().expect("the view renders");
-    let out = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/tmp");
-    std::fs::create_dir_all(&out).expect("target/tmp");
-    image.save(out.join("debug_view_sky.png")).expect("saved");
-    let distinct: std::collections::HashSet<[u8; 4]> = image.pixels().map(|p| p.0).collect();
-    assert!(distinct.len() > 200, "only {} colours", distinct.len());
+    let (_, distinct) = draw(state, "debug_view_sky");
+    assert!(distinct > 200, "only {distinct} colours");
 }

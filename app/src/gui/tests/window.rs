@@ -555,8 +555,13 @@ fn the_g_key_shows_the_debug_view_beside_the_image() {
 
 /// The whole window drawn with wgpu (lavapipe): the image with the inspected
 /// pixel, the debug view with its rays and the inspector, saved for a look.
-#[test]
-fn the_window_with_debug_view_and_inspector_renders_with_wgpu() {
+/// A `width` × `height` harness of the app `make` builds on a wgpu render
+/// state (Vulkan: lavapipe here), drawn by wgpu.
+fn wgpu_harness(
+    width: f32,
+    height: f32,
+    make: impl FnOnce(eframe::egui_wgpu::RenderState) -> RaylabApp,
+) -> Harness<'static, RaylabApp> {
     use eframe::egui_wgpu::{RendererOptions, WgpuSetup};
     use egui_kittest::wgpu::{WgpuTestRenderer, create_render_state, default_wgpu_setup};
     let mut setup = default_wgpu_setup();
@@ -564,12 +569,20 @@ fn the_window_with_debug_view_and_inspector_renders_with_wgpu() {
         new.instance_descriptor.backends = eframe::wgpu::Backends::VULKAN;
     }
     let render_state = create_render_state(setup, RendererOptions::PREDICTABLE);
-    let mut app = seed_app(160, 120).with_gpu(Some(render_state.clone()));
-    app.show_debug = true;
-    let mut h = Harness::builder()
-        .with_size(egui::Vec2::new(1400.0, 860.0))
+    let app = make(render_state.clone());
+    Harness::builder()
+        .with_size(egui::Vec2::new(width, height))
         .renderer(WgpuTestRenderer::from_render_state(render_state))
-        .build_ui_state(|ui, app: &mut RaylabApp| app.show(ui), app);
+        .build_ui_state(|ui, app: &mut RaylabApp| app.show(ui), app)
+}
+
+#[test]
+fn the_window_with_debug_view_and_inspector_renders_with_wgpu() {
+    let mut h = wgpu_harness(1400.0, 860.0, |render_state| {
+        let mut app = seed_app(160, 120).with_gpu(Some(render_state));
+        app.show_debug = true;
+        app
+    });
     settle(&mut h);
     let sphere = h
         .state()
@@ -930,20 +943,12 @@ fn a_file_that_is_not_an_environment_map_is_a_message_and_changes_nothing() {
 
 #[test]
 fn the_sky_editor_renders_with_wgpu_beside_a_path_traced_map() {
-    use eframe::egui_wgpu::{RendererOptions, WgpuSetup};
-    use egui_kittest::wgpu::{WgpuTestRenderer, create_render_state, default_wgpu_setup};
-    let mut setup = default_wgpu_setup();
-    if let WgpuSetup::CreateNew(new) = &mut setup {
-        new.instance_descriptor.backends = eframe::wgpu::Backends::VULKAN;
-    }
-    let render_state = create_render_state(setup, RendererOptions::PREDICTABLE);
-    let mut app = seed_app(160, 120).with_gpu(Some(render_state.clone()));
-    app.load_sky_map(&reference_sky_map());
-    app.doc.state.render.integrator = renderer::integrator::Integrator::Path;
-    let mut h = Harness::builder()
-        .with_size(egui::Vec2::new(1280.0, 800.0))
-        .renderer(WgpuTestRenderer::from_render_state(render_state))
-        .build_ui_state(|ui, app: &mut RaylabApp| app.show(ui), app);
+    let mut h = wgpu_harness(1280.0, 800.0, |render_state| {
+        let mut app = seed_app(160, 120).with_gpu(Some(render_state));
+        app.load_sky_map(&reference_sky_map());
+        app.doc.state.render.integrator = renderer::integrator::Integrator::Path;
+        app
+    });
     settle(&mut h);
     h.get_by_label("sky: sky_map.exr");
     h.get_by_label("Rotate (°)");

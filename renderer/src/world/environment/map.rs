@@ -69,13 +69,15 @@ impl EnvMap {
         // its solid angle (Δφ · (cos θ₀ − cos θ₁)): the integral of the
         // interpolated luminance over it, up to the variation of sin θ.
         let d_phi = std::f64::consts::TAU / w as f64;
+        let band_solid: Vec<f64> = (0..h - 1)
+            .map(|y| d_phi * (f64::from(row_cos[y]) - f64::from(row_cos[y + 1])))
+            .collect();
         let mut weights = vec![0.0f32; w * (h - 1)];
         let mut band_weights = vec![0.0f32; h - 1];
         let mut cells = Vec::with_capacity(h - 1);
         let mut total_rgb = [0.0f64; 3];
         let mut total = 0.0f64;
-        for y in 0..h - 1 {
-            let solid = d_phi * (f64::from(row_cos[y]) - f64::from(row_cos[y + 1]));
+        for (y, &solid) in band_solid.iter().enumerate() {
             let mut band = 0.0f64;
             for x in 0..w {
                 let corners = [
@@ -100,8 +102,7 @@ impl EnvMap {
             .iter()
             .enumerate()
             .map(|(i, &weight)| {
-                let y = i / w;
-                let solid = d_phi * (f64::from(row_cos[y]) - f64::from(row_cos[y + 1]));
+                let solid = band_solid[i / w];
                 if total > 0.0 && solid > 0.0 {
                     (f64::from(weight) / total / solid) as f32
                 } else {

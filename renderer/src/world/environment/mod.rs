@@ -30,6 +30,9 @@ pub struct Environment {
     map_from_world: Mat3,
     /// The map's frame into world directions.
     world_from_map: Mat3,
+    /// Whether the path tracer samples it ([`Environment::is_sampled`]),
+    /// decided once: it is asked per lane and bounce.
+    sampled: bool,
 }
 
 /// How a map lies around the scene ([`Environment::map_orientation`]),
@@ -62,28 +65,15 @@ impl Environment {
     pub fn new(sky: &scene::Sky) -> Environment {
         let world_from_map =
             Placement::from_euler_degrees(Vec3::ZERO, sky.rotate).world_from_object;
+        let map = sky.map.as_ref().map(|m| cache::map_for(&m.image));
+        let black = sky.color == Vec3::ZERO || map.as_ref().is_some_and(|m| m.mean() == Vec3::ZERO);
         Environment {
             color: sky.color,
-            map: sky.map.as_ref().map(|m| cache::map_for(&m.image)),
+            sampled: map.is_some() && !black,
+            map,
             map_from_world: world_from_map.transpose(),
             world_from_map,
         }
-    }
-
-    /// A constant environment of radiance `color`.
-    pub fn constant(color: Vec3) -> Environment {
-        Environment {
-            color,
-            map: None,
-            map_from_world: Mat3::IDENTITY,
-            world_from_map: Mat3::IDENTITY,
-        }
-    }
-
-    /// True when no light comes from it (no sky, a black one, or a black
-    /// tint): rays that escape see black and it is never sampled.
-    pub fn is_black(&self) -> bool {
-        self.color == Vec3::ZERO || self.map.as_ref().is_some_and(|m| m.mean() == Vec3::ZERO)
     }
 
     /// The radiance arriving from direction `dir` (world space, any length).
@@ -121,10 +111,11 @@ impl Environment {
     }
 
     /// True when the path tracer samples it as a light: a map that gives
-    /// light (a constant colour is left to BSDF sampling).
+    /// light (not black, nor tinted black). A constant colour is left to
+    /// BSDF sampling.
     #[inline]
     pub fn is_sampled(&self) -> bool {
-        self.map.is_some() && !self.is_black()
+        self.sampled
     }
 
     /// The constant radiance of a sky without a map.
@@ -137,7 +128,7 @@ impl Environment {
     /// map's radiance; `None` when it is not sampled ([`Environment::is_sampled`]).
     #[inline]
     pub fn sample(&self, u: Vec2) -> Option<EnvironmentSample> {
-        if !self.is_sampled() {
+        if !self.sampled {
             return None;
         }
         let map = self.map.as_ref()?;
@@ -149,28 +140,17 @@ impl Environment {
         })
     }
 
-    /// [`Environment::radiance`] and [`Environment::pdf`] of `dir` at once.
+    /// [`Environment::radiance`] of `dir` and the density in solid angle
+    /// with which [`Environment::sample`] draws it (0 when it is not
+    /// sampled), the map's texel coordinates found once.
     #[inline]
     pub fn radiance_and_pdf(&self, dir: Vec3) -> (Vec3, f32) {
         match &self.map {
             None => (self.color, 0.0),
             Some(map) => {
                 let (radiance, pdf) = map.radiance_and_pdf((self.map_from_world * dir).normalize());
-                (
-                    self.color * radiance,
-                    if self.is_sampled() { pdf } else { 0.0 },
-                )
+                (self.color * radiance, if self.sampled { pdf } else { 0.0 })
             }
-        }
-    }
-
-    /// The density in solid angle with which [`Environment::sample`] draws
-    /// direction `dir` (world space, any length); 0 when it is not sampled.
-    #[inline]
-    pub fn pdf(&self, dir: Vec3) -> f32 {
-        match &self.map {
-            Some(map) if self.is_sampled() => map.pdf((self.map_from_world * dir).normalize()),
-            _ => 0.0,
         }
     }
 }
@@ -231,7 +211,10 @@ mod tests {
         let r = Mat3::from_rotation_y(PI / 2.0);
         assert!((t.azimuth_zero - r * Vec3::NEG_Z).length() < 1e-6);
         assert!((t.brightest - r * bright).length() < 1e-5);
-        assert_eq!(Environment::constant(Vec3::ONE).map_orientation(), None);
+        assert_eq!(
+            Environment::new(&Sky::constant(Vec3::ONE)).map_orientation(),
+            None
+        );
     }
 
     #[test]
@@ -268,19 +251,26 @@ mod tests {
             assert!((s.radiance - radiance).abs().max_element() < 1e-3 * radiance.max_element());
             // The turned direction lands in the drawn cell but for rounding
             // on a cell's edge.
-            agree += usize::from((env.pdf(s.dir) - s.pdf).abs() < 1e-4 * s.pdf);
+            agree += usize::from((env.radiance_and_pdf(s.dir).1 - s.pdf).abs() < 1e-4 * s.pdf);
         }
         assert!(agree >= 990, "{agree} of 1000");
     }
 
     #[test]
-    fn a_constant_sky_is_left_to_bsdf_sampling() {
-        let env = Environment::constant(Vec3::splat(0.5));
-        assert!(!env.is_sampled() && !env.is_black());
+    fn a_constant_sky_is_left_to_bsdf_sampling_and_a_black_tint_is_not_sampled() {
+        let env = Environment::new(&Sky::constant(Vec3::splat(0.5)));
+        assert!(!env.is_sampled());
         assert_eq!(env.sample(Vec2::new(0.25, 0.5)), None);
-        assert_eq!(env.pdf(Vec3::X), 0.0);
-        assert_eq!(env.radiance(Vec3::new(0.3, -2.0, 1.0)), Vec3::splat(0.5));
+        assert_eq!(
+            env.radiance_and_pdf(Vec3::new(0.3, -2.0, 1.0)),
+            (Vec3::splat(0.5), 0.0)
+        );
         assert_eq!(env.mean(), Vec3::splat(0.5));
-        assert!(Environment::constant(Vec3::ZERO).is_black());
+        let mut black = sky_with_map(Vec3::ZERO);
+        black.color = Vec3::ZERO;
+        let black = Environment::new(&black);
+        assert!(!black.is_sampled() && black.sample(Vec2::splat(0.5)).is_none());
+        assert_eq!(black.radiance_and_pdf(Vec3::X), (Vec3::ZERO, 0.0));
+        assert!(Environment::new(&sky_with_map(Vec3::ZERO)).is_sampled());
     }
 }
