@@ -1,10 +1,11 @@
 //! What both integrators know about a hit before they shade it: the surface
 //! point, the material there, which side the ray came from, the normals
-//! turned to that side, and how far secondary rays must start off the
+//! turned to that side, and where secondary and shadow rays start off the
 //! surface.
 
 use crate::geometry::offset::offset_ray_origin;
 use crate::geometry::ray::Ray;
+use crate::geometry::terminator::ShadowStart;
 use crate::shading::bsdf::{Bsdf, PreparedBsdf};
 use crate::shading::texture::albedo_at;
 use crate::shapes::Surface;
@@ -34,6 +35,10 @@ pub struct ShadingContext<'w> {
     /// The largest coordinate of the object hit ([`World::magnitude`]):
     /// secondary rays start off the surface by an offset that scales with it.
     pub magnitude: f32,
+    /// On a mesh hit from the side its normals face, Hanika's point on the
+    /// surface those normals describe: shadow rays toward lights near or
+    /// below the flat triangle start there ([`ShadingContext::shadow_ray`]).
+    pub curved_point: Option<Vec3>,
     /// The albedo when a caller found it already ([`ShadingContext::with_albedo`]).
     known_albedo: Option<Vec3>,
 }
@@ -55,6 +60,7 @@ impl<'w> ShadingContext<'w> {
             material,
             color,
             bsdf,
+            curved_point,
         } = world.hit_surface(ray, hit);
         let front = ray.dir.dot(surface.normal) < 0.0;
         let toward_ray = |n: Vec3| if front { n } else { -n };
@@ -67,6 +73,7 @@ impl<'w> ShadingContext<'w> {
             geometric: toward_ray(surface.normal),
             shading_normal: toward_ray(shading_normal),
             magnitude: world.magnitude(hit.object),
+            curved_point: curved_point.filter(|_| front),
             known_albedo: None,
         }
     }
@@ -101,6 +108,33 @@ impl<'w> ShadingContext<'w> {
     /// The hit point.
     pub fn point(&self) -> Vec3 {
         self.surface.point
+    }
+
+    /// True when light from `to_light` reaches the side the ray came from
+    /// (a shadow ray toward it is [`ShadingContext::shadow_ray`]): the light
+    /// lies above the geometric normal, or, on a mesh seen from the side its
+    /// normals face, above the shading normal, as on the curved surface
+    /// those normals describe.
+    #[inline]
+    pub fn lit_side(&self, to_light: Vec3) -> bool {
+        to_light.dot(self.geometric) > 0.0
+            || (self.curved_point.is_some() && to_light.dot(self.shading_normal) > 0.0)
+    }
+
+    /// The shadow ray, on the side the ray came from, toward the light
+    /// `distance` along `to_light` from the hit point (∞ for light from
+    /// infinitely far), ending at `reach` of the way there: off the hit
+    /// point, or near a smooth-shaded mesh's terminator off the curved
+    /// surface ([`ShadowStart::ray`]).
+    #[inline]
+    pub fn shadow_ray(&self, to_light: Vec3, distance: f32, reach: f32) -> Ray {
+        ShadowStart {
+            point: self.surface.point,
+            geometric: self.geometric,
+            magnitude: self.magnitude,
+            curved: self.curved_point,
+        }
+        .ray(to_light, distance, reach)
     }
 
     /// The ray leaving the hit point in direction `dir`, starting just off

@@ -18,7 +18,6 @@
 use super::RenderOptions;
 use super::recorder::{NoRecorder, Note, RayKind, Recorder};
 use super::shading_context::ShadingContext;
-use crate::geometry::offset::offset_ray_origin;
 use crate::geometry::ray::Ray;
 use crate::shading::bsdf::rough_conductor::RoughConductor;
 use crate::shading::bsdf::{Bsdf, ShadingFrame, conductor_reflectance};
@@ -435,7 +434,6 @@ fn lights<R: Recorder, S: Secondary>(
 ) -> Vec3 {
     let mut radiance = Vec3::ZERO;
     let (point, n) = (at.hit.point(), at.hit.shading_normal);
-    let origin = offset_ray_origin(point, at.hit.geometric, at.hit.magnitude);
     for (index, light) in world.lights.iter().enumerate() {
         let Some(sample) = light.sample(point) else {
             continue;
@@ -444,7 +442,7 @@ fn lights<R: Recorder, S: Secondary>(
         if cos <= 0.0 {
             continue;
         }
-        let shadow = Ray::new(origin, sample.to_light).with_t_max(sample.distance);
+        let shadow = at.hit.shadow_ray(sample.to_light, sample.distance, 1.0);
         if secondary.occluded(world, &shadow, options) {
             rec.shadow(node, index, &shadow, scale, None);
             continue;

@@ -1,6 +1,7 @@
 //! Everything shading needs from the object a ray hit, looked up in one go:
 //! a mesh's instance and triangle are found once for the point, both
-//! normals and the colour, and the material is lent, not copied.
+//! normals, the colour and the curved surface's point, and the material is
+//! lent, not copied.
 
 use super::{Hit, World};
 use crate::geometry::ray::Ray;
@@ -24,6 +25,10 @@ pub struct HitSurface<'w> {
     pub color: Vec3,
     /// The material's BSDF as prepared with the world.
     pub bsdf: &'w PreparedBsdf,
+    /// On a mesh, Hanika's point on the surface its vertex normals describe
+    /// (`PlacedMesh::curved_point`), where shadow rays near the terminator
+    /// start; `None` on analytic shapes, whose normals are their surface's.
+    pub curved_point: Option<Vec3>,
 }
 
 impl World {
@@ -42,6 +47,7 @@ impl World {
                     material: &mesh.material,
                     color: at.color,
                     bsdf: &mesh.bsdf,
+                    curved_point: Some(at.curved_point),
                 }
             }
             None => {
@@ -53,6 +59,7 @@ impl World {
                     material,
                     color: material.color,
                     bsdf: &self.bsdfs[hit.object as usize],
+                    curved_point: None,
                 }
             }
         }

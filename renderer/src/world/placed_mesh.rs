@@ -3,6 +3,7 @@
 
 use crate::accel::{Aabb, Instance, MeshBvh, MeshHit};
 use crate::geometry::ray::Ray;
+use crate::geometry::terminator::curved_surface_point;
 use crate::shading::bsdf::PreparedBsdf;
 use crate::shading::image_texture;
 use crate::shapes::Surface;
@@ -74,9 +75,10 @@ impl PlacedMesh {
         self.mesh.triangles[triangle as usize]
     }
 
-    /// The hit's surface, shading normal and colour, the triangle looked up
-    /// once: what [`PlacedMesh::surface`], [`PlacedMesh::shading_normal`]
-    /// and [`PlacedMesh::base_color`] give, bit for bit.
+    /// The hit's surface, shading normal, colour and curved-surface point,
+    /// the triangle looked up once: what [`PlacedMesh::surface`],
+    /// [`PlacedMesh::shading_normal`], [`PlacedMesh::base_color`] and
+    /// [`PlacedMesh::curved_point`] give, bit for bit.
     #[inline]
     pub fn shading_point(&self, hit: &MeshHit) -> MeshPoint {
         let corners = self.corners(hit.triangle);
@@ -85,6 +87,39 @@ impl PlacedMesh {
             surface,
             shading_normal: self.shading_normal_at(corners, hit, surface.normal),
             color: self.base_color_at(corners, hit),
+            curved_point: self.curved_point_at(corners, hit, surface.point),
+        }
+    }
+
+    /// Hanika's point over the hit on the surface the vertex normals
+    /// describe ([`curved_surface_point`], found in mesh space and placed),
+    /// where shadow rays near the terminator start; `surface.point` itself
+    /// on a mesh without normals.
+    pub fn curved_point(&self, hit: &MeshHit) -> Vec3 {
+        let corners = self.corners(hit.triangle);
+        let point = self.surface_at(corners, hit).point;
+        self.curved_point_at(corners, hit, point)
+    }
+
+    /// [`PlacedMesh::curved_point`] of the triangle with these corners and
+    /// the placed hit point `point`.
+    #[inline]
+    fn curved_point_at(&self, [a, b, c]: [u32; 3], hit: &MeshHit, point: Vec3) -> Vec3 {
+        let n = &self.mesh.normals;
+        let (Some(n0), Some(n1), Some(n2)) =
+            (n.get(a as usize), n.get(b as usize), n.get(c as usize))
+        else {
+            return point;
+        };
+        let p = &self.mesh.positions;
+        let (p0, p1, p2) = (p[a as usize], p[b as usize], p[c as usize]);
+        let local = p0 + hit.beta * (p1 - p0) + hit.gamma * (p2 - p0);
+        let weights = [1.0 - hit.beta - hit.gamma, hit.beta, hit.gamma];
+        let curved = curved_surface_point(local, [p0, p1, p2], [*n0, *n1, *n2], weights);
+        if curved == local {
+            point
+        } else {
+            self.instance.point_to_world(curved)
         }
     }
 
@@ -177,4 +212,7 @@ pub struct MeshPoint {
     pub shading_normal: Vec3,
     /// The material's colour times the texture there.
     pub color: Vec3,
+    /// Hanika's point on the surface the vertex normals describe
+    /// ([`PlacedMesh::curved_point`]).
+    pub curved_point: Vec3,
 }

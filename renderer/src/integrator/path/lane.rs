@@ -288,24 +288,24 @@ fn light_samples(
     shadows: &mut Vec<ShadowRay>,
 ) {
     let point = at.point();
-    // A shadow ray starts off the side its light is on; only a transmitting
-    // BSDF sees lights behind the surface.
-    let above = offset_ray_origin(point, at.geometric, at.magnitude);
+    // A shadow ray starts off the side its light is on (near a smooth
+    // mesh's terminator, off the curved surface its normals describe); only
+    // a transmitting BSDF sees lights behind the surface.
     let below = bsdf
         .transmits()
         .then(|| offset_ray_origin(point, -at.geometric, at.magnitude));
-    let origin_toward = |to_light: Vec3| {
-        if to_light.dot(at.geometric) > 0.0 {
-            Some(above)
+    let shadow_ray = |to_light: Vec3, distance: f32, reach: f32| {
+        if at.lit_side(to_light) {
+            Some(at.shadow_ray(to_light, distance, reach))
         } else {
-            below
+            below.map(|origin| Ray::new(origin, to_light).with_t_max(distance * reach))
         }
     };
     for (index, light) in world.lights.iter().enumerate() {
         let Some(s) = light.sample(point) else {
             continue;
         };
-        let Some(origin) = origin_toward(s.to_light) else {
+        let Some(ray) = shadow_ray(s.to_light, s.distance, 1.0) else {
             continue;
         };
         let f = bsdf.eval(wo, frame.to_local(s.to_light));
@@ -313,7 +313,7 @@ fn light_samples(
             continue;
         }
         shadows.push(ShadowRay {
-            ray: Ray::new(origin, s.to_light).with_t_max(s.distance),
+            ray,
             lit: f * s.irradiance,
             target: ShadowTarget::Light(index),
         });
@@ -321,15 +321,14 @@ fn light_samples(
     let u_select = sampler.next_f32();
     let u = sampler.next_2d();
     if let Some(s) = world.emitters.sample(point, u_select, u)
-        && let Some(origin) = origin_toward(s.to_light)
+        && let Some(ray) = shadow_ray(s.to_light, s.distance, 1.0 - SHADOW_SHORTENING)
     {
         let wi = frame.to_local(s.to_light);
         let f = bsdf.eval(wo, wi);
         if f != Vec3::ZERO {
             let mis_weight = power_heuristic(s.pdf, bsdf.pdf(wo, wi));
             shadows.push(ShadowRay {
-                ray: Ray::new(origin, s.to_light)
-                    .with_t_max(s.distance * (1.0 - SHADOW_SHORTENING)),
+                ray,
                 lit: f * s.radiance * (mis_weight / s.pdf),
                 target: ShadowTarget::Emitter(EmitterLightSample {
                     index: s.index,
@@ -344,14 +343,14 @@ fn light_samples(
     }
     sampler.seek_environment(depth);
     if let Some(s) = world.environment.sample(sampler.next_2d())
-        && let Some(origin) = origin_toward(s.dir)
+        && let Some(ray) = shadow_ray(s.dir, f32::INFINITY, 1.0)
     {
         let wi = frame.to_local(s.dir);
         let f = bsdf.eval(wo, wi);
         if f != Vec3::ZERO {
             let mis_weight = power_heuristic(s.pdf, bsdf.pdf(wo, wi));
             shadows.push(ShadowRay {
-                ray: Ray::new(origin, s.dir),
+                ray,
                 lit: f * s.radiance * (mis_weight / s.pdf),
                 target: ShadowTarget::Environment(EnvironmentLightSample {
                     pdf: s.pdf,

@@ -8,6 +8,7 @@ use super::lane_math::{Frame, offset_origins, power_heuristics};
 use super::paths::Paths;
 use super::rough_glass::RoughDielectrics;
 use super::scene::WavefrontScene;
+use super::shadow_sides::ShadowSides;
 use super::surfaces::Surfaces;
 use super::tracing;
 use crate::geometry::ray::Ray;
@@ -206,12 +207,18 @@ impl<F: FloatLanes> PathGroup<F> {
         // the normals interpolated, with its point, geometric normal and
         // colour (a texture's included) as the scalar code finds them.
         let mut shading = normal;
+        // And the point of the surface its normals describe, where shadow
+        // rays near the terminator start.
+        let mut curved_point = point;
         for k in (0..WIDTH).filter(|&k| lane_set(mesh, k)) {
             let s = world.hit_surface(&self.paths.rays.lane(k), &closest.hit(k));
             point.set_lane(k, s.surface.point);
             normal.set_lane(k, s.surface.normal);
             shading.set_lane(k, s.shading_normal);
             at.color.set_lane(k, s.color);
+            if let Some(curved) = s.curved_point {
+                curved_point.set_lane(k, curved);
+            }
         }
         let dir = self.paths.rays.dir;
         let front = dir.dot(normal).simd_lt(F::ZERO);
@@ -269,13 +276,12 @@ impl<F: FloatLanes> PathGroup<F> {
 
         let frame = Frame::new(ns);
         let wo = frame.to_local(-dir);
-        let above = offset_origins(point, n, at.magnitude);
         // Lights are sampled where a lobe is not a delta: a Lambertian, a
         // highlight, a rough conductor's or rough glass's. Rough glass also
         // sees lights behind the surface, through shadow rays from below it.
+        let sides = ShadowSides::new(point, n, ns, curved_point, mesh & front, at.magnitude);
         let rough = go & at.rough;
         let rough_glass = go & at.rough_glass;
-        let below = offset_origins(point, -n, at.magnitude);
         let lit = go & ((at.diffuse + at.glossy).simd_gt(F::ZERO) | rough | rough_glass);
         let frosted = RoughDielectrics {
             alpha: at.alpha,
@@ -309,31 +315,31 @@ impl<F: FloatLanes> PathGroup<F> {
             &self.paths.depth,
             point,
         );
-        let toward = light.to_light.dot(n).simd_gt(F::ZERO);
+        let (toward, light_rays) =
+            sides.toward(light.to_light, light.distance, 1.0 - SHADOW_SHORTENING);
         let (f, bsdf_pdf) = lobes.eval_pdf(wo, frame.to_local(light.to_light));
         let mis = power_heuristics(light.pdf, bsdf_pdf);
         let light_through = f.mul_lanes(light.radiance) * (mis / light.pdf);
         let shadowed = lit & light.found & (toward | rough_glass) & f.nonzero();
-        let light_origin = Vec3s::select(toward, above, below);
         // The sky map's light sample: a direction drawn from it, its BSDF
         // value and MIS weight, and the shadow ray toward it (nothing for a
         // constant sky or none, which BSDF sampling alone sees).
         let sampled_sky = world.environment.is_sampled();
-        let (sky_dir, sky_through, sky_shadowed, sky_origin) = if sampled_sky {
+        let (sky_rays, sky_through, sky_shadowed) = if sampled_sky {
             let sky = environment_draws(world, lit, &self.paths.streams, &self.paths.depth);
-            let toward = sky.dir.dot(n).simd_gt(F::ZERO);
+            let (toward, rays) = sides.toward(sky.dir, F::INFINITY, 1.0);
             let (f, bsdf_pdf) = lobes.eval_pdf(wo, frame.to_local(sky.dir));
             let mis = power_heuristics(sky.pdf, bsdf_pdf);
             let through = f.mul_lanes(sky.radiance) * (mis / sky.pdf);
             let shadowed = lit & sky.found & (toward | rough_glass) & f.nonzero();
-            (
-                sky.dir,
-                through,
-                shadowed,
-                Vec3s::select(toward, above, below),
-            )
+            (rays, through, shadowed)
         } else {
-            (Vec3s::ZERO, Vec3s::ZERO, F::Mask::NONE, Vec3s::ZERO)
+            let nothing = Rays {
+                origin: Vec3s::ZERO,
+                dir: Vec3s::ZERO,
+                t_max: F::ZERO,
+            };
+            (nothing, Vec3s::ZERO, F::Mask::NONE)
         };
         let lit_by = self.paths.throughput;
 
@@ -430,13 +436,12 @@ impl<F: FloatLanes> PathGroup<F> {
         self.blocked_toward_lights.clear();
         for (index, light) in world.lights.iter().enumerate() {
             let s = light_samples(light, point);
-            let toward = s.to_light.dot(n).simd_gt(F::ZERO);
+            let (toward, rays) = sides.toward(s.to_light, s.distance, 1.0);
             let (f, _) = lobes.eval_pdf(wo, frame.to_local(s.to_light));
             let shadowed = lit & s.found & (toward | rough_glass) & f.nonzero();
             let rays = Rays {
-                origin: Vec3s::select(toward, above, below),
-                dir: s.to_light,
-                t_max: shadowed.select(s.distance, F::ZERO),
+                t_max: shadowed.select(rays.t_max, F::ZERO),
+                ..rays
             };
             let target = Target::Light(index);
             let rays = self.handover.add_shadow_rays(target, rays);
@@ -447,9 +452,8 @@ impl<F: FloatLanes> PathGroup<F> {
             self.blocked_toward_lights.push(blocked);
         }
         let shadows = Rays {
-            origin: light_origin,
-            dir: light.to_light,
-            t_max: shadowed.select(light.distance * F::splat(1.0 - SHADOW_SHORTENING), F::ZERO),
+            t_max: shadowed.select(light_rays.t_max, F::ZERO),
+            ..light_rays
         };
         let shadows = self.handover.add_shadow_rays(Target::Emitter, shadows);
         let traced = shadowed | self.handover.shadowed::<F>(Target::Emitter);
@@ -465,9 +469,8 @@ impl<F: FloatLanes> PathGroup<F> {
         let mut sky_blocked = F::Mask::NONE;
         if sampled_sky {
             let rays = Rays {
-                origin: sky_origin,
-                dir: sky_dir,
-                t_max: sky_shadowed.select(F::INFINITY, F::ZERO),
+                t_max: sky_shadowed.select(sky_rays.t_max, F::ZERO),
+                ..sky_rays
             };
             let rays = self.handover.add_shadow_rays(Target::Environment, rays);
             let traced = sky_shadowed | self.handover.shadowed::<F>(Target::Environment);

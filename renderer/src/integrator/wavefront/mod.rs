@@ -47,6 +47,7 @@ mod paths;
 mod refill;
 mod rough_glass;
 mod scene;
+mod shadow_sides;
 mod surfaces;
 mod tracing;
 
