@@ -13,7 +13,8 @@ Translated: the camera (eye, toward, up, theta, width, height), spheres, boxes a
 triangles; `<floor>` and `<plane>` as a square of side 2·10⁴ lying in the plane (raylab's is
 infinite); point and directional lights (W/sr and W/m², as raylab's: Mitsuba's `point` and
 `directional` emitters), `<sky color>` (a `constant` emitter) and `<sky map rotate>` (an `envmap`
-emitter in the same latitude-longitude layout, turned alike; a grey `color` is its scale); matte, mirror and glass, and
+emitter in the same latitude-longitude layout, turned alike; a grey `color` times `strength` is
+its scale); matte, mirror and glass, and
 named `<material>`s derived from them (a shape's own parameters over its material's), with
 `roughness` (GGX α = roughness²: Mitsuba's roughconductor with material "none", i.e. Fresnel 1
 times `color`, and roughdielectric); emission as an area light on the front side. Colours are
@@ -197,18 +198,20 @@ def light_of(el):
 def sky_of(el, scene_dir):
     """The Mitsuba emitter of a raylab <sky>: `constant` for a colour; for a map, `envmap` (the
     same lat-long layout) turned by `rotate` as raylab turns it (x, then y, then z) and scaled by
-    a grey `color` (Mitsuba's envmap takes a scalar scale, not a tint)."""
+    a grey `color` times `strength` (Mitsuba's envmap takes a scalar scale, not a tint)."""
     rgb = color(el.get("color", "1 1 1"))
+    strength = float(el.get("strength", "1"))
     if el.get("map") is None:
         if el.get("rotate") is not None:
             raise Untranslated("rotate without a map")
-        return {"type": "constant", "radiance": {"type": "rgb", "value": color(required(el, "color"))}}
+        radiance = [strength * c for c in color(required(el, "color"))]
+        return {"type": "constant", "radiance": {"type": "rgb", "value": radiance}}
     if max(rgb) != min(rgb):
         raise Untranslated("a tinted map: Mitsuba's envmap scales by a number, not a colour")
     rx, ry, rz = floats(el.get("rotate", "0 0 0"))
     to_world = T().rotate([0, 0, 1], rz) @ T().rotate([0, 1, 0], ry) @ T().rotate([1, 0, 0], rx)
     return {"type": "envmap", "filename": os.path.join(scene_dir, el.get("map")),
-            "scale": rgb[0], "to_world": to_world}
+            "scale": rgb[0] * strength, "to_world": to_world}
 
 
 # The material parameters a <material> or a shape may set.

@@ -30,6 +30,7 @@ pub fn write_string(scene: &Scene) -> String {
             tag.text("map", Some(&map.src));
         }
         tag.vec("rotate", Some(sky.rotate), Some(Vec3::ZERO));
+        tag.num("strength", sky.strength, Some(1.0));
         tag.close();
     }
     if !scene.view.is_identity() {

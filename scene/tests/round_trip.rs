@@ -218,11 +218,14 @@ fn scene() -> impl Strategy<Value = Scene> {
         0..8,
     );
     let lights = prop::collection::vec(light(), 0..4);
-    let sky = prop::option::of((color(), rotate()).prop_map(|(color, rotate)| Sky {
-        color,
-        map: None,
-        rotate,
-    }));
+    let sky = prop::option::of((color(), rotate(), non_negative()).prop_map(
+        |(color, rotate, strength)| Sky {
+            color,
+            map: None,
+            rotate,
+            strength,
+        },
+    ));
     let view = (-20.0f32..=20.0, prop::sample::select(Tonemap::ALL.to_vec()))
         .prop_map(|(exposure, tonemap)| View { exposure, tonemap });
     (camera(), lights, sky, materials, objects, view).prop_map(
@@ -333,6 +336,17 @@ fn sky_round_trips() {
         ..Scene::default()
     });
     assert_eq!(text, "<scene>\n  <sky color=\"0.5 0.7 1\"/>\n</scene>\n");
+    // A strength other than 1 is written and read back.
+    let bright = Scene {
+        sky: Some(Sky {
+            strength: 4.5,
+            ..Sky::constant(Vec3::new(0.5, 0.7, 1.0))
+        }),
+        ..Scene::default()
+    };
+    let text = write_string(&bright);
+    assert!(text.contains("strength=\"4.5\""), "{text}");
+    assert_eq!(read_str(&text, "sky.xml"), Ok(bright), "{text}");
 }
 
 /// A sky with a map keeps the file's name as written (relative to the

@@ -258,6 +258,24 @@ fn material_parameters_are_range_checked() {
 }
 
 #[test]
+fn a_sky_strength_must_be_a_finite_number_not_below_zero() {
+    assert_error(
+        &in_scene(r#"  <sky color="1 1 1" strength="-1"/>"#),
+        2,
+        32,
+        "a number ≥ 0",
+    );
+    for bad in ["NaN", "inf"] {
+        assert_error(
+            &in_scene(&format!(r#"  <sky color="1 1 1" strength="{bad}"/>"#)),
+            2,
+            32,
+            "must be a finite number",
+        );
+    }
+}
+
+#[test]
 fn sky_needs_a_color_or_a_map_and_its_color_is_validated() {
     assert_error(&in_scene("  <sky/>"), 2, 3, "<sky> needs a color or a map");
     assert_error(

@@ -271,6 +271,7 @@ impl RaylabApp {
                             color: glam::Vec3::ONE,
                             map: Some(map),
                             rotate: glam::Vec3::ZERO,
+                            strength: 1.0,
                         });
                     }
                 }

@@ -1,12 +1,13 @@
 //! The sky: radiance arriving from every direction no object blocks — a
 //! constant colour, or an HDR environment map in latitude-longitude form
-//! turned by `rotate` and tinted by `color`.
+//! turned by `rotate` and tinted by `color`; either scaled by `strength`.
 
 use glam::Vec3;
 use std::path::PathBuf;
 use std::sync::{Arc, OnceLock};
 
-/// `<sky color=… map=… rotate=…>`: what the scene sees where no object is.
+/// `<sky color=… map=… rotate=… strength=…>`: what the scene sees where no
+/// object is.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Sky {
     /// Linear RGB radiance of a constant sky; with a map, the tint the map's
@@ -16,6 +17,10 @@ pub struct Sky {
     pub map: Option<SkyMap>,
     /// Degrees about x, then y, then z, that turn the map (as a box turns).
     pub rotate: Vec3,
+    /// A factor on the whole sky's radiance (1 by default; Mitsuba's
+    /// `envmap` calls it `scale`): brighter or dimmer without touching the
+    /// tint's hue.
+    pub strength: f32,
 }
 
 impl Sky {
@@ -25,6 +30,7 @@ impl Sky {
             color,
             map: None,
             rotate: Vec3::ZERO,
+            strength: 1.0,
         }
     }
 
@@ -33,9 +39,9 @@ impl Sky {
         Sky::constant(Vec3::ZERO)
     }
 
-    /// True when the sky adds no light (a black colour, or no sky).
+    /// True when the sky adds no light (a black colour, a strength of 0).
     pub fn is_black(&self) -> bool {
-        self.color == Vec3::ZERO
+        self.scale() == Vec3::ZERO
     }
 
     /// raylab's neutral studio environment ([`STUDIO_MAP`]), untinted and
@@ -49,7 +55,14 @@ impl Sky {
                 image: studio_image(),
             }),
             rotate: Vec3::ZERO,
+            strength: 1.0,
         }
+    }
+
+    /// The factor every direction's radiance is multiplied by: the colour
+    /// (a constant sky's radiance, or a map's tint) times the strength.
+    pub fn scale(&self) -> Vec3 {
+        self.color * self.strength
     }
 }
 

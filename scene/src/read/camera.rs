@@ -26,7 +26,7 @@ pub(crate) const LIGHT_ATTRS: [&str; 6] = [
 ];
 
 /// The attributes `<sky>` takes, in writing order.
-pub(crate) const SKY_ATTRS: [&str; 3] = ["color", "map", "rotate"];
+pub(crate) const SKY_ATTRS: [&str; 4] = ["color", "map", "rotate", "strength"];
 
 /// The attributes of `<view>`.
 pub(crate) const VIEW_ATTRS: [&str; 2] = ["exposure", "tonemap"];
@@ -130,6 +130,7 @@ pub(crate) fn light(el: &Element<'_>) -> Result<Light, SceneError> {
 pub(crate) fn sky(el: &Element<'_>, dir: &Path) -> Result<Sky, SceneError> {
     let color = el.color("color")?;
     let rotate = el.vector("rotate")?.unwrap_or(Vec3::ZERO);
+    let strength = el.number("strength", Range::NonNegative)?.unwrap_or(1.0);
     let map = match el.string("map") {
         None => None,
         Some(src) => {
@@ -165,7 +166,12 @@ pub(crate) fn sky(el: &Element<'_>, dir: &Path) -> Result<Sky, SceneError> {
             ));
         }
     };
-    Ok(Sky { color, map, rotate })
+    Ok(Sky {
+        color,
+        map,
+        rotate,
+        strength,
+    })
 }
 
 /// A `<view>`: unset attributes keep [`View::default`] (as rendered, clamped).

@@ -296,6 +296,7 @@ mod tests {
                     image: std::sync::Arc::new(image),
                 }),
                 rotate: glam::Vec3::ZERO,
+                strength: 1.0,
             }),
             ..Scene::default()
         };

@@ -1,6 +1,6 @@
 //! Editing the sky: its colour (a constant sky's radiance, or a map's
-//! tint), its environment map (chosen in a file dialog, or removed) and the
-//! map's rotation.
+//! tint), its strength, its environment map (chosen in a file dialog, or
+//! removed) and the map's rotation.
 
 use super::widgets;
 use crate::gui::doc::edits::Action;
@@ -17,6 +17,17 @@ pub fn show(ui: &mut egui::Ui, sky: &mut Sky) -> (bool, Option<Action>) {
         .show(ui, |ui| {
             ui.label(if sky.map.is_some() { "Tint" } else { "Colour" });
             ui.horizontal(|ui| changed |= widgets::color(ui, &mut sky.color));
+            ui.end_row();
+            ui.label("Strength");
+            changed |= ui
+                .add(
+                    widgets::drag(&mut sky.strength)
+                        .speed(0.01)
+                        .range(0.0..=1e6)
+                        .prefix("× "),
+                )
+                .on_hover_text("multiplies the whole sky's radiance (Mitsuba's envmap scale)")
+                .changed();
             ui.end_row();
             ui.label("Map");
             ui.horizontal(|ui| match &sky.map {

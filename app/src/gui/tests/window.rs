@@ -890,6 +890,17 @@ fn a_sky_added_from_the_menu_is_listed_edited_given_a_map_and_undone() {
     h.get_by_label("sky");
     h.get_by_label("Choose map…");
     assert_ne!(pixels(&h), before);
+    // Its strength scales it: a brighter image.
+    let dim = pixels(&h);
+    h.get_by_role_and_label(egui::accesskit::Role::SpinButton, "×")
+        .set_value_accesskit(2.0);
+    h.step();
+    assert_eq!(
+        h.state().doc.state.scene.sky.as_ref().map(|s| s.strength),
+        Some(2.0)
+    );
+    settle(&mut h);
+    assert_ne!(pixels(&h), dim);
     // A map chosen (as the file dialog hands it over) replaces the colour,
     // named by its path; the rotation appears in the editor.
     h.state_mut().load_sky_map(&reference_sky_map());

@@ -31,6 +31,7 @@ fn sky_map(rotate: glam::Vec3) -> ::scene::Sky {
             image: std::sync::Arc::new(image),
         }),
         rotate,
+        strength: 1.0,
     }
 }
 

@@ -22,7 +22,7 @@ use std::sync::Arc;
 /// The environment of a world.
 #[derive(Clone, Debug)]
 pub struct Environment {
-    /// The constant radiance, or the map's tint.
+    /// The constant radiance, or the map's tint, times the sky's strength.
     color: Vec3,
     /// The prepared map, if the sky has one.
     map: Option<Arc<EnvMap>>,
@@ -66,9 +66,10 @@ impl Environment {
         let world_from_map =
             Placement::from_euler_degrees(Vec3::ZERO, sky.rotate).world_from_object;
         let map = sky.map.as_ref().map(|m| cache::map_for(&m.image));
-        let black = sky.color == Vec3::ZERO || map.as_ref().is_some_and(|m| m.mean() == Vec3::ZERO);
+        let color = sky.scale();
+        let black = color == Vec3::ZERO || map.as_ref().is_some_and(|m| m.mean() == Vec3::ZERO);
         Environment {
-            color: sky.color,
+            color,
             sampled: map.is_some() && !black,
             map,
             map_from_world: world_from_map.transpose(),
@@ -184,6 +185,7 @@ mod tests {
                 image: Arc::new(image),
             }),
             rotate,
+            strength: 1.0,
         }
     }
 
@@ -272,5 +274,31 @@ mod tests {
         assert!(!black.is_sampled() && black.sample(Vec2::splat(0.5)).is_none());
         assert_eq!(black.radiance_and_pdf(Vec3::X), (Vec3::ZERO, 0.0));
         assert!(Environment::new(&sky_with_map(Vec3::ZERO)).is_sampled());
+    }
+
+    #[test]
+    fn strength_scales_the_radiance_in_every_direction_and_not_the_density() {
+        let plain = Environment::new(&sky_with_map(Vec3::new(0.0, 40.0, 0.0)));
+        let mut brighter = sky_with_map(Vec3::new(0.0, 40.0, 0.0));
+        brighter.strength = 2.5;
+        let brighter = Environment::new(&brighter);
+        for dir in [
+            Vec3::X,
+            Vec3::new(0.3, -2.0, 1.0),
+            Vec3::new(-1.0, 0.2, -0.4),
+        ] {
+            let (l, pdf) = plain.radiance_and_pdf(dir);
+            let (l_scaled, pdf_scaled) = brighter.radiance_and_pdf(dir);
+            assert!((l_scaled - 2.5 * l).abs().max_element() <= 1e-6 * l.max_element());
+            assert_eq!(pdf_scaled, pdf, "the same distribution");
+        }
+        let mut off = sky_with_map(Vec3::ZERO);
+        off.strength = 0.0;
+        assert!(!Environment::new(&off).is_sampled(), "strength 0 is black");
+        let constant = Sky {
+            strength: 3.0,
+            ..Sky::constant(Vec3::splat(0.5))
+        };
+        assert_eq!(Environment::new(&constant).mean(), Vec3::splat(1.5));
     }
 }
