@@ -9,6 +9,7 @@
 //! multiply–add, so a lane's result is the same bit for bit whatever its
 //! neighbours hold and whichever instruction set runs it.
 
+pub mod polar;
 mod rays;
 pub(crate) mod triangle;
 mod vec3s;

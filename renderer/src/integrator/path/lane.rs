@@ -259,9 +259,10 @@ impl<N: Copy> Lane<N> for PathLane<N> {
 /// What a ray that escapes the scene brings back: the sky's radiance in its
 /// direction, weighted by the power heuristic against the sky's light
 /// sample when the ray was drawn from a BSDF that competes with it
-/// (`previous`: not the camera ray, not after a delta lobe).
+/// (`previous`: not the camera ray, not after a delta lobe). The wavefront
+/// weighs sixteen at once the same way (`Environment::radiance_and_pdf_lanes`).
 #[inline]
-pub(crate) fn escaped(world: &World, ray: &Ray, previous: Option<(Vec3, f32)>) -> Vec3 {
+fn escaped(world: &World, ray: &Ray, previous: Option<(Vec3, f32)>) -> Vec3 {
     let environment = &world.environment;
     let (radiance, pdf) = environment.radiance_and_pdf(ray.dir);
     let weight = match previous {

@@ -25,7 +25,7 @@ use super::sampler::Sampler;
 use crate::geometry::ray::Ray;
 use crate::world::World;
 use glam::Vec3;
-pub(crate) use lane::{PathLane, PathState, escaped};
+pub(crate) use lane::{PathLane, PathState};
 
 /// The first scattering event counted by Russian roulette (Mitsuba's `rr_depth`).
 pub const RR_DEPTH: u32 = 5;

@@ -5,9 +5,9 @@
 //! with the scalar path tracer's operations.
 
 use super::emitter_table::EmitterTable;
-use crate::geometry::warp::{COS_TERMS, SIN_TERMS};
 use crate::integrator::sampler::lanes::StreamLanes;
 use crate::integrator::sampler::{BounceDraw, bounce_draw, environment_draw};
+use crate::packet::polar::sin_cos_quarters;
 use crate::packet::{FloatLanes, IntLanes, MaskLanes, Vec3s, WIDTH, lane_set, mask_from};
 use crate::world::World;
 use glam::{Vec2, Vec3};
@@ -145,7 +145,7 @@ pub(super) struct EnvironmentDraws<F: FloatLanes> {
 
 /// For each lane of `lanes`, its sample of the environment at bounce
 /// `depth`: the bounce's environment numbers (drawn on lanes) warped by
-/// `Environment::sample` lane by lane, so bit for bit the scalar path's.
+/// `Environment::sample_lanes`, bit for bit the scalar path's.
 /// Nothing is drawn when the environment is not sampled (no map, or black).
 #[inline(always)]
 pub(super) fn environment_draws<F: FloatLanes>(
@@ -168,24 +168,12 @@ pub(super) fn environment_draws<F: FloatLanes>(
         draws[k] = environment_draw(depth[k]) as i32;
     }
     let (ux, uy) = streams.numbers(F::Ints::from_array(draws));
-    let (ux, uy) = (ux.as_array(), uy.as_array());
-    let mut found = 0u32;
-    let mut dir = [Vec3::Y; WIDTH];
-    let mut radiance = [Vec3::ZERO; WIDTH];
-    let mut pdf = [1.0f32; WIDTH];
-    for k in (0..WIDTH).filter(|&k| lane_set(lanes, k)) {
-        if let Some(s) = environment.sample(Vec2::new(ux[k], uy[k])) {
-            found |= 1 << k;
-            dir[k] = s.dir;
-            radiance[k] = s.radiance;
-            pdf[k] = s.pdf;
-        }
-    }
+    let s = environment.sample_lanes(ux, uy, lanes);
     EnvironmentDraws {
-        found: F::Mask::from_bitmask(found),
-        dir: Vec3s::from_lanes(&dir),
-        radiance: Vec3s::from_lanes(&radiance),
-        pdf: F::from_array(pdf),
+        found: s.found,
+        dir: s.dir,
+        radiance: s.radiance,
+        pdf: s.pdf,
     }
 }
 
@@ -212,7 +200,7 @@ pub(super) fn cosine_warps<F: FloatLanes>(u: [F; 2]) -> Vec3s<F> {
     let first = px.abs().simd_gt(py.abs());
     let r = first.select(px, py);
     let ratio = first.select(py / px, px / py);
-    let (sin, cos) = sin_cos_quarter(F::splat(FRAC_PI_4) * ratio);
+    let (sin, cos) = sin_cos_quarters(F::splat(FRAC_PI_4) * ratio);
     let x = first.select(r * cos, r * sin);
     let y = first.select(r * sin, r * cos);
     let (x, y) = (centre.select(F::ZERO, x), centre.select(F::ZERO, y));
@@ -221,22 +209,6 @@ pub(super) fn cosine_warps<F: FloatLanes>(u: [F; 2]) -> Vec3s<F> {
         .sqrt()
         .max(F::splat(1.0e-6));
     Vec3s { x, y, z }
-}
-
-/// `geometry::warp::sin_cos_quarter` on lanes.
-#[inline(always)]
-fn sin_cos_quarter<F: FloatLanes>(a: F) -> (F, F) {
-    let x2 = a * a;
-    let s = F::splat(SIN_TERMS[3]) + x2 * F::splat(SIN_TERMS[4]);
-    let s = F::splat(SIN_TERMS[2]) + x2 * s;
-    let s = F::splat(SIN_TERMS[1]) + x2 * s;
-    let s = F::splat(SIN_TERMS[0]) + x2 * s;
-    let c = F::splat(COS_TERMS[4]) + x2 * F::splat(COS_TERMS[5]);
-    let c = F::splat(COS_TERMS[3]) + x2 * c;
-    let c = F::splat(COS_TERMS[2]) + x2 * c;
-    let c = F::splat(COS_TERMS[1]) + x2 * c;
-    let c = F::splat(COS_TERMS[0]) + x2 * c;
-    (a * s, c)
 }
 
 /// Russian roulette's number at bounce `depth` (the bounce's last draw,

@@ -13,7 +13,7 @@ use super::surfaces::Surfaces;
 use super::tracing;
 use crate::geometry::ray::Ray;
 use crate::integrator::lanes::{SampleRef, SampleResult};
-use crate::integrator::path::{RR_DEPTH, SHADOW_SHORTENING, escaped};
+use crate::integrator::path::{RR_DEPTH, SHADOW_SHORTENING};
 use crate::integrator::sampler::PixelStream;
 use crate::integrator::sampler::lanes::StreamLanes;
 use crate::integrator::{RenderOptions, path::power_heuristic};
@@ -174,20 +174,19 @@ impl<F: FloatLanes> PathGroup<F> {
         if let Some(sky) = world.environment.constant_radiance() {
             let seen = self.paths.radiance + self.paths.throughput.mul_lanes(Vec3s::splat(sky));
             self.paths.radiance = Vec3s::select(miss, seen, self.paths.radiance);
-        } else {
-            // The sky in each ray's direction, weighted against its light
-            // sample lane by lane as `PathLane` weighs it.
-            for k in (0..WIDTH).filter(|&k| lane_set(miss, k)) {
-                let previous = lane_set(self.paths.has_previous, k).then(|| {
-                    (
-                        self.paths.previous_point.lane(k),
-                        self.paths.previous_pdf.as_array()[k],
-                    )
-                });
-                let seen = escaped(world, &self.paths.rays.lane(k), previous);
-                let radiance = self.paths.radiance.lane(k) + self.paths.throughput.lane(k) * seen;
-                self.paths.radiance.set_lane(k, radiance);
-            }
+        } else if miss.any() {
+            // The sky in each ray's direction (its texel coordinates on
+            // lanes), weighted against its light sample as `escaped` weighs it.
+            let environment = &world.environment;
+            let (radiance, pdf) = environment.radiance_and_pdf_lanes(self.paths.rays.dir, miss);
+            let weighed = if environment.is_sampled() {
+                self.paths.has_previous
+            } else {
+                F::Mask::NONE
+            };
+            let weight = weighed.select(power_heuristics(self.paths.previous_pdf, pdf), F::ONE);
+            let seen = self.paths.radiance + self.paths.throughput.mul_lanes(radiance * weight);
+            self.paths.radiance = Vec3s::select(miss, seen, self.paths.radiance);
         }
         let mut finished = miss.to_bitmask();
         if !hit.any() {

@@ -11,6 +11,9 @@
 //! rows on the poles.
 
 use crate::geometry::alias_table::AliasTable;
+use crate::geometry::polar::{atan2, sin_cos_turns};
+use crate::packet::polar::{atan2s, sin_cos_turns_lanes};
+use crate::packet::{FloatLanes, MaskLanes, Vec3s, WIDTH};
 use glam::{Vec2, Vec3};
 use scene::EnvImage;
 use scene::color::luminance;
@@ -156,9 +159,11 @@ impl EnvMap {
     #[inline]
     fn coordinates(&self, v: Vec3) -> (f32, f32) {
         let (w, h) = (self.width as f32, self.height as f32);
-        let u = v.x.atan2(-v.z) * (0.5 / PI) - 0.5 / w;
+        let u = atan2(v.x, -v.z) * (0.5 / PI) - 0.5 / w;
         let x = (u - u.floor()) * w;
-        let y = v.y.clamp(-1.0, 1.0).acos() * (1.0 / PI) * (h - 1.0);
+        // θ = acos v.y, as the angle of (v.y, √(x² + z²)): exact near the poles.
+        let theta = atan2((v.x * v.x + v.z * v.z).sqrt(), v.y);
+        let y = theta * (1.0 / PI) * (h - 1.0);
         (x, y.clamp(0.0, h - 1.0))
     }
 
@@ -189,6 +194,42 @@ impl EnvMap {
     #[inline]
     pub fn radiance_and_pdf(&self, v: Vec3) -> (Vec3, f32) {
         let (x, y) = self.coordinates(v);
+        self.radiance_and_pdf_at(x, y)
+    }
+
+    /// [`EnvMap::radiance_and_pdf`] of sixteen unit directions at once: the
+    /// texel coordinates on lanes (the arc tangents, the costly part), then
+    /// each lane of `lanes` reads its texels; the other lanes get zero. Bit
+    /// for bit what each direction gets alone.
+    #[inline]
+    pub fn radiance_and_pdf_lanes<F: FloatLanes>(
+        &self,
+        v: Vec3s<F>,
+        lanes: F::Mask,
+    ) -> (Vec3s<F>, F) {
+        let (w, h) = (self.width as f32, self.height as f32);
+        let u = atan2s(v.x, -v.z) * F::splat(0.5 / PI) - F::splat(0.5 / w);
+        let x = (u - u.floor()) * F::splat(w);
+        let theta = atan2s((v.x * v.x + v.z * v.z).sqrt(), v.y);
+        let y = theta * F::splat(1.0 / PI) * F::splat(h - 1.0);
+        let y = y.max(F::ZERO).min(F::splat(h - 1.0));
+        let (x, y) = (x.to_array(), y.to_array());
+        let mut radiance = Vec3s::ZERO;
+        let mut pdf = F::ZERO;
+        let mut bits = lanes.to_bitmask();
+        while bits != 0 {
+            let k = bits.trailing_zeros() as usize;
+            bits &= bits - 1;
+            let (l, p) = self.radiance_and_pdf_at(x[k], y[k]);
+            radiance.set_lane(k, l);
+            pdf.as_mut_array()[k] = p;
+        }
+        (radiance, pdf)
+    }
+
+    /// [`EnvMap::radiance_and_pdf`] at texel coordinates (x, y).
+    #[inline]
+    fn radiance_and_pdf_at(&self, x: f32, y: f32) -> (Vec3, f32) {
         let (column, band) = self.cell(x, y);
         let radiance = self.bilinear(column, band, x - column as f32, y - band as f32);
         (radiance, self.density[band * self.width as usize + column])
@@ -213,20 +254,98 @@ impl EnvMap {
         let (band, v) = self.bands.as_ref()?.sample_with_remainder(u.y);
         let (column, s) = self.cells[band].as_ref()?.sample_with_remainder(u.x);
         let w = self.width as f32;
-        let phi = TAU * ((column as f32 + s + 0.5) / w);
+        // φ = 2π (column + s + ½) / W.
+        let (sin_phi, cos_phi) = sin_cos_turns((column as f32 + s + 0.5) / w);
         let (cos0, cos1) = (self.row_cos[band], self.row_cos[band + 1]);
         let cos_theta = (cos0 + (cos1 - cos0) * v).clamp(-1.0, 1.0);
         let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
-        let (sin_phi, cos_phi) = phi.sin_cos();
         // The radiance there, read in the drawn cell: across, where the
         // point was placed; down, from its polar angle.
-        let y = cos_theta.acos() * (1.0 / PI) * (self.height as f32 - 1.0);
+        let y = atan2(sin_theta, cos_theta) * (1.0 / PI) * (self.height as f32 - 1.0);
         let fy = (y - band as f32).clamp(0.0, 1.0);
         Some(MapSample {
             dir: Vec3::new(sin_theta * sin_phi, cos_theta, -sin_theta * cos_phi),
             pdf: self.density[band * self.width as usize + column],
             radiance: self.bilinear(column, band, s, fy),
         })
+    }
+}
+
+/// Sixteen directions drawn from the map ([`EnvMap::sample_lanes`]).
+#[derive(Clone, Copy, Debug)]
+pub struct MapSamples<F: FloatLanes> {
+    /// The lanes that drew one (not a black band or cell).
+    pub found: F::Mask,
+    /// The unit directions, map frame.
+    pub dir: Vec3s<F>,
+    /// Their densities in solid angle.
+    pub pdf: F,
+    /// The radiance arriving from them.
+    pub radiance: Vec3s<F>,
+}
+
+impl EnvMap {
+    /// [`EnvMap::sample`] of the points (`ux`, `uy`) in the lanes of
+    /// `lanes`, bit for bit: each lane picks its band and cell from the
+    /// alias tables, the directions and polar angles are found on lanes,
+    /// and each lane reads its cell's texels.
+    #[inline]
+    pub fn sample_lanes<F: FloatLanes>(&self, ux: F, uy: F, lanes: F::Mask) -> MapSamples<F> {
+        let (ux, uy) = (ux.as_array(), uy.as_array());
+        let mut cell = [(0usize, 0usize); WIDTH];
+        let (mut column, mut across, mut down) = ([0.0; WIDTH], [0.0; WIDTH], [0.0; WIDTH]);
+        let (mut cos0, mut cos1, mut band_f) = ([1.0; WIDTH], [1.0; WIDTH], [0.0; WIDTH]);
+        let mut found = 0u32;
+        let mut bits = lanes.to_bitmask();
+        while bits != 0 {
+            let k = bits.trailing_zeros() as usize;
+            bits &= bits - 1;
+            let Some((band, v)) = self.bands.as_ref().map(|b| b.sample_with_remainder(uy[k]))
+            else {
+                continue;
+            };
+            let Some((c, s)) = self.cells[band]
+                .as_ref()
+                .map(|t| t.sample_with_remainder(ux[k]))
+            else {
+                continue;
+            };
+            found |= 1 << k;
+            cell[k] = (c, band);
+            (column[k], across[k], down[k]) = (c as f32, s, v);
+            (cos0[k], cos1[k]) = (self.row_cos[band], self.row_cos[band + 1]);
+            band_f[k] = band as f32;
+        }
+        let (w, h) = (self.width as f32, self.height as f32);
+        let s = F::from_array(across);
+        let (sin_phi, cos_phi) =
+            sin_cos_turns_lanes((F::from_array(column) + s + F::splat(0.5)) / F::splat(w));
+        let (cos0, cos1) = (F::from_array(cos0), F::from_array(cos1));
+        let cos_theta = (cos0 + (cos1 - cos0) * F::from_array(down))
+            .max(F::splat(-1.0))
+            .min(F::ONE);
+        let sin_theta = (F::ONE - cos_theta * cos_theta).max(F::ZERO).sqrt();
+        let y = atan2s(sin_theta, cos_theta) * F::splat(1.0 / PI) * F::splat(h - 1.0);
+        let fy = (y - F::from_array(band_f))
+            .max(F::ZERO)
+            .min(F::ONE)
+            .to_array();
+        let mut radiance = Vec3s::ZERO;
+        let mut pdf = F::ONE;
+        let mut bits = found;
+        while bits != 0 {
+            let k = bits.trailing_zeros() as usize;
+            bits &= bits - 1;
+            let (c, band) = cell[k];
+            radiance.set_lane(k, self.bilinear(c, band, across[k], fy[k]));
+            pdf.as_mut_array()[k] = self.density[band * self.width as usize + c];
+        }
+        MapSamples {
+            found: F::Mask::from_bitmask(found),
+            dir: Vec3s::new(sin_theta * sin_phi, cos_theta, -sin_theta * cos_phi),
+            pdf,
+            radiance,
+        }
     }
 }
 

@@ -13,8 +13,9 @@
 mod cache;
 mod map;
 
-pub use map::EnvMap;
+pub use map::{EnvMap, MapSamples};
 
+use crate::packet::{FloatLanes, MaskLanes, Vec3s};
 use crate::shapes::placement::Placement;
 use glam::{Mat3, Vec2, Vec3};
 use std::sync::Arc;
@@ -139,6 +140,56 @@ impl Environment {
             radiance: self.color * s.radiance,
             pdf: s.pdf,
         })
+    }
+
+    /// [`Environment::sample`] of the points (`ux`, `uy`) in the lanes of
+    /// `lanes`, bit for bit ([`EnvMap::sample_lanes`], turned to world space
+    /// as glam turns it and tinted); none found when it is not sampled.
+    #[inline]
+    pub fn sample_lanes<F: FloatLanes>(&self, ux: F, uy: F, lanes: F::Mask) -> MapSamples<F> {
+        let map = match &self.map {
+            Some(map) if self.sampled => map,
+            _ => {
+                return MapSamples {
+                    found: F::Mask::NONE,
+                    dir: Vec3s::splat(Vec3::Y),
+                    pdf: F::ONE,
+                    radiance: Vec3s::ZERO,
+                };
+            }
+        };
+        let s = map.sample_lanes(ux, uy, lanes);
+        let m = self.world_from_map;
+        MapSamples {
+            dir: Vec3s::splat(m.x_axis) * s.dir.x
+                + Vec3s::splat(m.y_axis) * s.dir.y
+                + Vec3s::splat(m.z_axis) * s.dir.z,
+            radiance: Vec3s::splat(self.color).mul_lanes(s.radiance),
+            ..s
+        }
+    }
+
+    /// [`Environment::radiance_and_pdf`] of sixteen directions at once, in
+    /// the lanes of `lanes` (zero elsewhere under a map), bit for bit what
+    /// each gets alone: turned into the map's frame and normalised as glam
+    /// does it, then [`EnvMap::radiance_and_pdf_lanes`].
+    #[inline]
+    pub fn radiance_and_pdf_lanes<F: FloatLanes>(
+        &self,
+        dir: Vec3s<F>,
+        lanes: F::Mask,
+    ) -> (Vec3s<F>, F) {
+        let Some(map) = &self.map else {
+            return (Vec3s::splat(self.color), F::ZERO);
+        };
+        let m = self.map_from_world;
+        let v = Vec3s::splat(m.x_axis) * dir.x
+            + Vec3s::splat(m.y_axis) * dir.y
+            + Vec3s::splat(m.z_axis) * dir.z;
+        let v = v * (F::ONE / v.dot(v).sqrt());
+        let (radiance, pdf) = map.radiance_and_pdf_lanes(v, lanes);
+        let pdf = if self.sampled { pdf } else { F::ZERO };
+        (Vec3s::splat(self.color).mul_lanes(radiance), pdf)
     }
 
     /// [`Environment::radiance`] of `dir` and the density in solid angle
