@@ -104,18 +104,16 @@ impl PlacedMesh {
     /// [`PlacedMesh::curved_point`] of the triangle with these corners and
     /// the placed hit point `point`.
     #[inline]
-    fn curved_point_at(&self, [a, b, c]: [u32; 3], hit: &MeshHit, point: Vec3) -> Vec3 {
-        let n = &self.mesh.normals;
-        let (Some(n0), Some(n1), Some(n2)) =
-            (n.get(a as usize), n.get(b as usize), n.get(c as usize))
-        else {
+    fn curved_point_at(&self, corners: [u32; 3], hit: &MeshHit, point: Vec3) -> Vec3 {
+        let Some([n0, n1, n2]) = self.vertex_normals(corners) else {
             return point;
         };
+        let [a, b, c] = corners;
         let p = &self.mesh.positions;
         let (p0, p1, p2) = (p[a as usize], p[b as usize], p[c as usize]);
         let local = p0 + hit.beta * (p1 - p0) + hit.gamma * (p2 - p0);
         let weights = [1.0 - hit.beta - hit.gamma, hit.beta, hit.gamma];
-        let curved = curved_surface_point(local, [p0, p1, p2], [*n0, *n1, *n2], weights);
+        let curved = curved_surface_point(local, [p0, p1, p2], [n0, n1, n2], weights);
         if curved == local {
             point
         } else {
@@ -155,17 +153,25 @@ impl PlacedMesh {
 
     /// [`PlacedMesh::shading_normal`] of the triangle with these corners.
     #[inline]
-    fn shading_normal_at(&self, [a, b, c]: [u32; 3], hit: &MeshHit, geometric: Vec3) -> Vec3 {
-        let n = &self.mesh.normals;
-        let (Some(n0), Some(n1), Some(n2)) =
-            (n.get(a as usize), n.get(b as usize), n.get(c as usize))
-        else {
+    fn shading_normal_at(&self, corners: [u32; 3], hit: &MeshHit, geometric: Vec3) -> Vec3 {
+        let Some([n0, n1, n2]) = self.vertex_normals(corners) else {
             return geometric;
         };
         let alpha = 1.0 - hit.beta - hit.gamma;
-        let local = alpha * *n0 + hit.beta * *n1 + hit.gamma * *n2;
+        let local = alpha * n0 + hit.beta * n1 + hit.gamma * n2;
         let n = self.instance.normal_to_world(local);
         if n == Vec3::ZERO { geometric } else { n }
+    }
+
+    /// The unit normals of the triangle's corners, if the mesh has them.
+    #[inline]
+    fn vertex_normals(&self, [a, b, c]: [u32; 3]) -> Option<[Vec3; 3]> {
+        let n = &self.mesh.normals;
+        Some([
+            *n.get(a as usize)?,
+            *n.get(b as usize)?,
+            *n.get(c as usize)?,
+        ])
     }
 
     /// The interpolated texture coordinate, if the mesh has them.
