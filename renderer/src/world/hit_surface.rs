@@ -26,7 +26,7 @@ pub struct HitSurface<'w> {
     /// The material's BSDF as prepared with the world.
     pub bsdf: &'w PreparedBsdf,
     /// On a mesh, Hanika's point on the surface its vertex normals describe
-    /// (`PlacedMesh::curved_point`), where shadow rays near the terminator
+    /// (`geometry::terminator`), where shadow rays near the terminator
     /// start; `None` on analytic shapes, whose normals are their surface's.
     pub curved_point: Option<Vec3>,
 }

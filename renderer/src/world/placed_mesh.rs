@@ -76,9 +76,9 @@ impl PlacedMesh {
     }
 
     /// The hit's surface, shading normal, colour and curved-surface point,
-    /// the triangle looked up once: what [`PlacedMesh::surface`],
-    /// [`PlacedMesh::shading_normal`], [`PlacedMesh::base_color`] and
-    /// [`PlacedMesh::curved_point`] give, bit for bit.
+    /// the triangle looked up once: the first three what
+    /// [`PlacedMesh::surface`], [`PlacedMesh::shading_normal`] and
+    /// [`PlacedMesh::base_color`] give, bit for bit.
     #[inline]
     pub fn shading_point(&self, hit: &MeshHit) -> MeshPoint {
         let corners = self.corners(hit.triangle);
@@ -93,16 +93,9 @@ impl PlacedMesh {
 
     /// Hanika's point over the hit on the surface the vertex normals
     /// describe ([`curved_surface_point`], found in mesh space and placed),
-    /// where shadow rays near the terminator start; `surface.point` itself
-    /// on a mesh without normals.
-    pub fn curved_point(&self, hit: &MeshHit) -> Vec3 {
-        let corners = self.corners(hit.triangle);
-        let point = self.surface_at(corners, hit).point;
-        self.curved_point_at(corners, hit, point)
-    }
-
-    /// [`PlacedMesh::curved_point`] of the triangle with these corners and
-    /// the placed hit point `point`.
+    /// where shadow rays near the terminator start, for the triangle with
+    /// these corners and the placed hit point `point` (itself on a mesh
+    /// without normals).
     #[inline]
     fn curved_point_at(&self, corners: [u32; 3], hit: &MeshHit, point: Vec3) -> Vec3 {
         let Some([n0, n1, n2]) = self.vertex_normals(corners) else {
@@ -218,7 +211,7 @@ pub struct MeshPoint {
     pub shading_normal: Vec3,
     /// The material's colour times the texture there.
     pub color: Vec3,
-    /// Hanika's point on the surface the vertex normals describe
-    /// ([`PlacedMesh::curved_point`]).
+    /// Hanika's point on the surface the vertex normals describe, where
+    /// shadow rays near the terminator start.
     pub curved_point: Vec3,
 }

@@ -39,11 +39,6 @@ impl Sky {
         Sky::constant(Vec3::ZERO)
     }
 
-    /// True when the sky adds no light (a black colour, a strength of 0).
-    pub fn is_black(&self) -> bool {
-        self.scale() == Vec3::ZERO
-    }
-
     /// raylab's neutral studio environment ([`STUDIO_MAP`]), untinted and
     /// unturned: what a glTF model opened on its own is lit by when it
     /// brings no lights.

@@ -159,11 +159,8 @@ impl Environment {
             }
         };
         let s = map.sample_lanes(ux, uy, lanes);
-        let m = self.world_from_map;
         MapSamples {
-            dir: Vec3s::splat(m.x_axis) * s.dir.x
-                + Vec3s::splat(m.y_axis) * s.dir.y
-                + Vec3s::splat(m.z_axis) * s.dir.z,
+            dir: turned(self.world_from_map, s.dir),
             radiance: Vec3s::splat(self.color).mul_lanes(s.radiance),
             ..s
         }
@@ -182,10 +179,7 @@ impl Environment {
         let Some(map) = &self.map else {
             return (Vec3s::splat(self.color), F::ZERO);
         };
-        let m = self.map_from_world;
-        let v = Vec3s::splat(m.x_axis) * dir.x
-            + Vec3s::splat(m.y_axis) * dir.y
-            + Vec3s::splat(m.z_axis) * dir.z;
+        let v = turned(self.map_from_world, dir);
         let v = v * (F::ONE / v.dot(v).sqrt());
         let (radiance, pdf) = map.radiance_and_pdf_lanes(v, lanes);
         let pdf = if self.sampled { pdf } else { F::ZERO };
@@ -205,6 +199,13 @@ impl Environment {
             }
         }
     }
+}
+
+/// `m * v` lane by lane, rounded as glam's `Mat3 * Vec3` rounds it (the
+/// columns scaled by x, y, z and summed in that order).
+#[inline(always)]
+fn turned<F: FloatLanes>(m: Mat3, v: Vec3s<F>) -> Vec3s<F> {
+    Vec3s::splat(m.x_axis) * v.x + Vec3s::splat(m.y_axis) * v.y + Vec3s::splat(m.z_axis) * v.z
 }
 
 #[cfg(test)]
