@@ -12,6 +12,7 @@
 use super::slab::{SlabRay, box_entry};
 use super::stack::Stack;
 use super::triangle_pack::PACK;
+use wide::f32x8;
 
 /// Children per node.
 pub const WIDTH: usize = 8;
@@ -138,9 +139,9 @@ impl WideRay {
         let (nx, ny, nz) = (&node.planes[n0], &node.planes[n1], &node.planes[n2]);
         let (fx, fy, fz) = (&node.planes[f0], &node.planes[f1], &node.planes[f2]);
         let mut t_near = [0.0f32; WIDTH];
-        // Bit i when child i is entered (each in its own place, so that the
-        // mask is an OR across lanes, which vectorises).
-        let mut bits = [0u32; WIDTH];
+        // Whether child i is entered, as a lane of all ones or zeros, so
+        // that the mask is one compare-and-extract across the lanes.
+        let mut entered = [0.0f32; WIDTH];
         // One lane per child: the shape the compiler vectorises into
         // whole-register operations.
         for i in 0..WIDTH {
@@ -153,9 +154,9 @@ impl WideRay {
                 s.t_max,
             );
             t_near[i] = near;
-            bits[i] = (hit as u32) << i;
+            entered[i] = f32::from_bits(if hit { u32::MAX } else { 0 });
         }
-        let mask = bits.iter().fold(0, |m, b| m | b);
+        let mask = f32x8::new(entered).to_bitmask();
         (mask, t_near)
     }
 }

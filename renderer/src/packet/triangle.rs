@@ -253,11 +253,23 @@ pub(crate) fn hit_with<F: FloatLanes>(
     let negative = eu.simd_lt(zero) | ev.simd_lt(zero) | ew.simd_lt(zero);
     let positive = eu.simd_gt(zero) | ev.simd_gt(zero) | ew.simd_gt(zero);
     let det = eu + ev + ew;
+    let inside = !(negative & positive);
+    if !inside.any() {
+        // Every ray passes outside the triangle (most tests of a walk):
+        // α, and its division, would be masked out on every lane.
+        return TriangleLanes {
+            hit: inside,
+            alpha: zero,
+            v: ev,
+            w: ew,
+            det,
+        };
+    }
     let t_scaled = eu * (r.sz * az) + ev * (r.sz * bz) + ew * (r.sz * cz);
     let alpha = t_scaled / det;
     // A zero det gives α = ±∞ or NaN, and a non-finite α is never in
     // (0, limit): the scalar code's `det == 0` and `is_finite` tests.
-    let hit = !(negative & positive) & alpha.simd_gt(zero) & alpha.simd_lt(limit);
+    let hit = inside & alpha.simd_gt(zero) & alpha.simd_lt(limit);
     TriangleLanes {
         hit,
         alpha,

@@ -285,12 +285,22 @@ impl WatertightRay {
         let negative = eu.simd_lt(zero) | ev.simd_lt(zero) | ew.simd_lt(zero);
         let positive = eu.simd_gt(zero) | ev.simd_gt(zero) | ew.simd_gt(zero);
         let det = eu + ev + ew;
+        let inside = !(negative & positive) & det.simd_ne(zero);
+        if !inside.any() {
+            // The ray passes outside all four (most packs a walk tests):
+            // α, and its division, would be masked out on every lane.
+            return LaneHits {
+                alpha: f32x4::INFINITY,
+                v: ev,
+                w: ew,
+                det,
+            };
+        }
         let sz = f32x4::splat(self.sz);
         let t_scaled = eu * (sz * az) + ev * (sz * bz) + ew * (sz * cz);
         let alpha = t_scaled / det;
         let finite = alpha.abs().simd_lt(f32x4::INFINITY);
-        let hit = !(negative & positive)
-            & det.simd_ne(zero)
+        let hit = inside
             & finite
             & alpha.simd_gt(f32x4::splat(t_min))
             & alpha.simd_lt(f32x4::splat(t_max));
