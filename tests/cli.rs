@@ -237,6 +237,111 @@ fn bench_debug_view_draws_whole_frames_on_the_software_adapter() {
     );
 }
 
+/// The text chunks (keyword, text) of the PNG at `path`.
+fn png_text(path: &std::path::Path) -> Vec<(String, String)> {
+    let decoder = png::Decoder::new(std::io::BufReader::new(
+        std::fs::File::open(path).expect("the PNG exists"),
+    ));
+    let reader = decoder.read_info().expect("a PNG");
+    reader
+        .info()
+        .utf8_text
+        .iter()
+        .map(|c| (c.keyword.clone(), c.get_text().expect("utf-8")))
+        .collect()
+}
+
+#[test]
+fn ctrl_c_stops_a_render_after_its_pass_and_writes_the_passes_done() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("seed.png");
+    let child = std::process::Command::new(env!("CARGO_BIN_EXE_raylab"))
+        .args(["render", asset("seed.xml").to_str().expect("utf-8")])
+        .args([
+            "--width", "32", "--height", "24", "--spp", "65536", "--output",
+        ])
+        .arg(&out)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("raylab starts");
+    // 65,536 passes would take minutes; after a few seconds, Ctrl+C.
+    std::thread::sleep(std::time::Duration::from_secs(3));
+    let kill = std::process::Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .expect("kill runs");
+    assert!(kill.success());
+    let output = child.wait_with_output().expect("raylab ends");
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        output.status.success(),
+        "{:?}\n{stdout}{}",
+        output.status,
+        String::from_utf8_lossy(&output.stderr)
+    );
+    // "wrote …/seed.png in 2.9 s (stopped by Ctrl+C: N of 65536 passes)"
+    let passes: u32 = stdout
+        .split("stopped by Ctrl+C: ")
+        .nth(1)
+        .and_then(|rest| rest.split(' ').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("the report says how many passes were done: {stdout}"));
+    assert!(
+        passes >= 1 && stdout.contains("of 65536 passes"),
+        "{stdout}"
+    );
+    // The image holds those passes, and says so.
+    let spp = png_text(&out)
+        .into_iter()
+        .find(|(key, _)| key == "raylab:spp")
+        .map(|(_, value)| value);
+    assert_eq!(spp, Some(passes.to_string()));
+}
+
+#[test]
+fn a_render_on_a_terminal_shows_its_passes_done_and_the_time_left() {
+    // `script` (util-linux, in every Debian) runs raylab on a
+    // pseudo-terminal, as a person would at a shell.
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("seed.png");
+    let command = format!(
+        "'{}' render '{}' --width 32 --height 24 --spp 400 -o '{}'",
+        env!("CARGO_BIN_EXE_raylab"),
+        asset("seed.xml").display(),
+        out.display()
+    );
+    let output = std::process::Command::new("script")
+        .args(["-q", "-e", "-c", &command, "/dev/null"])
+        .output()
+        .expect("script runs");
+    let shown = String::from_utf8_lossy(&output.stdout);
+    assert!(output.status.success(), "{shown}");
+    assert!(
+        shown.contains("/400 passes") && shown.contains("elapsed") && shown.contains("left"),
+        "{shown}"
+    );
+    assert!(shown.contains("wrote"), "{shown}");
+}
+
+#[test]
+fn a_render_whose_stderr_is_not_a_terminal_prints_no_progress() {
+    // Progress is drawn for a person at a terminal; a pipe or a log gets
+    // only the report.
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("seed.png");
+    let output = render(
+        &asset("seed.xml"),
+        &out,
+        &["--width", "32", "--height", "24", "--spp", "8"],
+    );
+    assert!(
+        output.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+}
+
 #[test]
 fn rendered_png_records_the_camera_and_the_scene_file() {
     let dir = tempfile::tempdir().expect("tempdir");
@@ -246,16 +351,7 @@ fn rendered_png_records_the_camera_and_the_scene_file() {
         &out,
         &["--width", "32", "--height", "24", "--spp", "1"],
     );
-    let decoder = png::Decoder::new(std::io::BufReader::new(
-        std::fs::File::open(&out).expect("the PNG exists"),
-    ));
-    let reader = decoder.read_info().expect("a PNG");
-    let text: Vec<(String, String)> = reader
-        .info()
-        .utf8_text
-        .iter()
-        .map(|c| (c.keyword.clone(), c.get_text().expect("utf-8")))
-        .collect();
+    let text = png_text(&out);
     let get = |k: &str| {
         text.iter()
             .find(|(key, _)| key == k)
@@ -400,6 +496,34 @@ fn inspected_sample_zero_equals_the_pixel_of_a_one_sample_render() {
         // A path-traced sample records the BSDF sample of each bounce.
         assert_eq!(bounces > 0, integrator == "path", "{scene} {integrator}");
     }
+}
+
+#[test]
+fn a_reader_that_closes_the_pipe_first_ends_raylab_quietly_not_in_a_panic() {
+    // `raylab inspect … | head -c 0`: the pipe is closed before raylab has
+    // traced the pixel and written its JSON (a Unix tool ends quietly there;
+    // `println!` would panic with exit code 101).
+    let seed = asset("seed.xml");
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_raylab"))
+        .args([
+            "inspect",
+            seed.to_str().expect("utf-8"),
+            "--pixel",
+            "16",
+            "10",
+        ])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("raylab starts");
+    drop(child.stdout.take());
+    let output = child.wait_with_output().expect("raylab ends");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        output.status.success() && !stderr.contains("panicked"),
+        "{:?}\n{stderr}",
+        output.status
+    );
 }
 
 #[test]

@@ -14,6 +14,7 @@ mod plot;
 
 use clap::Parser;
 use cli::{Cli, Command};
+use io::stdout::say;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -30,16 +31,14 @@ fn default_scene() -> PathBuf {
 /// given); returns when it closes.
 fn run_window(path: PathBuf, reference: Option<PathBuf>) -> ExitCode {
     gui::worker_priority::lower_tracer_priority();
-    let scene = match scene::read_any(&path) {
-        Ok(scene) => {
-            io::output::warn_about_models(&scene);
-            scene
-        }
-        Err(error) => {
-            eprintln!("error: {error}");
-            return ExitCode::from(2);
-        }
-    };
+    // A scene that cannot be read still opens the window, with the error in
+    // it (and on stderr for a terminal); the exit code says it failed.
+    let startup = gui::startup::open_or_explain(&path, &default_scene());
+    match &startup.problem {
+        None => io::output::warn_about_models(&startup.scene),
+        Some(problem) => eprintln!("error: {problem}"),
+    }
+    let (failed, message) = (startup.problem.is_some(), startup.message());
     // Read once, here, so that a bad file fails before the window opens.
     let reference = match reference
         .map(|path| {
@@ -65,9 +64,12 @@ fn run_window(path: PathBuf, reference: Option<PathBuf>) -> ExitCode {
         "raylab",
         options,
         Box::new(move |cc| {
-            let mut app =
-                gui::RaylabApp::with_storage(scene, gui::Document::scene_path(&path), cc.storage)
-                    .with_gpu(cc.wgpu_render_state.clone());
+            let mut app = gui::RaylabApp::with_storage(startup.scene, startup.path, cc.storage)
+                .with_origin(startup.origin)
+                .with_gpu(cc.wgpu_render_state.clone());
+            if let Some(message) = message {
+                app = app.with_message(message);
+            }
             if let Some(dir) = gui::recovery_dir("raylab") {
                 app = app.with_recovery(&dir);
             }
@@ -78,6 +80,7 @@ fn run_window(path: PathBuf, reference: Option<PathBuf>) -> ExitCode {
         }),
     );
     match result {
+        Ok(()) if failed => ExitCode::from(2),
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => {
             eprintln!("error: cannot open the window: {error}");
@@ -104,7 +107,7 @@ fn finish<T>(result: anyhow::Result<T>, report: impl FnOnce(T)) -> ExitCode {
 /// Prints the files a command wrote.
 fn report_written(written: Vec<PathBuf>) {
     for path in written {
-        println!("wrote {}", path.display());
+        say!("wrote {}", path.display());
     }
 }
 
@@ -117,25 +120,33 @@ fn main() -> ExitCode {
     match cli.command {
         None => run_window(cli.scene.unwrap_or_else(default_scene), cli.reference),
         Some(Command::Bench(args)) => finish(cli::bench::run(&args, default_scene()), |()| {}),
-        Some(Command::Inspect(args)) => finish(cli::inspect::run(&args), |json| println!("{json}")),
+        Some(Command::Inspect(args)) => finish(cli::inspect::run(&args), |json| say!("{json}")),
         Some(Command::Stability(args)) => finish(cli::stability::run(&args), report_written),
         Some(Command::Chart(args)) => finish(cli::chart::run(&args), report_written),
         Some(Command::ExportMeshes(args)) => finish(cli::export_meshes::run(&args), |index| {
-            println!("wrote {}", index.display())
+            say!("wrote {}", index.display())
         }),
         Some(Command::Render(args)) => {
             // The user named the file: replacing it is what they asked, said aloud.
             let replacing = args.output.is_file();
-            finish(cli::render::run(&args), |elapsed| {
+            finish(cli::render::run(&args), |rendered| {
                 let replaced = if replacing {
                     " (replaced the existing file)"
                 } else {
                     ""
                 };
-                println!(
-                    "wrote {} in {:.3} s{replaced}",
+                let stopped = if rendered.passes < rendered.requested {
+                    format!(
+                        " (stopped by Ctrl+C: {} of {} passes)",
+                        rendered.passes, rendered.requested
+                    )
+                } else {
+                    String::new()
+                };
+                say!(
+                    "wrote {} in {:.3} s{replaced}{stopped}",
                     args.output.display(),
-                    elapsed.as_secs_f64()
+                    rendered.elapsed.as_secs_f64()
                 );
             })
         }

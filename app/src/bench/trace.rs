@@ -2,6 +2,7 @@
 //! throughput for primary and incoherent rays, Whitted frame time and memory,
 //! on one thread and on all, as a table or JSON.
 
+use crate::io::stdout::say;
 use anyhow::Result;
 use glam::Vec3;
 use renderer::diagnostics::quantile::quantile_by;
@@ -193,11 +194,17 @@ fn median_seconds(mut f: impl FnMut() -> f64) -> f64 {
 
 /// The figures as a readable table.
 pub fn print_table(f: &SceneFigures) {
-    println!(
+    say!(
         "{} — {} objects, {} triangles, {}×{}, {} threads, {} lanes",
-        f.scene, f.objects, f.triangles, f.width, f.height, f.threads, f.lanes
+        f.scene,
+        f.objects,
+        f.triangles,
+        f.width,
+        f.height,
+        f.threads,
+        f.lanes
     );
-    println!(
+    say!(
         "  mesh BVH build            {:>9.3} s on 1 thread, {:>7.3} on {}   top level after an edit {:>8.2} ms",
         f.mesh_bvh_build_seconds_one_thread,
         f.mesh_bvh_build_seconds,
@@ -205,14 +212,14 @@ pub fn print_table(f: &SceneFigures) {
         f.edit_rebuild_seconds * 1e3
     );
     if let Some(b) = f.bytes_per_triangle {
-        println!("  acceleration structure    {b:>9.1} bytes per triangle");
+        say!("  acceleration structure    {b:>9.1} bytes per triangle");
     }
-    println!(
+    say!(
         "  pass memory per worker    {:>9.1} KiB (chunk of samples + batch of paths, any image size)",
         f.pass_bytes_per_thread as f64 / 1024.0
     );
     let row = |name: &str, c: &PerThreads<CastFigures>| {
-        println!(
+        say!(
             "  {name:<25} {:>9.2} Mrays/s on 1 thread, {:>7.2} on {} ({:.0}% hit, {} rays)",
             c.one.mrays_per_second,
             c.all.mrays_per_second,
@@ -229,7 +236,7 @@ pub fn print_table(f: &SceneFigures) {
     if let Some(inc) = &f.incoherent_batched {
         row("  the same, batched", inc);
     }
-    println!(
+    say!(
         "  Whitted frame, 1 spp      {:>9.1} ms on 1 thread, {:>7.1} ms on {}",
         f.whitted_frame_seconds.one * 1e3,
         f.whitted_frame_seconds.all * 1e3,
@@ -277,13 +284,17 @@ pub fn scaling() -> Result<Vec<ScalingRow>> {
 
 /// The scaling rows as a table.
 pub fn print_scaling(rows: &[ScalingRow]) {
-    println!("cost against triangle count (torus knot, 1920×1080 rays, all threads):");
-    println!(
+    say!("cost against triangle count (torus knot, 1920×1080 rays, all threads):");
+    say!(
         "  {:>10} {:>10} {:>16} {:>19} {:>12}",
-        "triangles", "build s", "primary Mrays/s", "incoherent Mrays/s", "bytes/tri"
+        "triangles",
+        "build s",
+        "primary Mrays/s",
+        "incoherent Mrays/s",
+        "bytes/tri"
     );
     for r in rows {
-        println!(
+        say!(
             "  {:>10} {:>10.4} {:>16.2} {:>19.2} {:>12.1}",
             r.triangles,
             r.build_seconds,

@@ -5,6 +5,7 @@ use super::args::BenchArgs;
 use crate::bench::headless_gpu::HeadlessGpu;
 use crate::bench::{export, scene_spec, trace};
 use crate::gui::bench;
+use crate::io::stdout::say;
 use anyhow::Result;
 use renderer::diagnostics::quantile::quantile_by;
 use std::path::{Path, PathBuf};
@@ -50,7 +51,7 @@ pub fn run(args: &BenchArgs, default_scene: PathBuf) -> Result<()> {
                 export::write_manifest(dir, &manifest)?;
             }
             if args.json {
-                println!("{}", serde_json::to_string_pretty(&figures)?);
+                say!("{}", serde_json::to_string_pretty(&figures)?);
             } else {
                 trace::print_table(&figures);
             }
@@ -73,14 +74,14 @@ fn suite(json: bool, seed: &Path) -> Result<()> {
         let figures = trace::measure(scene, &label, size.map(|s| s.0), size.map(|s| s.1))?;
         if !json {
             trace::print_table(&figures);
-            println!();
+            say!("");
         }
         scenes.push(figures);
     }
     let scaling = trace::scaling()?;
     if json {
         let report = serde_json::json!({ "scenes": scenes, "scaling": scaling });
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        say!("{}", serde_json::to_string_pretty(&report)?);
     } else {
         trace::print_scaling(&scaling);
     }
@@ -104,7 +105,7 @@ fn window_scene(args: &BenchArgs, seed: &Path) -> Result<(scene::Scene, String, 
 
 fn line(name: &str, values: &mut [Duration]) {
     let mut quantile = |q| quantile_by(values, q, Duration::cmp).unwrap_or(Duration::ZERO);
-    println!(
+    say!(
         "{name:<34} median {:>7.1} ms   p95 {:>7.1} ms   max {:>7.1} ms",
         ms(quantile(0.5)),
         ms(quantile(0.95)),
@@ -118,7 +119,7 @@ fn debug_view(args: &BenchArgs, seed: &Path) -> Result<()> {
     let (scene, label, path) = window_scene(args, seed)?;
     let size = [1600u32, 900];
     let gpu = HeadlessGpu::new(size)?;
-    println!(
+    say!(
         "{label} at {}×{}, debug view {} in a {}×{} window drawn by {}, {} frames, {} tracer threads {}",
         scene.camera.width,
         scene.camera.height,
@@ -152,7 +153,7 @@ fn debug_view(args: &BenchArgs, seed: &Path) -> Result<()> {
     )?;
     line("UI thread per frame", &mut report.ui);
     line("whole frame, GPU finished", &mut report.whole);
-    println!("(target: whole frame < 16 ms while the tracer runs)");
+    say!("(target: whole frame < 16 ms while the tracer runs)");
     Ok(())
 }
 
@@ -162,7 +163,7 @@ fn interactive(args: &BenchArgs, seed: &Path) -> Result<()> {
     let (scene, label, path) = window_scene(args, seed)?;
     let threads = rayon::current_num_threads();
     let integrator = renderer::integrator::Integrator::from(args.integrator);
-    println!(
+    say!(
         "{label} at {}×{}, {:?}, {} edits (θ, orbit, colour, move in turn), {threads} tracer threads{}",
         scene.camera.width,
         scene.camera.height,
@@ -211,7 +212,7 @@ fn interactive(args: &BenchArgs, seed: &Path) -> Result<()> {
         }
     }
     line("UI frame time while rendering", &mut report.frame_times);
-    println!(
+    say!(
         "({} UI frames; targets: preview p95 ≤ 16 ms, full pass median ≤ 150 ms, UI frame < 16 ms)",
         report.frame_times.len()
     );

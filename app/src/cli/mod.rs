@@ -7,7 +7,9 @@ pub mod bench;
 pub mod chart;
 pub mod export_meshes;
 pub mod inspect;
+pub mod interrupt;
 mod prepare;
+pub mod progress;
 pub mod render;
 pub mod stability;
 

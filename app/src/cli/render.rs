@@ -1,8 +1,11 @@
 //! `raylab render`: a scene to an image file, no window.
 
 use super::args::{AovArg, RenderArgs};
+use super::interrupt;
 use super::prepare::{UserError, prepare};
+use super::progress::Progress;
 use crate::io::output::{Format, Provenance, write_exr, write_png, write_png_srgb8};
+use crate::io::stdout::say;
 use anyhow::Result;
 use renderer::Film;
 use renderer::display::Display;
@@ -29,13 +32,25 @@ fn view_of(args: &RenderArgs, scene: View) -> Result<View> {
     })
 }
 
-/// Renders `args.scene` to `args.output`; returns the time the render took.
-pub fn run(args: &RenderArgs) -> Result<Duration> {
+/// What `raylab render` did: how long the render took, and how many of the
+/// passes asked for were traced (fewer when Ctrl+C stopped it).
+pub struct Rendered {
+    /// The render's time, without loading the scene or writing the image.
+    pub elapsed: Duration,
+    /// Passes (samples per pixel) traced and written.
+    pub passes: u32,
+    /// Passes asked for (`--spp`).
+    pub requested: u32,
+}
+
+/// Renders `args.scene` to `args.output`.
+pub fn run(args: &RenderArgs) -> Result<Rendered> {
     let format = Format::from_path(&args.output).map_err(|e| UserError(e.to_string()))?;
     let (world, options, scene_view) = prepare(&args.scene)?;
     let view = view_of(args, scene_view)?;
     let (w, h) = (world.camera.w, world.camera.h);
-    let provenance = Provenance::of_render(&world.camera, Some(&args.scene.scene), args.spp);
+    let provenance_of =
+        |passes| Provenance::of_render(&world.camera, Some(&args.scene.scene), passes);
     // A bad reference is an error before the render, not after it.
     let reference = match &args.reference {
         Some(path) => {
@@ -46,16 +61,20 @@ pub fn run(args: &RenderArgs) -> Result<Duration> {
         None => None,
     };
     let start = Instant::now();
-    let provenance = match args.aov {
-        AovArg::Variance => provenance.with_display(Display::Variance),
-        AovArg::Cost => provenance.with_display(Display::Cost),
-        AovArg::Spp => provenance.with_display(Display::SamplesPerPixel),
-        _ => provenance,
+    let provenance_of = |passes| {
+        let provenance = provenance_of(passes);
+        match args.aov {
+            AovArg::Variance => provenance.with_display(Display::Variance),
+            AovArg::Cost => provenance.with_display(Display::Cost),
+            AovArg::Spp => provenance.with_display(Display::SamplesPerPixel),
+            _ => provenance,
+        }
     };
     match aov_of(args.aov) {
         None => {
-            let film = Film::render(&world, &options, args.spp);
+            let (film, passes) = render_passes(&world, &options, args.spp)?;
             let elapsed = start.elapsed();
+            let provenance = provenance_of(passes);
             if film.discarded() > 0 {
                 eprintln!(
                     "warning: {} samples were NaN or infinite and were left out",
@@ -65,7 +84,7 @@ pub fn run(args: &RenderArgs) -> Result<Duration> {
             let pixels = film.linear();
             if let (Some(path), Some(reference)) = (&args.reference, &reference) {
                 let flip = super::chart::flip::FlipReference::new(&reference.pixels, w, h);
-                println!(
+                say!(
                     "relMSE {:.4e}, RMSE {:.4e}, FLIP {:.4} against {}",
                     renderer::diagnostics::metrics::rel_mse(&pixels, &reference.pixels),
                     renderer::diagnostics::metrics::rmse(&pixels, &reference.pixels),
@@ -106,11 +125,16 @@ pub fn run(args: &RenderArgs) -> Result<Duration> {
                     write_exr(&args.output, w, h, &[channel], &values, &provenance)?
                 }
             }
-            Ok(elapsed)
+            Ok(Rendered {
+                elapsed,
+                passes,
+                requested: args.spp,
+            })
         }
         Some(kind) => {
             let values = aov::render_aov(&world, kind, options.method);
             let elapsed = start.elapsed();
+            let provenance = provenance_of(1);
             match format {
                 Format::Png => {
                     let shown = aov_image(kind, &values);
@@ -125,7 +149,11 @@ pub fn run(args: &RenderArgs) -> Result<Duration> {
                     write_exr(&args.output, w, h, names, &values, &provenance)?
                 }
             }
-            Ok(elapsed)
+            Ok(Rendered {
+                elapsed,
+                passes: 1,
+                requested: 1,
+            })
         }
     }
 }
@@ -137,6 +165,33 @@ fn rgb_bytes(image: &DisplayImage) -> Vec<u8> {
         .iter()
         .flat_map(|p| [p[0], p[1], p[2]])
         .collect()
+}
+
+/// `spp` passes of `world` on one film, with a progress bar on a terminal;
+/// Ctrl+C stops it after the pass under way (the film then holds the passes
+/// done). An error when it is stopped before the first pass is done.
+fn render_passes(
+    world: &renderer::World,
+    options: &renderer::RenderOptions,
+    spp: u32,
+) -> Result<(Film, u32)> {
+    interrupt::catch()?;
+    let progress = Progress::new(u64::from(spp), "passes");
+    let mut film = Film::new(world.camera.w, world.camera.h);
+    let mut passes = 0;
+    while passes < spp && !interrupt::requested() {
+        film.add_pass(world, options);
+        passes += 1;
+        progress.step();
+    }
+    progress.finish();
+    if passes == 0 {
+        return Err(UserError(
+            "stopped (Ctrl+C) before the first pass was done: nothing written".into(),
+        )
+        .into());
+    }
+    Ok((film, passes))
 }
 
 fn aov_of(arg: AovArg) -> Option<Aov> {

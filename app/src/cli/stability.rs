@@ -2,6 +2,8 @@
 //! (renderer::diagnostics::stability), prints a table and writes it as CSV and a PNG chart.
 
 use super::args::StabilityArgs;
+use crate::cli::progress::Progress;
+use crate::io::stdout::say;
 use crate::plot::stability::{format_value, write_chart};
 use anyhow::{Context, Result};
 use renderer::diagnostics::stability::{CASES, Effort, Row};
@@ -19,21 +21,32 @@ pub fn run(args: &StabilityArgs) -> Result<Vec<PathBuf>> {
         eprintln!("note: a debug build; the ns per test are not what a release build costs");
     }
     let mut rows = Vec::new();
+    let progress = Progress::new(CASES.len() as u64, "cases");
     for case in CASES {
-        println!("\n{}: {}", case.name, case.about);
+        progress.say(case.name);
         let case_rows = (case.run)(effort);
-        if let Some(first) = case_rows.first() {
-            println!(
-                "  {:>12}  {:<16} {:>9} {:>8} {:>10} {:>9}",
-                "value", "method", "failures", "refused", "p99 error", "ns/test"
-            );
-            println!("  ({})", first.condition);
-        }
-        for row in &case_rows {
-            println!("  {}", table_line(row));
-        }
+        progress.suspend(|| {
+            say!("\n{}: {}", case.name, case.about);
+            if let Some(first) = case_rows.first() {
+                say!(
+                    "  {:>12}  {:<16} {:>9} {:>8} {:>10} {:>9}",
+                    "value",
+                    "method",
+                    "failures",
+                    "refused",
+                    "p99 error",
+                    "ns/test"
+                );
+                say!("  ({})", first.condition);
+            }
+            for row in &case_rows {
+                say!("  {}", table_line(row));
+            }
+        });
+        progress.step();
         rows.extend(case_rows);
     }
+    progress.finish();
     let (csv, png) = crate::io::output_path::csv_and_png(args.output.as_deref(), "stability");
     write_csv(&csv, &rows)?;
     write_chart(&png, &rows)?;

@@ -6,6 +6,7 @@
 use super::commands::{self, Command};
 use super::crash_recovery::CrashRecovery;
 use super::debug_view::{DebugRenderer, DebugView, Inputs};
+use super::doc::change;
 use super::doc::document::{Document, RenderSettings};
 use super::doc::edits::{self, Action, Selection};
 use super::files::dialogs::DialogKind;
@@ -57,7 +58,17 @@ pub struct RaylabApp {
     frame_times: FrameTimes,
     /// The wgpu device and egui's renderer, when the window draws with wgpu.
     gpu: Option<eframe::egui_wgpu::RenderState>,
+    /// The image gesture that last moved the camera ("orbit", "pan",
+    /// "dolly"), to name its undo step.
+    camera_move: Option<&'static str>,
+    /// When the wheel last dollied the camera: notches within
+    /// [`WHEEL_GESTURE`] of each other are one undo step.
+    last_wheel: Option<Instant>,
 }
+
+/// Wheel notches closer together than this are one gesture (one undo step);
+/// egui also spreads each notch over several frames.
+const WHEEL_GESTURE: std::time::Duration = std::time::Duration::from_millis(500);
 
 impl RaylabApp {
     /// An app showing `scene` (loaded from `path`).
@@ -74,6 +85,8 @@ impl RaylabApp {
             settings: Settings::default(),
             recovery: CrashRecovery::default(),
             show_debug: false,
+            camera_move: None,
+            last_wheel: None,
             debug: DebugView::default(),
             show_help: false,
             title: String::new(),
@@ -96,6 +109,20 @@ impl RaylabApp {
         self
     }
 
+    /// This app's untitled scene named by the model file it was read from
+    /// (a .gltf or .glb opened directly).
+    pub fn with_origin(mut self, origin: Option<PathBuf>) -> Self {
+        self.doc.origin = origin;
+        self
+    }
+
+    /// This app with `message` shown in front until it is dismissed (a
+    /// scene that could not be opened at start).
+    pub fn with_message(mut self, message: String) -> Self {
+        self.files.message = Some(message);
+        self
+    }
+
     /// An app restoring its settings from eframe's storage.
     pub fn with_storage(
         scene: Scene,
@@ -115,6 +142,21 @@ impl RaylabApp {
     /// Names the object under the pointer (in the object-id mode) and turns
     /// this frame's mouse gestures on the image into a pick (which also
     /// inspects the pixel), a hover inspection or a camera move.
+    /// Records the edits since the last undo step as one step, named by
+    /// what changed, unless `gesture` (one still under way).
+    fn record_step(&mut self, gesture: bool) {
+        let camera_move = self.camera_move;
+        if self
+            .doc
+            .history
+            .settle_named(&self.doc.state, gesture, |before, after| {
+                change::describe(before, after, camera_move)
+            })
+        {
+            self.camera_move = None;
+        }
+    }
+
     fn on_image(&mut self, gestures: &Gestures, dragging: bool) {
         let method = self.doc.state.render.method;
         let prepared = self.session.prepared.as_ref();
@@ -131,6 +173,17 @@ impl RaylabApp {
             && let Some(pixel) = gestures.hovered_pixel
         {
             self.inspector.inspect(pixel, true, prepared, method);
+        }
+        let moved = [
+            (gestures.orbit != egui::Vec2::ZERO, "orbit"),
+            (gestures.pan != egui::Vec2::ZERO, "pan"),
+            (gestures.dolly != 0.0, "dolly"),
+        ];
+        if let Some(&(_, name)) = moved.iter().find(|(moved, _)| *moved) {
+            self.camera_move = Some(name);
+            if name == "dolly" && !dragging {
+                self.last_wheel = Some(Instant::now());
+            }
         }
         let camera = &mut self.doc.state.scene.camera;
         self.camera_drag
@@ -181,6 +234,7 @@ impl RaylabApp {
             Command::Quit => ctx.send_viewport_cmd(egui::ViewportCommand::Close),
             Command::Undo => {
                 self.camera_drag.end();
+                self.record_step(false);
                 self.doc.history.undo(&mut self.doc.state);
             }
             Command::Redo => {
@@ -353,6 +407,8 @@ impl RaylabApp {
                 recent: &self.settings.recent,
                 can_undo: self.doc.history.can_undo(&self.doc.state),
                 can_redo: self.doc.history.can_redo(&self.doc.state),
+                undo_name: self.doc.history.undo_name(&self.doc.state),
+                redo_name: self.doc.history.redo_name(&self.doc.state),
                 has_image: self.session.frame.is_some(),
                 has_selection: self.selection != Selection::None,
                 display: self.image.display,
@@ -361,9 +417,14 @@ impl RaylabApp {
         });
         egui::Panel::bottom("status").show(ui, |ui| {
             let shown = self.session.frame.as_ref().map(Shown::of);
+            let note = self.files.current_note();
+            if let Some((_, left)) = note {
+                ui.ctx().request_repaint_after(left);
+            }
             let pause = status_bar::show(
                 ui,
                 shown.as_ref(),
+                note.map(|(text, _)| text),
                 self.session.error.as_deref(),
                 self.doc.state.render.target_spp,
                 self.session.paused,
@@ -432,15 +493,20 @@ impl RaylabApp {
         for command in commands {
             self.run(&ctx, command);
         }
-        // A drag or a text field being typed in is one undo step, recorded when it ends.
-        let gesture = ctx.input(|i| i.pointer.any_down()) || ctx.text_edit_focused();
-        self.doc.history.settle(&self.doc.state, gesture);
+        // A drag, a text field being typed in or a turn of the wheel is one
+        // undo step, recorded when it ends.
+        let wheeling = self.last_wheel.is_some_and(|t| t.elapsed() < WHEEL_GESTURE);
+        if wheeling {
+            ctx.request_repaint_after(WHEEL_GESTURE);
+        }
+        let gesture = ctx.input(|i| i.pointer.any_down()) || ctx.text_edit_focused() || wheeling;
+        self.record_step(gesture);
         self.update_title(&ctx);
         self.autosave_at(&ctx, Instant::now());
         let display = self.image.display;
         if self
             .session
-            .submit_if_changed(&ctx, &self.doc.state, display)
+            .submit_if_changed(&ctx, &self.doc.state, self.doc.path.as_deref(), display)
         {
             // An unpinned inspection follows the camera of a newly prepared world.
             self.inspector.follow(self.session.prepared.as_ref());

@@ -152,6 +152,10 @@ pub struct MenuState<'a> {
     pub can_undo: bool,
     /// Redo has something to do.
     pub can_redo: bool,
+    /// What Undo would undo ("θ", "orbit"), when known.
+    pub undo_name: Option<&'a str>,
+    /// What Redo would redo, when known.
+    pub redo_name: Option<&'a str>,
     /// An image is on screen.
     pub has_image: bool,
     /// Something is selected.
@@ -206,10 +210,14 @@ pub fn menu_bar(ui: &mut egui::Ui, state: &MenuState) -> Option<Command> {
             }
         });
         ui.menu_button("Edit", |ui| {
-            if item(ui, "Undo", Some(ctrl(Key::Z)), state.can_undo) {
+            let named = |verb: &str, name: Option<&str>| match name {
+                Some(name) => format!("{verb} {name}"),
+                None => verb.to_owned(),
+            };
+            if item(ui, &named("Undo", state.undo_name), Some(ctrl(Key::Z)), state.can_undo) {
                 chosen = Some(Command::Undo);
             }
-            if item(ui, "Redo", Some(ctrl_shift(Key::Z)), state.can_redo) {
+            if item(ui, &named("Redo", state.redo_name), Some(ctrl_shift(Key::Z)), state.can_redo) {
                 chosen = Some(Command::Redo);
             }
             ui.separator();

@@ -18,6 +18,7 @@
 //! - `panels`: the panels around the image, the status bar, the help;
 //! - `viewport`: the image, its legend, picking, camera moves, screenshots;
 //! - `debug_view`: the 3D debug view;
+//! - `startup`: the scene the window opens on, or the error why not;
 //! - `bench`: the window's benchmarks, driven headless; `tests`: its
 //!   headless UI tests.
 
@@ -32,6 +33,7 @@ mod inspector;
 mod panels;
 mod session;
 mod settings;
+pub mod startup;
 mod viewport;
 pub mod worker_priority;
 

@@ -3,11 +3,12 @@
 //! render copy and hands it to the progressive renderer's thread, and it
 //! shows the newest frame that thread hands back.
 
-use super::doc::document::EditState;
+use super::doc::document::{EditState, rebase_file_sources};
 use renderer::display::Display;
 use renderer::progressive::{Job, ProgressiveRenderer, RenderedFrame};
 use renderer::{RenderOptions, World};
 use scene::{ResolvedScene, Scene, View};
+use std::path::Path;
 use std::sync::Arc;
 
 /// A scene snapshot and the render copy prepared from it.
@@ -63,20 +64,29 @@ impl Default for SessionSync {
 impl SessionSync {
     /// Hands `state`'s scene to the session when it or the options changed
     /// since the last submit, and `display` when it changed; a scene that
-    /// cannot be rendered keeps the last image and says why. True when a
-    /// new world was prepared (and submitted).
+    /// cannot be rendered keeps the last image and says why. A scene that
+    /// differs only as saving it to `saved_to` (the document's file) rewrote
+    /// its file names goes on rendering. True when a new world was prepared
+    /// (and submitted).
     pub fn submit_if_changed(
         &mut self,
         ctx: &egui::Context,
         state: &EditState,
+        saved_to: Option<&Path>,
         display: Display,
     ) -> bool {
         let options = state.render.options();
         let target = state.render.target_spp;
-        let unchanged = self
-            .submitted
-            .as_ref()
-            .is_some_and(|(scene, o)| *o == options && scene.renders_like(&state.scene));
+        let unchanged = self.submitted.as_ref().is_some_and(|(scene, o)| {
+            *o == options
+                && (scene.renders_like(&state.scene)
+                    || saved_to
+                        .is_some_and(|path| saved_as(scene, path).renders_like(&state.scene)))
+        });
+        if unchanged && let Some((scene, _)) = &mut self.submitted {
+            // Saved elsewhere: the same files, named from the new folder.
+            scene.clone_from(&state.scene);
+        }
         let session = self.progressive.get_or_insert_with(|| {
             let ctx = ctx.clone();
             ProgressiveRenderer::new(move || ctx.request_repaint())
@@ -162,4 +172,13 @@ impl SessionSync {
             _ => 0,
         }
     }
+}
+
+/// `scene` as saving it to `path` writes it: its model and map files named
+/// from `path`'s folder. A save changes the scene only so; the render of a
+/// scene just saved elsewhere goes on.
+fn saved_as(scene: &Scene, path: &Path) -> Scene {
+    let mut scene = scene.clone();
+    rebase_file_sources(&mut scene, path);
+    scene
 }

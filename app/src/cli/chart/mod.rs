@@ -6,6 +6,8 @@ pub(crate) mod flip;
 
 use super::args::{ChartArgs, ChartMethod};
 use super::prepare::UserError;
+use crate::cli::progress::Progress;
+use crate::io::stdout::say;
 use crate::plot::chart::{Curve, write_chart};
 use anyhow::{Context, Result};
 use flip::FlipReference;
@@ -83,8 +85,10 @@ pub fn run(args: &ChartArgs) -> Result<Vec<PathBuf>> {
         max_spp: args.max_spp,
     };
     let mut curves = Vec::new();
+    let progress = Progress::new(args.methods.len() as u64, "methods");
     for &method in &args.methods {
         let name = method.name();
+        progress.say(name);
         let options = options_of(method, args.max_depth, args.seed);
         let (points, _) = converge(
             &world,
@@ -98,20 +102,24 @@ pub fn run(args: &ChartArgs) -> Result<Vec<PathBuf>> {
                 time_to_reach(&points, target)
                     .map_or_else(|| "not reached".to_owned(), |t| format!("{t:.2} s"))
             };
-            println!(
-                "{name:>16}: {} spp ({:.1} on average) in {:.2} s, relMSE {:.3e}, FLIP {:.4}; \
-                 to 1e-2: {}, to 1e-3: {}",
-                last.spp,
-                last.mean_spp,
-                last.seconds,
-                last.rel_mse,
-                last.perceptual.unwrap_or(f64::NAN),
-                reach(1e-2),
-                reach(1e-3)
-            );
+            progress.suspend(|| {
+                say!(
+                    "{name:>16}: {} spp ({:.1} on average) in {:.2} s, relMSE {:.3e}, FLIP {:.4}; \
+                     to 1e-2: {}, to 1e-3: {}",
+                    last.spp,
+                    last.mean_spp,
+                    last.seconds,
+                    last.rel_mse,
+                    last.perceptual.unwrap_or(f64::NAN),
+                    reach(1e-2),
+                    reach(1e-3)
+                )
+            });
         }
+        progress.step();
         curves.push(Curve { name, points });
     }
+    progress.finish();
     let (csv, png) = crate::io::output_path::csv_and_png(args.output.as_deref(), "chart");
     write_csv(&csv, &curves)?;
     let title = format!(

@@ -76,6 +76,9 @@ pub struct Document {
     saved: Option<Scene>,
     /// Undo/redo over [`EditState`].
     pub history: History<EditState>,
+    /// The model file (.gltf, .glb) an untitled scene was opened from: it
+    /// names the document and is where Save As suggests a scene beside it.
+    pub origin: Option<PathBuf>,
 }
 
 impl Document {
@@ -87,6 +90,7 @@ impl Document {
             saved: Some(state.scene.clone()),
             state,
             path,
+            origin: None,
         }
     }
 
@@ -102,7 +106,38 @@ impl Document {
     /// Reads the scene file (or model file) at `path`.
     pub fn open(path: &Path, render: RenderSettings) -> Result<Self, scene::SceneError> {
         let scene = scene::read_any(path)?;
-        Ok(Self::new(scene, Self::scene_path(path), render))
+        Ok(Self::new(scene, Self::scene_path(path), render).read_from(path))
+    }
+
+    /// This document, read from `path`: a model file becomes its origin.
+    pub fn read_from(mut self, path: &Path) -> Self {
+        if scene::is_model_path(path) {
+            self.origin = Some(path.to_path_buf());
+        }
+        self
+    }
+
+    /// The file the document is saved to, else the model it was opened from.
+    fn named_by(&self) -> Option<&Path> {
+        self.path.as_deref().or(self.origin.as_deref())
+    }
+
+    /// The file name Save As suggests: the scene's own, or the model's with
+    /// `.xml` (`Duck.gltf` → `Duck.xml`), or `untitled.xml`.
+    pub fn scene_file_name(&self) -> String {
+        let name = self.display_name();
+        if name.ends_with(".xml") {
+            return name;
+        }
+        let stem = Path::new(&name)
+            .file_stem()
+            .map_or_else(|| name.clone(), |s| s.to_string_lossy().into_owned());
+        format!("{stem}.xml")
+    }
+
+    /// The folder the document's file, or its model, is in.
+    pub fn folder(&self) -> Option<&Path> {
+        self.named_by().and_then(Path::parent)
     }
 
     /// The file a document read from `path` saves to: the path itself for a
@@ -135,8 +170,7 @@ impl Document {
 
     /// The file name shown in the title and in default screenshot names.
     pub fn display_name(&self) -> String {
-        self.path
-            .as_deref()
+        self.named_by()
             .and_then(Path::file_name)
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_else(|| "untitled".to_owned())
@@ -146,9 +180,7 @@ impl Document {
     pub fn title(&self) -> String {
         let mark = if self.is_modified() { "• " } else { "" };
         let folder = self
-            .path
-            .as_deref()
-            .and_then(Path::parent)
+            .folder()
             .map(|p| format!(" — {}", p.display()))
             .unwrap_or_default();
         format!("{mark}{}{folder} — raylab", self.display_name())
@@ -160,7 +192,7 @@ impl Document {
 /// file lies in that folder, else its absolute path (so a scene saved
 /// elsewhere, or autosaved to the recovery folder, still finds them). A
 /// built-in map (`raylab:studio`) is no file and keeps its name.
-pub(super) fn rebase_file_sources(scene: &mut Scene, scene_path: &Path) {
+pub(in crate::gui) fn rebase_file_sources(scene: &mut Scene, scene_path: &Path) {
     let folder = scene_path.parent().and_then(|f| {
         std::fs::canonicalize(if f.as_os_str().is_empty() {
             Path::new(".")
@@ -318,5 +350,27 @@ mod tests {
         };
         rebase_file_sources(&mut studio, &dir.path().join("scene.xml"));
         assert_eq!(src(&studio).as_deref(), Some(scene::STUDIO_MAP));
+    }
+
+    #[test]
+    fn a_model_opened_alone_names_the_window_and_suggests_a_scene_beside_it() {
+        let doc = Document::new(Scene::default(), None, RenderSettings::default())
+            .read_from(Path::new("/models/duck/Duck.gltf"));
+        assert_eq!(doc.path, None, "a model file is never saved over");
+        assert_eq!(doc.display_name(), "Duck.gltf");
+        assert_eq!(doc.title(), "Duck.gltf — /models/duck — raylab");
+        assert_eq!(doc.scene_file_name(), "Duck.xml");
+        assert_eq!(doc.folder(), Some(Path::new("/models/duck")));
+        let untitled = Document::new(Scene::default(), None, RenderSettings::default());
+        assert_eq!(
+            (untitled.display_name(), untitled.scene_file_name()),
+            ("untitled".to_owned(), "untitled.xml".to_owned())
+        );
+        let scene = Document::new(Scene::default(), None, RenderSettings::default())
+            .read_from(Path::new("/scenes/seed.xml"));
+        assert_eq!(
+            scene.origin, None,
+            "a scene file is its own path, not an origin"
+        );
     }
 }

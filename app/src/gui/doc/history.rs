@@ -2,17 +2,18 @@
 //!
 //! Edits change the live state freely; [`History::settle`] records one undo
 //! step when the state differs from the last recorded one and no gesture is
-//! in progress, so a drag of many frames is a single step.
+//! in progress, so a drag of many frames is a single step. Each step keeps
+//! a name for the menu ("Undo θ"), given by whoever records it.
 
 /// Undo/redo stacks for a cloneable, comparable state `T`.
 #[derive(Debug)]
 pub struct History<T> {
     /// The state as of the last recorded step.
     recorded: T,
-    /// Older states, newest last.
-    undo: Vec<T>,
-    /// States undone, the next redo last.
-    redo: Vec<T>,
+    /// Older states, newest last, each with the name of the step that left it.
+    undo: Vec<(T, String)>,
+    /// States undone, the next redo last, each with its step's name.
+    redo: Vec<(T, String)>,
 }
 
 /// How many steps are kept; the oldest are dropped beyond this.
@@ -31,11 +32,22 @@ impl<T: Clone + PartialEq> History<T> {
     /// Records `current` as one step if it differs from the last recorded
     /// state and `gesture_in_progress` is false; true when a step was recorded.
     pub fn settle(&mut self, current: &T, gesture_in_progress: bool) -> bool {
+        self.settle_named(current, gesture_in_progress, |_, _| String::new())
+    }
+
+    /// [`History::settle`], naming the step by `name(before, after)`.
+    pub fn settle_named(
+        &mut self,
+        current: &T,
+        gesture_in_progress: bool,
+        name: impl FnOnce(&T, &T) -> String,
+    ) -> bool {
         if gesture_in_progress || *current == self.recorded {
             return false;
         }
+        let name = name(&self.recorded, current);
         let previous = std::mem::replace(&mut self.recorded, current.clone());
-        self.undo.push(previous);
+        self.undo.push((previous, name));
         if self.undo.len() > MAX_STEPS {
             self.undo.remove(0);
         }
@@ -47,11 +59,11 @@ impl<T: Clone + PartialEq> History<T> {
     /// is what gets undone. False when there is nothing to undo.
     pub fn undo(&mut self, current: &mut T) -> bool {
         self.settle(current, false);
-        let Some(previous) = self.undo.pop() else {
+        let Some((previous, name)) = self.undo.pop() else {
             return false;
         };
         self.redo
-            .push(std::mem::replace(&mut self.recorded, previous));
+            .push((std::mem::replace(&mut self.recorded, previous), name));
         *current = self.recorded.clone();
         true
     }
@@ -63,10 +75,11 @@ impl<T: Clone + PartialEq> History<T> {
             self.settle(current, false);
             return false;
         }
-        let Some(next) = self.redo.pop() else {
+        let Some((next, name)) = self.redo.pop() else {
             return false;
         };
-        self.undo.push(std::mem::replace(&mut self.recorded, next));
+        self.undo
+            .push((std::mem::replace(&mut self.recorded, next), name));
         *current = self.recorded.clone();
         true
     }
@@ -74,6 +87,19 @@ impl<T: Clone + PartialEq> History<T> {
     /// True when [`History::undo`] would change something.
     pub fn can_undo(&self, current: &T) -> bool {
         !self.undo.is_empty() || *current != self.recorded
+    }
+
+    /// The name of the step [`History::undo`] would undo, when it is a
+    /// recorded step with a name (not an edit still under way).
+    pub fn undo_name(&self, current: &T) -> Option<&str> {
+        let (_, name) = self.undo.last().filter(|_| *current == self.recorded)?;
+        (!name.is_empty()).then_some(name.as_str())
+    }
+
+    /// The name of the step [`History::redo`] would redo, if any.
+    pub fn redo_name(&self, current: &T) -> Option<&str> {
+        let (_, name) = self.redo.last().filter(|_| *current == self.recorded)?;
+        (!name.is_empty()).then_some(name.as_str())
     }
 
     /// True when [`History::redo`] would change something.
@@ -98,6 +124,30 @@ mod tests {
         assert!(history.undo(&mut value));
         assert_eq!(value, 0);
         assert!(!history.undo(&mut value), "one step only");
+    }
+
+    #[test]
+    fn each_step_keeps_its_name_for_undo_and_then_for_redo() {
+        let mut value = 1;
+        let mut history = History::new(&value);
+        let name = |a: &i32, b: &i32| format!("{a} to {b}");
+        value = 2;
+        assert!(history.settle_named(&value, false, name));
+        value = 5;
+        assert_eq!(
+            history.undo_name(&value),
+            None,
+            "an edit under way has no name yet"
+        );
+        assert!(history.settle_named(&value, false, name));
+        assert_eq!(history.undo_name(&value), Some("2 to 5"));
+        assert!(history.undo(&mut value));
+        assert_eq!(
+            (history.undo_name(&value), history.redo_name(&value)),
+            (Some("1 to 2"), Some("2 to 5"))
+        );
+        assert!(history.redo(&mut value));
+        assert_eq!((value, history.undo_name(&value)), (5, Some("2 to 5")));
     }
 
     #[test]

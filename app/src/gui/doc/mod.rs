@@ -3,6 +3,7 @@
 //! autosave and recovery files that keep unsaved work safe from a crash.
 
 pub mod autosave;
+pub mod change;
 pub mod document;
 pub mod edits;
 pub mod history;

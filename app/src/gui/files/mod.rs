@@ -20,6 +20,7 @@ use renderer::Camera;
 use renderer::progressive::RenderedFrame;
 use scene::Scene;
 use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
 
 /// What waits for the user's answer to "save changes?".
 #[derive(Clone, Debug, PartialEq)]
@@ -60,11 +61,29 @@ pub struct FileWorkflow {
     pub allow_close: bool,
     /// A message for the user (a failed open or save), shown until dismissed.
     pub message: Option<String>,
+    /// A passing note ("Saved …"), shown in the status bar for
+    /// [`NOTE_DURATION`] from when it was made.
+    note: Option<(String, Instant)>,
     /// A path typed by the user when no file dialog is available.
     pub path_prompt: Option<(DialogKind, String)>,
 }
 
+/// How long a note stays in the status bar.
+pub const NOTE_DURATION: Duration = Duration::from_secs(5);
+
 impl FileWorkflow {
+    /// Shows `text` in the status bar for a few seconds.
+    pub fn note(&mut self, text: String) {
+        self.note = Some((text, Instant::now()));
+    }
+
+    /// The note to show now, and for how much longer.
+    pub fn current_note(&self) -> Option<(&str, Duration)> {
+        let (text, at) = self.note.as_ref()?;
+        let left = NOTE_DURATION.checked_sub(at.elapsed())?;
+        Some((text.as_str(), left))
+    }
+
     /// Holds a close of the window asked for with unsaved changes, to ask
     /// first ("save changes?"), unless closing was already confirmed.
     pub fn hold_close(&mut self, ctx: &egui::Context, doc: &Document) {
@@ -158,6 +177,7 @@ impl Files<'_> {
         match self.doc.save_as(path) {
             Ok(()) => {
                 self.settings.remember(path);
+                self.flow.note(format!("Saved {}", path.display()));
                 true
             }
             Err(e) => {
@@ -182,7 +202,11 @@ impl Files<'_> {
             screenshot::spp_of(frame.step),
         );
         match screenshot::save(path, frame, &provenance) {
-            Ok(()) => self.settings.last_folder = path.parent().map(Path::to_path_buf),
+            Ok(()) => {
+                self.settings.last_folder = path.parent().map(Path::to_path_buf);
+                self.flow
+                    .note(format!("Saved the image to {}", path.display()));
+            }
             Err(e) => self.flow.message = Some(format!("Cannot save the image: {e:#}")),
         }
     }
@@ -190,9 +214,7 @@ impl Files<'_> {
     /// The folder a file dialog starts in: the scene's, else the last one used.
     fn dialog_folder(&self) -> Option<PathBuf> {
         self.doc
-            .path
-            .as_deref()
-            .and_then(Path::parent)
+            .folder()
             .map(Path::to_path_buf)
             .or_else(|| self.settings.last_folder.clone())
     }
@@ -203,13 +225,7 @@ impl Files<'_> {
     fn suggested_name(&self, kind: DialogKind, folder: Option<&Path>) -> Option<String> {
         match kind {
             DialogKind::Open | DialogKind::Reference | DialogKind::SkyMap => None,
-            DialogKind::SaveScene => Some(self.doc.display_name()).map(|n| {
-                if n.ends_with(".xml") {
-                    n
-                } else {
-                    format!("{n}.xml")
-                }
-            }),
+            DialogKind::SaveScene => Some(self.doc.scene_file_name()),
             DialogKind::SaveImage => self.frame.map(|f| {
                 let name = self.doc.display_name();
                 let name = screenshot::default_file_name(&name, f.step, f.legend.display);

@@ -62,6 +62,7 @@ impl FrameTimes {
 pub fn show(
     ui: &mut egui::Ui,
     shown: Option<&Shown>,
+    note: Option<&str>,
     error: Option<&str>,
     target_spp: Option<u32>,
     paused: bool,
@@ -73,6 +74,10 @@ pub fn show(
             toggled = true;
         }
         ui.separator();
+        if let Some(note) = note {
+            ui.strong(note);
+            ui.separator();
+        }
         if let Some(error) = error {
             ui.colored_label(ui.visuals().error_fg_color, error);
             ui.separator();

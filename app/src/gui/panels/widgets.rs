@@ -98,12 +98,22 @@ pub fn color(ui: &mut egui::Ui, c: &mut Vec3) -> bool {
     if changed {
         *c = Vec3::from(rgb).max(Vec3::ZERO);
     }
-    ui.weak(scene::color::format_color(*c));
+    // The file's exact form (a hex byte triple, else full floats) on hover;
+    // three decimals in the panel, so a picked colour does not widen it.
+    let exact = scene::color::format_color(*c);
+    let short = if exact.starts_with('#') {
+        exact.clone()
+    } else {
+        format!("{:.3} {:.3} {:.3}", c.x, c.y, c.z)
+    };
+    ui.weak(short).on_hover_text(exact);
     changed
 }
 
 /// A grid row for an optional parameter: a checkbox that overrides the
-/// inherited value, and `edit` for the value when overridden.
+/// inherited value, and `edit` for the value. Without the override the
+/// inherited value is shown, and editing it sets the override (ticking the
+/// box first is not needed).
 pub fn optional_row<T: Copy>(
     ui: &mut egui::Ui,
     label: &str,
@@ -119,12 +129,44 @@ pub fn optional_row<T: Copy>(
     ui.horizontal(|ui| match value {
         Some(v) => changed |= edit(ui, v),
         None => {
-            ui.add_enabled_ui(false, |ui| {
-                let mut shown = inherited;
-                edit(ui, &mut shown);
-            });
+            let mut shown = inherited;
+            if edit(ui, &mut shown) {
+                *value = Some(shown);
+                changed = true;
+            }
         }
     });
     ui.end_row();
     changed
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use egui_kittest::Harness;
+    use egui_kittest::kittest::Queryable;
+
+    #[test]
+    fn editing_an_inherited_value_overrides_it_without_ticking_its_box() {
+        let mut h = Harness::new_ui_state(
+            |ui, value: &mut Option<f32>| {
+                egui::Grid::new("rows").show(ui, |ui| {
+                    optional_row(ui, "specular", value, 0.25, |ui, v| {
+                        ui.add(egui::Slider::new(v, 0.0..=1.0).text("amount"))
+                            .changed()
+                    });
+                });
+            },
+            None,
+        );
+        h.run();
+        h.get_by_role_and_label(egui::accesskit::Role::Slider, "amount")
+            .set_value_accesskit(0.75);
+        h.run();
+        assert_eq!(*h.state(), Some(0.75), "the edit became the override");
+        // Unticking the box goes back to the inherited value.
+        h.get_by_label("specular").click();
+        h.run();
+        assert_eq!(*h.state(), None);
+    }
 }

@@ -1,5 +1,5 @@
 //! Headless UI tests (egui_kittest): saving an image never replaces an
-//! existing file unasked.
+//! existing file unasked, and a save says where it went.
 
 use super::{harness, seed_app, settle, step_shown};
 use crate::gui::files::dialogs::DialogKind;
@@ -30,6 +30,31 @@ fn the_suggested_image_name_is_free_and_saving_it_keeps_the_earlier_image() {
     );
     let written = image::open(&free).expect("a PNG").to_rgb8();
     assert_eq!(written.dimensions(), (48, 32));
+    // The status bar says where it went, for a few seconds.
+    step_shown(&mut h);
+    let note = format!("Saved the image to {}", free.display());
+    assert!(
+        h.query_by_label(&note).is_some(),
+        "the status bar shows {note:?}"
+    );
+}
+
+#[test]
+fn saving_the_scene_says_so_in_the_status_bar() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut h = harness(seed_app(48, 32));
+    settle(&mut h);
+    let path = dir.path().join("mine.xml");
+    h.state_mut().files.path_prompt = Some((DialogKind::SaveScene, path.display().to_string()));
+    step_shown(&mut h);
+    h.get_by_label("OK").click();
+    step_shown(&mut h);
+    assert!(path.is_file(), "the scene was written");
+    let note = format!("Saved {}", path.display());
+    assert!(
+        h.query_by_label(&note).is_some(),
+        "the status bar shows {note:?}"
+    );
 }
 
 #[test]
@@ -46,4 +71,38 @@ fn typing_the_name_of_an_existing_image_asks_to_replace_it() {
     h.get_by_label("Replace").click();
     h.step();
     image::open(&existing).expect("replaced by a PNG, as asked");
+}
+
+#[test]
+fn saving_a_scene_to_another_folder_keeps_its_render_going() {
+    // sky.xml names its map "sky_map.exr" beside it; saved elsewhere, the
+    // scene names the same file by its absolute path. Same samples: the
+    // render must not start over.
+    let sky = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/reference/sky.xml");
+    let mut scene = scene::read_file(&sky).expect("sky.xml loads");
+    (scene.camera.width, scene.camera.height) = (48, 32);
+    let mut app = crate::gui::RaylabApp::new(scene, Some(sky));
+    app.doc.state.render.target_spp = Some(2);
+    app.doc.history = crate::gui::doc::history::History::new(&app.doc.state);
+    let mut h = harness(app);
+    settle(&mut h);
+    let generation = h.state().session.generation;
+    let before = h.state().doc.state.scene.clone();
+    let dir = tempfile::tempdir().expect("temp dir");
+    let path = dir.path().join("sky-copy.xml");
+    h.state_mut().files.path_prompt = Some((DialogKind::SaveScene, path.display().to_string()));
+    step_shown(&mut h);
+    h.get_by_label("OK").click();
+    step_shown(&mut h);
+    assert!(path.is_file(), "the scene was written");
+    assert_ne!(
+        h.state().doc.state.scene,
+        before,
+        "the map is named from the new folder"
+    );
+    assert_eq!(
+        h.state().session.generation,
+        generation,
+        "the same job goes on"
+    );
 }

@@ -206,6 +206,71 @@ fn an_orbit_drag_is_one_undo_step_and_keeps_the_distance_to_the_target() {
 }
 
 #[test]
+fn three_wheel_notches_are_one_undo_step_named_dolly_and_theta_is_named_too() {
+    let mut h = harness(seed_app(64, 48));
+    settle(&mut h);
+    let original = h.state().doc.state.clone();
+    let centre = h.state().image.pixel_on_screen([32, 24]).expect("drawn");
+    h.hover_at(centre);
+    h.step();
+    for _ in 0..3 {
+        h.event(egui::Event::MouseWheel {
+            unit: egui::MouseWheelUnit::Line,
+            delta: egui::vec2(0.0, 1.0),
+            phase: egui::TouchPhase::Move,
+            source: egui::MouseWheelSource::Wheel,
+            modifiers: Modifiers::NONE,
+        });
+        // egui spreads a notch over several frames.
+        for _ in 0..6 {
+            h.step();
+            std::thread::sleep(std::time::Duration::from_millis(15));
+        }
+    }
+    let dollied = h.state().doc.state.scene.camera.eye;
+    assert_ne!(dollied, original.scene.camera.eye, "the wheel dollied");
+    // Half a second after the last notch the turn of the wheel is one step.
+    std::thread::sleep(std::time::Duration::from_millis(600));
+    h.step();
+    h.step();
+    assert_eq!(
+        h.state().doc.history.undo_name(&h.state().doc.state),
+        Some("dolly")
+    );
+    h.key_press_modifiers(Modifiers::COMMAND, Key::Z);
+    h.step();
+    assert_eq!(
+        h.state().doc.state,
+        original,
+        "one undo takes the whole turn back"
+    );
+
+    h.get_by_role_and_label(egui::accesskit::Role::Slider, "θ")
+        .set_value_accesskit(35.0);
+    h.step();
+    h.step();
+    assert_eq!(
+        h.state().doc.history.undo_name(&h.state().doc.state),
+        Some("θ"),
+        "{:?}",
+        h.state().doc.state.scene.camera
+    );
+    h.get_by_label("Edit").click();
+    step_shown(&mut h);
+    // The button reads "Undo θ" and its shortcut.
+    assert!(
+        h.query_by_label_contains("Undo θ").is_some(),
+        "the menu names the step"
+    );
+    assert_eq!(
+        h.state().doc.history.redo_name(&h.state().doc.state),
+        None,
+        "the new edit ended the redo branch"
+    );
+    settle(&mut h);
+}
+
+#[test]
 fn clicking_the_image_selects_the_object_under_the_pointer() {
     let mut h = harness(seed_app(64, 48));
     settle(&mut h);
