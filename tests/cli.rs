@@ -972,3 +972,150 @@ fn exposure_doubles_the_radiance_of_a_png_before_its_tone_curve() {
         "{message}"
     );
 }
+
+/// The RGB channels of an EXR, pixel by pixel (row 0 at the top).
+fn exr_rgb(path: &std::path::Path) -> Vec<[f32; 3]> {
+    use exr::prelude::*;
+    let image = read_all_flat_layers_from_file(path).expect("an EXR");
+    let layer = &image.layer_data[0];
+    let channel = |name: &str| -> Vec<f32> {
+        layer
+            .channel_data
+            .list
+            .iter()
+            .find(|c| c.name.to_string() == name)
+            .expect("the channel")
+            .sample_data
+            .values_as_f32()
+            .collect()
+    };
+    let (r, g, b) = (channel("R"), channel("G"), channel("B"));
+    (0..r.len()).map(|k| [r[k], g[k], b[k]]).collect()
+}
+
+/// `raylab render seed.xml` at 40×30 with `extra` to `dir/name`.
+fn seed_part(dir: &std::path::Path, name: &str, extra: &[&str]) -> std::path::PathBuf {
+    let out = dir.join(name);
+    let mut args = vec!["--width", "40", "--height", "30", "--integrator", "path"];
+    args.extend_from_slice(extra);
+    render(&asset("seed.xml"), &out, &args);
+    out
+}
+
+#[test]
+fn a_render_split_into_rectangles_and_merged_is_the_whole_render_bit_for_bit() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let whole = seed_part(dir.path(), "whole.exr", &["--spp", "3"]);
+    let parts: Vec<_> = [
+        ("0", "0", "40", "11"),
+        ("0", "11", "17", "30"),
+        ("17", "11", "40", "30"),
+    ]
+    .iter()
+    .enumerate()
+    .map(|(k, &(x0, y0, x1, y1))| {
+        seed_part(
+            dir.path(),
+            &format!("part{k}.exr"),
+            &["--spp", "3", "--crop", x0, y0, x1, y1],
+        )
+    })
+    .collect();
+    let merged = dir.path().join("merged.exr");
+    let mut args = vec!["merge", merged.to_str().expect("utf-8")];
+    args.extend(parts.iter().map(|p| p.to_str().expect("utf-8")));
+    raylab_ok(&args);
+    let (want, got) = (exr_rgb(&whole), exr_rgb(&merged));
+    assert_eq!(got.len(), want.len());
+    for (k, (g, w)) in got.iter().zip(&want).enumerate() {
+        assert_eq!(g.map(f32::to_bits), w.map(f32::to_bits), "pixel {k}");
+    }
+    // A part alone: its rectangle rendered, the rest black.
+    let part = exr_rgb(&parts[0]);
+    assert_eq!(part[5 * 40 + 7], want[5 * 40 + 7]);
+    assert_eq!(part[20 * 40 + 7], [0.0; 3]);
+}
+
+#[test]
+fn a_render_split_into_sample_ranges_and_merged_is_the_whole_render_within_rounding() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let whole = seed_part(dir.path(), "whole.exr", &["--spp", "5"]);
+    let early = seed_part(dir.path(), "early.exr", &["--samples", "0..2"]);
+    let late = seed_part(dir.path(), "late.exr", &["--samples", "2..5"]);
+    let merged = dir.path().join("merged.exr");
+    raylab_ok(&[
+        "merge",
+        merged.to_str().expect("utf-8"),
+        late.to_str().expect("utf-8"),
+        early.to_str().expect("utf-8"),
+    ]);
+    let (want, got) = (exr_rgb(&whole), exr_rgb(&merged));
+    for (k, (g, w)) in got.iter().zip(&want).enumerate() {
+        for c in 0..3 {
+            let scale = w[c].abs().max(1e-3);
+            assert!(
+                (g[c] - w[c]).abs() <= 1e-6 * scale,
+                "pixel {k} channel {c}: {} against {}",
+                g[c],
+                w[c]
+            );
+        }
+    }
+}
+
+#[test]
+fn merging_overlapping_missing_or_mismatched_parts_is_an_error_that_names_them() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let top = seed_part(
+        dir.path(),
+        "top.exr",
+        &["--spp", "1", "--crop", "0", "0", "40", "16"],
+    );
+    let low = seed_part(
+        dir.path(),
+        "low.exr",
+        &["--spp", "1", "--crop", "0", "10", "40", "30"],
+    );
+    let other = dir.path().join("other.exr");
+    render(
+        &asset("seed.xml"),
+        &other,
+        &[
+            "--width", "40", "--height", "31", "--spp", "1", "--crop", "0", "16", "40", "31",
+        ],
+    );
+    let merged = dir.path().join("merged.exr");
+    let fails = |parts: &[&std::path::Path], says: &[&str]| {
+        let mut args = vec!["merge", merged.to_str().expect("utf-8")];
+        args.extend(parts.iter().map(|p| p.to_str().expect("utf-8")));
+        let output = raylab(&args);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(2), "{stderr}");
+        for word in says {
+            assert!(stderr.contains(word), "{word:?} in {stderr}");
+        }
+        assert!(!merged.exists(), "nothing written");
+    };
+    fails(&[&top, &low], &["top.exr", "low.exr", "overlap"]);
+    fails(&[&top], &["leave pixels", "(0, 16)"]);
+    fails(&[&top, &other], &["other.exr", "different image size"]);
+    fails(&[&top, &top], &["sample ranges", "overlap"]);
+    // Asked for badly: an empty or outside rectangle, a split of an adaptive render.
+    for bad in [
+        &["--crop", "5", "5", "5", "9"][..],
+        &["--crop", "0", "0", "41", "30"],
+        &["--samples", "3..3"],
+        &["--samples", "0..2", "--adaptive"],
+    ] {
+        let mut args = vec!["render", "x.xml"];
+        let scene = asset("seed.xml");
+        args[1] = scene.to_str().expect("utf-8");
+        let out = dir.path().join("bad.exr");
+        args.extend_from_slice(&["-o", out.to_str().expect("utf-8")]);
+        args.extend_from_slice(&["--width", "40", "--height", "30"]);
+        args.extend_from_slice(bad);
+        let output = raylab(&args);
+        assert_eq!(output.status.code(), Some(2), "{bad:?}");
+        assert!(!out.exists(), "{bad:?}: nothing written");
+    }
+}

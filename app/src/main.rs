@@ -123,6 +123,9 @@ fn main() -> ExitCode {
         Some(Command::Inspect(args)) => finish(cli::inspect::run(&args), |json| say!("{json}")),
         Some(Command::Stability(args)) => finish(cli::stability::run(&args), report_written),
         Some(Command::Chart(args)) => finish(cli::chart::run(&args), report_written),
+        Some(Command::Merge(args)) => finish(cli::merge::run(&args), |path| {
+            say!("wrote {}", path.display())
+        }),
         Some(Command::ExportMeshes(args)) => finish(cli::export_meshes::run(&args), |index| {
             say!("wrote {}", index.display())
         }),

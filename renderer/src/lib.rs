@@ -29,7 +29,7 @@ pub mod simd;
 pub mod world;
 
 pub use camera::Camera;
-pub use film::Film;
+pub use film::{Film, Region};
 pub use inspect::{Inspection, inspect_pixel};
 pub use integrator::RenderOptions;
 pub use integrator::sampler::Sampling;

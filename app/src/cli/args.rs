@@ -34,10 +34,23 @@ pub enum Command {
     Inspect(InspectArgs),
     /// Chart speed against accuracy: error against render time, one line per method (CSV and PNG).
     Chart(ChartArgs),
+    /// Join the parts of a split render (`render --crop`, `--samples`) into one EXR.
+    Merge(MergeArgs),
     /// Run the suite of cases where numerical methods fail, lecture against robust (table, CSV and PNG).
     Stability(StabilityArgs),
     /// Write the scene's mesh instances as placed in its world (OBJ files and meshes.json), for another renderer.
     ExportMeshes(ExportMeshesArgs),
+}
+
+/// Arguments of `raylab merge`.
+#[derive(Debug, clap::Args)]
+pub struct MergeArgs {
+    /// The merged image (.exr).
+    pub output: PathBuf,
+    /// The parts: EXRs written by `raylab render` with `--crop` or
+    /// `--samples`, all of the same scene, camera and size.
+    #[arg(required = true, num_args = 1..)]
+    pub parts: Vec<PathBuf>,
 }
 
 /// Arguments of `raylab export-meshes`.
@@ -276,6 +289,18 @@ pub struct RenderArgs {
     /// The tone curve of a PNG. Overrides the scene's <view tonemap>.
     #[arg(long, value_enum)]
     pub tonemap: Option<TonemapArg>,
+    /// Render only this rectangle of pixels, for a render split across
+    /// processes or machines: columns X0..X1 and rows Y0..Y1, counted from the
+    /// top left, X1 and Y1 excluded. The image keeps its full size, the
+    /// pixels outside are zero (black), and an EXR records the rectangle for
+    /// `raylab merge`. Each pixel is bit for bit the whole render's.
+    #[arg(long, num_args = 4, value_names = ["X0", "Y0", "X1", "Y1"])]
+    pub crop: Option<Vec<u32>>,
+    /// Render only sample indices FROM..TO (TO excluded) of every pixel
+    /// instead of `--spp` samples from 0: parts with different ranges are
+    /// averaged by `raylab merge`, weighted by their sample counts.
+    #[arg(long, value_name = "FROM..TO", value_parser = parse_sample_range, conflicts_with = "spp")]
+    pub samples: Option<std::ops::Range<u32>>,
 }
 
 /// `--tonemap`.
@@ -353,4 +378,23 @@ pub enum AovArg {
     /// Samples each pixel received: `--adaptive` gives converged pixels fewer (EXR channel `spp`;
     /// PNG: a heatmap).
     Spp,
+}
+
+/// `FROM..TO` (sample indices, TO excluded, FROM < TO ≤ 65536).
+fn parse_sample_range(text: &str) -> Result<std::ops::Range<u32>, String> {
+    let (from, to) = text
+        .split_once("..")
+        .ok_or_else(|| format!("{text:?}: expected FROM..TO, e.g. 0..64"))?;
+    let number = |t: &str| {
+        t.trim()
+            .parse::<u32>()
+            .map_err(|_| format!("{text:?}: {t:?} is not a sample index"))
+    };
+    let (from, to) = (number(from)?, number(to)?);
+    if from >= to || to > 65536 {
+        return Err(format!(
+            "{text:?}: the range must hold at least one sample, and end by 65536"
+        ));
+    }
+    Ok(from..to)
 }

@@ -7,11 +7,11 @@ use super::progress::Progress;
 use crate::io::output::{Format, Provenance, write_exr, write_png, write_png_srgb8};
 use crate::io::stdout::say;
 use anyhow::Result;
-use renderer::Film;
 use renderer::display::Display;
 use renderer::display::DisplayImage;
 use renderer::display::image::{Source, aov_image, display_image};
 use renderer::film::aov::{self, Aov};
+use renderer::{Film, Region};
 use scene::View;
 use std::time::{Duration, Instant};
 
@@ -49,8 +49,13 @@ pub fn run(args: &RenderArgs) -> Result<Rendered> {
     let (world, options, scene_view) = prepare(&args.scene)?;
     let view = view_of(args, scene_view)?;
     let (w, h) = (world.camera.w, world.camera.h);
-    let provenance_of =
-        |passes| Provenance::of_render(&world.camera, Some(&args.scene.scene), passes);
+    let split = Split::of(args, w, h, options.adaptive.is_some())?;
+    let provenance_of = |passes| {
+        split.record(
+            Provenance::of_render(&world.camera, Some(&args.scene.scene), passes),
+            passes,
+        )
+    };
     // A bad reference is an error before the render, not after it.
     let reference = match &args.reference {
         Some(path) => {
@@ -72,7 +77,7 @@ pub fn run(args: &RenderArgs) -> Result<Rendered> {
     };
     match aov_of(args.aov) {
         None => {
-            let (film, passes) = render_passes(&world, &options, args.spp)?;
+            let (film, passes) = render_passes(&world, &options, &split, args.spp)?;
             let elapsed = start.elapsed();
             let provenance = provenance_of(passes);
             if film.discarded() > 0 {
@@ -128,7 +133,7 @@ pub fn run(args: &RenderArgs) -> Result<Rendered> {
             Ok(Rendered {
                 elapsed,
                 passes,
-                requested: args.spp,
+                requested: split.passes(args.spp),
             })
         }
         Some(kind) => {
@@ -167,17 +172,108 @@ fn rgb_bytes(image: &DisplayImage) -> Vec<u8> {
         .collect()
 }
 
-/// `spp` passes of `world` on one film, with a progress bar on a terminal;
-/// Ctrl+C stops it after the pass under way (the film then holds the passes
-/// done). An error when it is stopped before the first pass is done.
+/// A render's share of a split one: a rectangle of pixels (`--crop`), a
+/// range of sample indices (`--samples`), both, or the whole.
+struct Split {
+    region: Option<Region>,
+    samples: Option<std::ops::Range<u32>>,
+}
+
+impl Split {
+    /// The split `args` asks for in a `w` × `h` image; an error for a
+    /// rectangle outside it or empty, for a split of an adaptive render
+    /// (its samples per pixel are not known in advance) and for an AOV.
+    fn of(args: &RenderArgs, w: u32, h: u32, adaptive: bool) -> Result<Split> {
+        let region = match args.crop.as_deref() {
+            None => None,
+            Some(&[x0, y0, x1, y1]) => {
+                if !(x0 < x1 && y0 < y1 && x1 <= w && y1 <= h) {
+                    return Err(UserError(format!(
+                        "--crop {x0} {y0} {x1} {y1}: the rectangle must hold a pixel and lie \
+                         inside the {w}×{h} image (X1 ≤ {w}, Y1 ≤ {h}; X1 and Y1 are excluded)"
+                    ))
+                    .into());
+                }
+                Some(Region { x0, y0, x1, y1 })
+            }
+            Some(other) => {
+                return Err(UserError(format!("--crop takes 4 numbers, got {other:?}")).into());
+            }
+        };
+        let split = Split {
+            region,
+            samples: args.samples.clone(),
+        };
+        if split.is_split() && adaptive {
+            return Err(UserError(
+                "--crop and --samples cannot split an --adaptive render: \
+                 how many samples a pixel gets depends on the whole render"
+                    .into(),
+            )
+            .into());
+        }
+        if split.is_split() && aov_of(args.aov).is_some() {
+            return Err(UserError(
+                "--crop and --samples split the colour image (--aov color, variance, cost, spp)"
+                    .into(),
+            )
+            .into());
+        }
+        Ok(split)
+    }
+
+    fn is_split(&self) -> bool {
+        self.region.is_some() || self.samples.is_some()
+    }
+
+    /// How many passes: the range's length, else `spp`.
+    fn passes(&self, spp: u32) -> u32 {
+        self.samples.as_ref().map_or(spp, |r| r.end - r.start)
+    }
+
+    /// A film of `w` × `h` for this share.
+    fn film(&self, w: u32, h: u32) -> Film {
+        let film = Film::new(w, h).from_sample(self.samples.as_ref().map_or(0, |r| r.start));
+        match self.region {
+            Some(region) => film.in_region(region),
+            None => film,
+        }
+    }
+
+    /// `provenance` with the share recorded (for `raylab merge`), after
+    /// `passes` passes.
+    fn record(&self, mut provenance: Provenance, passes: u32) -> Provenance {
+        if self.is_split() {
+            let first = self.samples.as_ref().map_or(0, |r| r.start);
+            provenance.entries.push((
+                "raylab:samples".to_owned(),
+                format!("{first}..{}", first + passes),
+            ));
+            if let Some(r) = self.region {
+                provenance.entries.push((
+                    "raylab:region".to_owned(),
+                    format!("{} {} {} {}", r.x0, r.y0, r.x1, r.y1),
+                ));
+            }
+        }
+        provenance
+    }
+}
+
+/// The passes of `split` (or `spp` of the whole) of `world` on one film,
+/// with a progress bar on a terminal; Ctrl+C stops it after the pass under
+/// way (the film then holds the passes done). An error when it is stopped
+/// before the first pass is done.
 fn render_passes(
     world: &renderer::World,
     options: &renderer::RenderOptions,
+    split: &Split,
     spp: u32,
 ) -> Result<(Film, u32)> {
-    interrupt::catch()?;
+    interrupt::catch();
+    let spp = split.passes(spp);
     let progress = Progress::new(u64::from(spp), "passes");
-    let mut film = Film::new(world.camera.w, world.camera.h);
+    let mut film = split.film(world.camera.w, world.camera.h);
     let mut passes = 0;
     while passes < spp && !interrupt::requested() {
         film.add_pass(world, options);

@@ -39,6 +39,43 @@ pub struct Film {
     samples: u64,
     discarded: u64,
     rays: u64,
+    /// The pixels traced: all, or a rectangle (a render split by regions).
+    region: Option<Region>,
+    /// The sample index of a pixel's first sample here: its k-th sample
+    /// traces index `first_sample + k` (a render split by sample ranges).
+    first_sample: u32,
+}
+
+/// A rectangle of pixels: columns `x0..x1`, rows `y0..y1` (rows from the
+/// top, as the image's).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Region {
+    /// First column.
+    pub x0: u32,
+    /// First row.
+    pub y0: u32,
+    /// One past the last column.
+    pub x1: u32,
+    /// One past the last row.
+    pub y1: u32,
+}
+
+impl Region {
+    /// True when pixel (i, j) is inside.
+    #[inline]
+    pub fn contains(&self, i: u32, j: u32) -> bool {
+        (self.x0..self.x1).contains(&i) && (self.y0..self.y1).contains(&j)
+    }
+
+    /// True when the two share a pixel.
+    pub fn overlaps(&self, other: &Region) -> bool {
+        self.x0 < other.x1 && other.x0 < self.x1 && self.y0 < other.y1 && other.y0 < self.y1
+    }
+
+    /// Pixels inside.
+    pub fn pixels(&self) -> u64 {
+        u64::from(self.x1 - self.x0) * u64::from(self.y1 - self.y0)
+    }
 }
 
 impl Film {
@@ -56,11 +93,39 @@ impl Film {
             counts: vec![0; pixels],
             fresh_pages: true,
             passes: 0,
+            region: None,
+            first_sample: 0,
             last_pass_samples: 0,
             samples: 0,
             discarded: 0,
             rays: 0,
         }
+    }
+
+    /// This film tracing only the pixels of `region` (the others stay
+    /// zero, with no samples): each pixel gets exactly the samples it gets
+    /// in the whole image, since a sample is seeded by (seed, pixel, index).
+    /// `region` must lie inside the image and hold a pixel.
+    pub fn in_region(mut self, region: Region) -> Self {
+        assert!(
+            region.x0 < region.x1
+                && region.y0 < region.y1
+                && region.x1 <= self.width
+                && region.y1 <= self.height,
+            "{region:?} inside {}×{}",
+            self.width,
+            self.height
+        );
+        self.region = Some(region);
+        self
+    }
+
+    /// This film's pixels taking sample indices from `first` on: its k-th
+    /// pass traces index `first + k` of every pixel, the samples the whole
+    /// render's pass `first + k` traces.
+    pub fn from_sample(mut self, first: u32) -> Self {
+        self.first_sample = first;
+        self
     }
 
     /// An empty film of `width` × `height` pixels in `old`'s memory when it
@@ -82,6 +147,8 @@ impl Film {
             samples: 0,
             discarded: 0,
             rays: 0,
+            region: None,
+            first_sample: 0,
             ..film
         }
     }
