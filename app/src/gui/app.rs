@@ -36,7 +36,7 @@ pub struct RaylabApp {
     pub(super) image: ImageView,
     /// The camera drag in progress on the image.
     pub(super) camera_drag: CameraDrag,
-    /// The inspected pixel, its ray tree and the inspector window.
+    /// The inspected pixel, its ray tree and the inspector panel.
     pub(super) inspector: Inspector,
     /// The reference image and the live error of each pass against it.
     pub(super) errors: ErrorPlot,
@@ -463,6 +463,7 @@ impl RaylabApp {
                         commands.extend(action.map(Command::Edit));
                     });
             });
+        self.inspector.panel(ui, &self.session);
         egui::CentralPanel::default().show(ui, |ui| {
             // Carried out at once, so that the view opens in the frame of the click.
             if let Some(command) = commands::toolbar(ui, self.show_debug) {
@@ -481,7 +482,6 @@ impl RaylabApp {
             let dragging = ctx.input(|i| i.pointer.any_down());
             self.on_image(&gestures, dragging);
         });
-        self.inspector.window(&ctx, &self.session);
         self.with_files(|files| files.guard_modal(&ctx));
         self.recovery_modal(&ctx);
         self.files.message_modal(&ctx);

@@ -9,7 +9,8 @@
 //! - `commands`: everything the user can ask, from the menu bar, the
 //!   toolbar, buttons, keys and dropped files;
 //! - `session`: the render session kept in step with the document;
-//! - `inspector`: the inspected pixel, its ray tree and the inspector window;
+//! - `inspector`: the inspected pixel, its ray tree and the inspector panel
+//!   (docked under the image);
 //! - `files`: new, open, save, dialogs and "save changes?"; `settings`:
 //!   what is remembered between runs;
 //! - `crash_recovery`: autosave, and the offer of a crashed run's work;

@@ -1,6 +1,6 @@
 //! The pixel inspector: which pixel is inspected, its ray tree re-traced
 //! whenever what it was traced from changes, the rays the debug view draws
-//! of it, and the inspector window.
+//! of it, and the inspector panel.
 
 mod panel;
 pub mod pixel;
@@ -145,8 +145,11 @@ impl Inspector {
         self.drawn_rays = Some((drawn, all, rays));
     }
 
-    /// The pixel inspector window, while a pixel is inspected.
-    pub fn window(&mut self, ctx: &egui::Context, session: &SessionSync) {
+    /// The pixel inspector, while a pixel is inspected: docked under the
+    /// image in a panel the user can resize (egui remembers its height), so
+    /// that the image, the inspector and the object editor are all in view.
+    /// Call it after the side panels and before the image's central panel.
+    pub fn panel(&mut self, ui: &mut egui::Ui, session: &SessionSync) {
         let spp = session.shown_spp();
         let (Some(inspected), Some((_, inspection)), Some(prepared)) =
             (&mut self.inspected, &self.inspection, &session.prepared)
@@ -167,15 +170,20 @@ impl Inspector {
             lights: &prepared.world.lights,
         };
         let mut open = true;
-        egui::Window::new("Pixel inspector")
-            .default_pos(ctx.content_rect().right_top() + egui::vec2(-380.0, 60.0))
-            .default_width(360.0)
-            .max_width(480.0)
-            .default_height(520.0)
-            .show(ctx, |ui| {
-                egui::ScrollArea::vertical().show(ui, |ui| {
-                    open = panel::show(ui, inspected, inspection, &cx);
-                });
+        let most = (0.7 * ui.available_height()).max(120.0);
+        egui::Panel::bottom("inspector")
+            .resizable(true)
+            .default_size(260.0_f32.min(most))
+            .size_range(100.0..=most)
+            .show(ui, |ui| {
+                ui.add_space(2.0);
+                ui.strong("Pixel inspector");
+                egui::ScrollArea::vertical()
+                    .id_salt("inspector")
+                    .auto_shrink([false, false])
+                    .show(ui, |ui| {
+                        open = panel::show(ui, inspected, inspection, &cx);
+                    });
             });
         if !open {
             self.inspected = None;

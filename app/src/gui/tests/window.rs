@@ -672,6 +672,63 @@ fn the_window_with_debug_view_and_inspector_renders_with_wgpu() {
     assert!(distinct.len() > 500, "only {} colours", distinct.len());
 }
 
+/// At the window sizes people use, with an object selected and a pixel
+/// inspected: the image, the inspector (docked under it) and the object
+/// editor are all in view and do not cover each other. Saved for a look
+/// (target/tmp/layout_W×H.png).
+#[test]
+fn at_1280x800_and_1920x1080_the_image_the_docked_inspector_and_the_editor_are_all_in_view() {
+    for (width, height) in [(1280.0, 800.0), (1920.0, 1080.0)] {
+        let mut h = wgpu_harness(width, height, |render_state| {
+            seed_app(320, 180).with_gpu(Some(render_state))
+        });
+        settle(&mut h);
+        let sphere = h
+            .state()
+            .session
+            .prepared
+            .as_ref()
+            .expect("prepared")
+            .world
+            .names[1]
+            .clone();
+        let (pixel, _) = pixel_on(&h, &sphere);
+        let pos = h.state().image.pixel_on_screen(pixel).expect("drawn");
+        click_at(&mut h, pos);
+        step_shown(&mut h);
+        step_shown(&mut h);
+        let window = egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(width, height));
+        let inspector = h.get_by_label("Pixel inspector").rect();
+        // The editor's "material" (the inspector names the hit's material too).
+        let material = h
+            .query_all_by_label("material")
+            .map(|n| n.rect())
+            .max_by(|a, b| a.left().total_cmp(&b.left()))
+            .expect("the object editor's material row");
+        let image_bottom = h.state().image.pixel_on_screen([0, 179]).expect("drawn").y;
+        let image_top = h.state().image.pixel_on_screen([0, 0]).expect("drawn").y;
+        assert!(
+            inspector.top() > image_bottom,
+            "{width}×{height}: the inspector ({inspector:?}) starts below the image (bottom row at {image_bottom})"
+        );
+        assert!(image_top > 0.0, "the image is in view");
+        assert!(
+            window.contains_rect(material) && window.contains_rect(inspector),
+            "{width}×{height}: the editor ({material:?}) and the inspector are in the window"
+        );
+        assert!(
+            !inspector.intersects(material),
+            "the inspector does not cover the editor"
+        );
+        let image = h.render().expect("the window renders");
+        let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/tmp");
+        std::fs::create_dir_all(&out).expect("target/tmp");
+        image
+            .save(out.join(format!("layout_{width}x{height}.png")))
+            .expect("saved");
+    }
+}
+
 /// Steps the UI until the frame on screen is shown in `display`.
 fn settle_display(h: &mut Harness<'static, RaylabApp>, display: renderer::display::Display) {
     let deadline = Instant::now() + Duration::from_secs(60);
