@@ -162,6 +162,26 @@ impl Camera {
         })
     }
 
+    /// This camera with its view window at distance `d` (> 0) instead: H_d,
+    /// W_d, C00 and the pixel steps scale with d about P0, so every P_ij
+    /// moves along its ray and every v_ij stays the same (to rounding): as
+    /// the lecture says, d does not change the image. For drawing the
+    /// window where it can be seen.
+    pub fn with_window_at(&self, d: f32) -> Camera {
+        let s = f64::from(d) / f64::from(self.d);
+        let corner_offset = self.corner_offset * s;
+        Camera {
+            d,
+            h_d: (f64::from(self.h_d) * s) as f32,
+            w_d: (f64::from(self.w_d) * s) as f32,
+            c00: self.p0 + corner_offset.as_vec3(),
+            corner_offset,
+            pixel_right: self.pixel_right * s,
+            pixel_up: self.pixel_up * s,
+            ..*self
+        }
+    }
+
     /// The point on the view window at pixel coordinates (i + x, j + y) minus
     /// P0: the lecture's P_ij − P0 = (C00 − P0) + (i + x)(W_d/w) r − (j + y)(H_d/h) u,
     /// with the ½ replaced by `offset`. Formed relative to P0 (so far-away
@@ -422,6 +442,27 @@ mod tests {
                 far.center_ray(i, j).dir,
                 "pixel ({i}, {j})"
             );
+        }
+    }
+
+    /// A camera moved to another d by `with_window_at` is the camera made
+    /// with that d: the same window (C00, H_d, W_d, P_ij) and the same rays.
+    #[test]
+    fn a_window_moved_to_another_d_is_the_camera_made_with_that_d() {
+        let far = Camera::new(&ResolvedCamera {
+            d: Some(300.0),
+            ..input()
+        })
+        .expect("valid");
+        let near = Camera::new(&input()).expect("valid");
+        let moved = far.with_window_at(1.0);
+        assert_eq!(moved.d, 1.0);
+        assert!(moved.c00.distance(near.c00) < 1e-6);
+        assert!((moved.h_d - near.h_d).abs() < 1e-6 && (moved.w_d - near.w_d).abs() < 1e-6);
+        for (i, j) in [(0, 0), (3, 1), (2, 0)] {
+            assert!(moved.pixel_center(i, j).distance(near.pixel_center(i, j)) < 1e-6);
+            let (a, b) = (moved.center_ray(i, j).dir, far.center_ray(i, j).dir);
+            assert!(a.distance(b) < 1e-6, "pixel ({i}, {j}): {a} against {b}");
         }
     }
 

@@ -141,6 +141,11 @@ pub struct Drawing {
     pub frame_points: Vec<Vec3>,
     /// The view window's grid shows every n-th pixel line.
     pub grid_every: u32,
+    /// The camera as drawn: the tracer's, or — when its view window lies far
+    /// beyond the scene (the default d is hundreds of units) — the same
+    /// camera with the window moved nearer and scaled with its distance
+    /// ([`shown_camera`]): every P_ij keeps its direction from P0.
+    pub camera: Option<Camera>,
 }
 
 impl Drawing {
@@ -205,17 +210,37 @@ pub fn window_corners(camera: &Camera) -> [Vec3; 4] {
     ]
 }
 
+/// `camera` as the debug view draws it, and whether its window was moved:
+/// a view window whose corners all lie within 4 radii of the scene's
+/// centre is drawn where it is; one farther away (the lecture's default
+/// d = h / (2 tan θ) puts it hundreds of units off for a scene of a few)
+/// is drawn halfway from P0 to the scene's near side, its H_d, W_d and C00
+/// scaled about P0 by the same factor, so that every P_ij, and so every
+/// primary ray, keeps its direction: the picture is the same for any d.
+pub fn shown_camera(camera: &Camera, centre: Vec3, radius: f32) -> (Camera, bool) {
+    let near = window_corners(camera)
+        .iter()
+        .all(|c| c.distance(centre) < 4.0 * radius);
+    if near {
+        return (*camera, false);
+    }
+    let shown_d = (0.5 * (camera.p0.distance(centre) - radius)).max(0.3 * radius);
+    (camera.with_window_at(shown_d), true)
+}
+
 /// Builds the drawing.
 pub fn build(inputs: &Inputs<'_>) -> Drawing {
-    let camera = &inputs.world.camera;
     let options = inputs.options;
-    let (centre, radius) = scene_sphere(inputs.objects, camera.p0);
+    let traced = &inputs.world.camera;
+    let (centre, radius) = scene_sphere(inputs.objects, traced.p0);
+    let (shown, moved) = shown_camera(traced, centre, radius);
+    let camera = &shown;
     let mut drawing = Drawing::default();
     objects(&mut drawing, inputs, centre, radius);
     if options.grid {
         ground(&mut drawing, centre, radius);
     }
-    camera_and_window(&mut drawing, camera, options, radius);
+    camera_and_window(&mut drawing, camera, traced.d, moved, options, radius);
     for (k, light) in inputs.world.lights.iter().enumerate() {
         if let renderer::world::light::Light::Point { position, .. } = light {
             drawing.marker(*position, palette::SHADOW_FREE);
@@ -229,16 +254,13 @@ pub fn build(inputs: &Inputs<'_>) -> Drawing {
         drawing.marker(p_ij, palette::PRIMARY);
         drawing.label(p_ij, format!("P_ij ({i}, {j})"), palette::PRIMARY);
     }
-    rays(&mut drawing, inputs.rays, radius);
+    rays(&mut drawing, inputs.rays, radius, camera.d / traced.d);
+    drawing.camera = Some(shown);
 
     drawing.frame_points = vec![centre - Vec3::splat(radius), centre + Vec3::splat(radius)];
     drawing.frame_points.push(camera.p0);
-    // The window is framed too unless it lies far beyond the scene (the default
-    // d = h / (2 tan θ) puts it hundreds of units away for a scene of a few).
-    let corners = window_corners(camera);
-    if corners.iter().all(|c| c.distance(centre) < 4.0 * radius) {
-        drawing.frame_points.extend(corners);
-    }
+    // The window as drawn is framed too (it is near the scene, or moved there).
+    drawing.frame_points.extend(window_corners(camera));
     drawing
 }
 
@@ -383,7 +405,14 @@ fn sky(drawing: &mut Drawing, environment: &renderer::Environment, centre: Vec3,
 }
 
 /// The camera at P0 with t, u, r, the view volume and the view window.
-fn camera_and_window(drawing: &mut Drawing, camera: &Camera, options: DrawOptions, radius: f32) {
+fn camera_and_window(
+    drawing: &mut Drawing,
+    camera: &Camera,
+    traced_d: f32,
+    moved: bool,
+    options: DrawOptions,
+    radius: f32,
+) {
     let p0 = camera.p0;
     let length = 0.25 * radius;
     drawing.marker(p0, palette::WINDOW);
@@ -430,11 +459,16 @@ fn camera_and_window(drawing: &mut Drawing, camera: &Camera, options: DrawOption
     drawing.marker(camera.c00, palette::C00);
     drawing.label(camera.c00, "C00", palette::C00);
     let mid_top = 0.5 * (corners[0] + corners[1]);
-    drawing.label(
-        mid_top,
-        format!("view window, d = {}", short(camera.d)),
-        palette::WINDOW,
-    );
+    let text = if moved {
+        format!(
+            "view window, drawn at d = {} (d = {}: the same rays)",
+            short(camera.d),
+            short(traced_d)
+        )
+    } else {
+        format!("view window, d = {}", short(camera.d))
+    };
+    drawing.label(mid_top, text, palette::WINDOW);
 }
 
 /// A number short enough for a label.
@@ -482,7 +516,7 @@ fn fan(drawing: &mut Drawing, inputs: &Inputs<'_>, radius: f32) {
 }
 
 /// The selected pixel's rays, each coloured by kind, with the normal at each hit.
-fn rays(drawing: &mut Drawing, rays: &[DrawnRay], radius: f32) {
+fn rays(drawing: &mut Drawing, rays: &[DrawnRay], radius: f32, window_scale: f32) {
     for ray in rays {
         let (color, width) = match ray.kind {
             RayKind::Primary => (palette::PRIMARY, 3.0),
@@ -493,7 +527,12 @@ fn rays(drawing: &mut Drawing, rays: &[DrawnRay], radius: f32) {
         };
         let to = ray.from + ray.dir * ray.length.unwrap_or(3.0 * radius);
         drawing.line(ray.from, to, color, width);
-        if let Some(window) = ray.window_point
+        // The window point on the window as drawn (scaled about P0, the
+        // primary ray's origin, with the window).
+        let window_point = ray
+            .window_point
+            .map(|w| ray.from + (w - ray.from) * window_scale);
+        if let Some(window) = window_point
             && window.distance(ray.from) > to.distance(ray.from)
         {
             // The ray's way on from its hit to the view window it passed through.

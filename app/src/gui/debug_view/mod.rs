@@ -212,16 +212,28 @@ impl DebugView {
             }
         }
         let font = egui::FontId::proportional(13.0);
-        for label in &built.drawing.labels {
-            if let Some(at) = screen.project(label.at) {
-                boxed_text(
-                    &painter,
-                    at + egui::vec2(5.0, -5.0),
-                    &label.text,
-                    &font,
-                    label.color,
+        let shown: Vec<(egui::Pos2, std::sync::Arc<egui::Galley>)> = built
+            .drawing
+            .labels
+            .iter()
+            .filter_map(|label| {
+                let at = screen.project(label.at)?;
+                let galley = painter.layout_no_wrap(label.text.clone(), font.clone(), label.color);
+                Some((at, galley))
+            })
+            .collect();
+        let sizes: Vec<(egui::Pos2, egui::Vec2)> =
+            shown.iter().map(|(at, g)| (*at, g.size())).collect();
+        for ((at, galley), place) in shown.into_iter().zip(place_labels(&sizes, rect)) {
+            if !place.expand(4.0).contains(at) {
+                // Moved off its point to keep clear of another: a leader line.
+                painter.line_segment(
+                    [at, place.left_bottom()],
+                    egui::Stroke::new(1.0, egui::Color32::from_white_alpha(90)),
                 );
             }
+            painter.rect_filled(place.expand(2.0), 3.0, egui::Color32::from_black_alpha(170));
+            painter.galley(place.min, galley, egui::Color32::WHITE);
         }
         legend(&painter, rect, built.drawing.grid_every);
     }
@@ -255,17 +267,32 @@ impl DebugView {
 }
 
 /// Text with its bottom-left corner at `at`, on a dark box so it reads over anything.
-fn boxed_text(
-    painter: &egui::Painter,
-    at: egui::Pos2,
-    text: &str,
-    font: &egui::FontId,
-    color: egui::Color32,
-) {
-    let galley = painter.layout_no_wrap(text.to_owned(), font.clone(), color);
-    let rect = egui::Rect::from_min_size(at - egui::vec2(0.0, galley.size().y), galley.size());
-    painter.rect_filled(rect.expand(2.0), 3.0, egui::Color32::from_black_alpha(170));
-    painter.galley(rect.min, galley, color);
+/// Where to draw labels of the given sizes, each anchored at its point
+/// (drawn above and right of it), so that no two overlap and each stays
+/// inside `bounds`: a label that would cover an earlier one moves up or
+/// down by its height, nearest first (up to eight rows either way), and one
+/// past the right edge moves left. Labels are placed in order.
+pub fn place_labels(labels: &[(egui::Pos2, egui::Vec2)], bounds: egui::Rect) -> Vec<egui::Rect> {
+    let mut placed: Vec<egui::Rect> = Vec::with_capacity(labels.len());
+    for &(at, size) in labels {
+        let home = egui::Rect::from_min_size(at + egui::vec2(5.0, -5.0 - size.y), size);
+        let fit = |r: egui::Rect| {
+            let dx = (bounds.right() - 2.0 - r.right()).min(0.0);
+            let dy = (bounds.top() + 2.0 - r.top()).max(0.0);
+            r.translate(egui::vec2(dx, dy))
+        };
+        let step = size.y + 4.0;
+        let clear = |r: &egui::Rect| !placed.iter().any(|p| p.expand(2.0).intersects(*r));
+        let spot = (0..=16)
+            .map(|k: i32| {
+                let rows = if k % 2 == 1 { -(k + 1) / 2 } else { k / 2 };
+                fit(home.translate(egui::vec2(0.0, rows as f32 * step)))
+            })
+            .find(clear)
+            .unwrap_or_else(|| fit(home));
+        placed.push(spot);
+    }
+    placed
 }
 
 /// The colour key in the view's corner.

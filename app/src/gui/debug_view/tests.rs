@@ -120,3 +120,38 @@ fn debug_view_of_a_sky_map_draws_its_frame() {
     let (_, distinct) = draw(state, "debug_view_sky");
     assert!(distinct > 200, "only {distinct} colours");
 }
+
+/// Labels whose points coincide or nearly do (C00 and P_ij of a small
+/// view window, seen from afar) are drawn apart, each inside the view.
+#[test]
+fn labels_at_nearby_points_are_placed_apart_and_inside_the_view() {
+    let bounds = egui::Rect::from_min_size(egui::pos2(0.0, 0.0), egui::vec2(300.0, 200.0));
+    let size = egui::vec2(90.0, 14.0);
+    let labels: Vec<(egui::Pos2, egui::Vec2)> = [
+        (100.0, 100.0),
+        (101.0, 100.0),
+        (100.0, 102.0),
+        (104.0, 99.0),
+        (290.0, 5.0), // by the right and top edges
+    ]
+    .iter()
+    .map(|&(x, y)| (egui::pos2(x, y), size))
+    .collect();
+    let placed = super::place_labels(&labels, bounds);
+    assert_eq!(placed.len(), labels.len());
+    for (a, ra) in placed.iter().enumerate() {
+        assert!(
+            bounds.contains_rect(*ra),
+            "label {a} at {ra:?} is inside the view"
+        );
+        for (b, rb) in placed.iter().enumerate().skip(a + 1) {
+            assert!(
+                !ra.intersects(*rb),
+                "labels {a} and {b} overlap: {ra:?} {rb:?}"
+            );
+        }
+    }
+    // A label alone keeps its place beside its point.
+    let alone = super::place_labels(&labels[..1], bounds);
+    assert_eq!(alone[0].left_bottom(), egui::pos2(105.0, 95.0));
+}

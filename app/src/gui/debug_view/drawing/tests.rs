@@ -52,10 +52,51 @@ fn the_drawing_labels_p0_t_u_r_and_c00_and_marks_the_selected_p_ij() {
             "no label {name}"
         );
     }
-    let p_ij = world.camera.pixel_center(10, 20);
+    // The seed scene's default d puts its window far beyond the scene: it
+    // is drawn nearer, scaled, and says so; P_ij and C00 are its own.
+    let shown = drawing.camera.expect("the camera as drawn");
+    assert!(shown.d < world.camera.d);
+    assert!(
+        drawing
+            .labels
+            .iter()
+            .any(|l| l.text.starts_with("view window, drawn at d = ")
+                && l.text.ends_with(": the same rays)")),
+        "the moved window says so"
+    );
+    let p_ij = shown.pixel_center(10, 20);
     assert!(drawing.markers.iter().any(|m| m.at == p_ij));
-    assert!(drawing.markers.iter().any(|m| m.at == world.camera.c00));
+    assert!(drawing.markers.iter().any(|m| m.at == shown.c00));
+    // On the traced pixel's ray: the same direction from P0.
+    let v = world.camera.center_ray(10, 20).dir;
+    assert!((p_ij - shown.p0).normalize().distance(v) < 1e-5);
     assert!(!drawing.triangles.is_empty());
+}
+
+/// A view window near the scene (d = 1) is drawn where it is, labelled
+/// with its d alone.
+#[test]
+fn a_view_window_near_the_scene_is_drawn_where_it_is() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/scenes/seed.xml");
+    let mut scene = scene::read_file(&path).expect("the seed scene loads");
+    scene.camera.d = Some(1.0);
+    let resolved = scene::resolve(&scene).expect("resolves");
+    let world = World::new(&resolved).expect("renders");
+    let drawing = build(&Inputs {
+        world: &world,
+        objects: &resolved.objects,
+        selected_object: None,
+        pixel: None,
+        rays: &[],
+        options: DrawOptions::default(),
+    });
+    assert_eq!(drawing.camera, Some(world.camera));
+    assert!(
+        drawing
+            .labels
+            .iter()
+            .any(|l| l.text == "view window, d = 1.000")
+    );
 }
 
 /// The drawn primary ray of an inspected pixel lies on the line through
@@ -81,12 +122,11 @@ fn the_drawn_primary_ray_passes_through_the_drawn_p_ij() {
             rays: &rays,
             options: DrawOptions::default(),
         });
+        let shown = drawing.camera.expect("the camera as drawn");
         let marker = drawing
             .markers
             .iter()
-            .find(|m| {
-                m.color == palette::PRIMARY && m.at == world.camera.pixel_center(pixel[0], pixel[1])
-            })
+            .find(|m| m.color == palette::PRIMARY && m.at == shown.pixel_center(pixel[0], pixel[1]))
             .expect("P_ij is marked");
         let primary = rays
             .iter()
@@ -104,7 +144,7 @@ fn the_drawn_primary_ray_passes_through_the_drawn_p_ij() {
             "window point off the ray by {}",
             off_line(window)
         );
-        let pixel_size = world.camera.h_d / world.camera.h as f32;
+        let pixel_size = shown.h_d / shown.h as f32;
         let distance = marker.at.distance(world.camera.p0);
         let allowed = if sample.is_some() {
             pixel_size / distance
