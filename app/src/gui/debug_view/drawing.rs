@@ -461,7 +461,7 @@ fn camera_and_window(
     let mid_top = 0.5 * (corners[0] + corners[1]);
     let text = if moved {
         format!(
-            "view window, drawn at d = {} (d = {}: the same rays)",
+            "view window drawn at d = {} (d = {})",
             short(camera.d),
             short(traced_d)
         )

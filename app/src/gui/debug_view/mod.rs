@@ -269,15 +269,19 @@ impl DebugView {
 /// Text with its bottom-left corner at `at`, on a dark box so it reads over anything.
 /// Where to draw labels of the given sizes, each anchored at its point
 /// (drawn above and right of it), so that no two overlap and each stays
-/// inside `bounds`: a label that would cover an earlier one moves up or
-/// down by its height, nearest first (up to eight rows either way), and one
-/// past the right edge moves left. Labels are placed in order.
+/// inside `bounds` (as far as its width allows): a label that would cover
+/// an earlier one moves up or down by its height, nearest first (up to
+/// eight rows either way), and one past an edge moves back in. Labels are
+/// placed in order.
 pub fn place_labels(labels: &[(egui::Pos2, egui::Vec2)], bounds: egui::Rect) -> Vec<egui::Rect> {
     let mut placed: Vec<egui::Rect> = Vec::with_capacity(labels.len());
     for &(at, size) in labels {
         let home = egui::Rect::from_min_size(at + egui::vec2(5.0, -5.0 - size.y), size);
         let fit = |r: egui::Rect| {
-            let dx = (bounds.right() - 2.0 - r.right()).min(0.0);
+            // Left of the right edge, then right of the left one (a label
+            // wider than the view starts at its left edge).
+            let r = r.translate(egui::vec2((bounds.right() - 2.0 - r.right()).min(0.0), 0.0));
+            let dx = (bounds.left() + 2.0 - r.left()).max(0.0);
             let dy = (bounds.top() + 2.0 - r.top()).max(0.0);
             r.translate(egui::vec2(dx, dy))
         };

@@ -151,6 +151,12 @@ fn labels_at_nearby_points_are_placed_apart_and_inside_the_view() {
             );
         }
     }
+    // One wider than the view starts at its left edge.
+    let wide = super::place_labels(
+        &[(egui::pos2(100.0, 100.0), egui::vec2(400.0, 14.0))],
+        bounds,
+    );
+    assert_eq!(wide[0].left(), 2.0);
     // A label alone keeps its place beside its point.
     let alone = super::place_labels(&labels[..1], bounds);
     assert_eq!(alone[0].left_bottom(), egui::pos2(105.0, 95.0));

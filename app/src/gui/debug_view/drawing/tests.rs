@@ -60,8 +60,8 @@ fn the_drawing_labels_p0_t_u_r_and_c00_and_marks_the_selected_p_ij() {
         drawing
             .labels
             .iter()
-            .any(|l| l.text.starts_with("view window, drawn at d = ")
-                && l.text.ends_with(": the same rays)")),
+            .any(|l| l.text.starts_with("view window drawn at d = ")
+                && l.text.ends_with(&format!("(d = {:.0})", world.camera.d))),
         "the moved window says so"
     );
     let p_ij = shown.pixel_center(10, 20);
