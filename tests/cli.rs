@@ -267,10 +267,11 @@ fn ctrl_c_stops_a_render_after_its_pass_and_writes_the_passes_done() {
         .expect("raylab starts");
     // 65,536 passes would take minutes; after a few seconds, Ctrl+C.
     std::thread::sleep(std::time::Duration::from_secs(3));
-    let kill = std::process::Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
+    // The shell's own `kill` (procps' /bin/kill may be missing on a clean machine).
+    let kill = std::process::Command::new("sh")
+        .args(["-c", &format!("kill -INT {}", child.id())])
         .status()
-        .expect("kill runs");
+        .expect("sh runs");
     assert!(kill.success());
     let output = child.wait_with_output().expect("raylab ends");
     let stdout = String::from_utf8_lossy(&output.stdout);
