@@ -11,8 +11,8 @@
 
 use super::args::MergeArgs;
 use super::prepare::UserError;
-use crate::io::output::{Provenance, write_exr};
-use anyhow::{Context, Result};
+use crate::io::output::{Provenance, read_exr_provenance, write_exr};
+use anyhow::Result;
 use glam::{DVec3, Vec3};
 use renderer::Region;
 use std::ops::Range;
@@ -31,6 +31,8 @@ struct Part {
     /// Its scene file and camera, which every part must share.
     scene: String,
     camera: String,
+    /// Everything it recorded (the merged image keeps the first part's).
+    provenance: Provenance,
 }
 
 /// Merges `args.parts` into `args.output`; returns the output's path.
@@ -96,32 +98,29 @@ pub fn run(args: &MergeArgs) -> Result<PathBuf> {
             }
         }
     }
+    // The first part's record (software, camera, scene, view) with the
+    // merged image's own samples in place of the part's.
     let samples = sample_set(&groups[0]);
-    let mut provenance = Provenance {
-        entries: vec![
-            (
-                "Software".into(),
-                format!("raylab {}", env!("CARGO_PKG_VERSION")),
-            ),
-            ("raylab:camera".into(), first.camera.clone()),
-            (
-                "raylab:spp".into(),
-                samples
-                    .iter()
-                    .map(|r| r.len() as u32)
-                    .sum::<u32>()
-                    .to_string(),
-            ),
-            ("raylab:scene".into(), first.scene.clone()),
-            ("raylab:merged".into(), format!("{} parts", parts.len())),
-        ],
-    };
+    let spp: u32 = samples.iter().map(|r| r.len() as u32).sum();
+    let mut provenance = first.provenance.clone();
+    provenance.entries.retain(|(k, _)| {
+        !matches!(
+            k.as_str(),
+            "raylab:spp" | "raylab:samples" | "raylab:region"
+        )
+    });
+    provenance
+        .entries
+        .push(("raylab:spp".into(), spp.to_string()));
     if let [range] = samples.as_slice() {
         provenance.entries.push((
             "raylab:samples".into(),
             format!("{}..{}", range.start, range.end),
         ));
     }
+    provenance
+        .entries
+        .push(("raylab:merged".into(), format!("{} parts", parts.len())));
     let values: Vec<f32> = pixels.iter().flat_map(|p| p.to_array()).collect();
     write_exr(
         &args.output,
@@ -138,20 +137,8 @@ pub fn run(args: &MergeArgs) -> Result<PathBuf> {
 fn read_part(path: &Path) -> Result<Part> {
     let image = renderer::diagnostics::reference_image::read_exr_rgb(path)
         .map_err(|e| UserError(e.to_string()))?;
-    let meta = exr::meta::MetaData::read_from_file(path, false)
-        .with_context(|| format!("cannot read {}", path.display()))?;
-    let comments = meta
-        .headers
-        .first()
-        .and_then(|h| h.own_attributes.comments.as_ref())
-        .map(|t| t.to_string())
-        .unwrap_or_default();
-    let entry = |key: &str| {
-        comments
-            .lines()
-            .find_map(|line| line.strip_prefix(key)?.strip_prefix(": "))
-            .map(str::to_owned)
-    };
+    let provenance = read_exr_provenance(path)?;
+    let entry = |key: &str| provenance.get(key).map(str::to_owned);
     let bad = |what: &str| {
         UserError(format!(
             "{}: {what} (not a part written by `raylab render`?)",
@@ -198,6 +185,7 @@ fn read_part(path: &Path) -> Result<Part> {
         samples,
         scene: entry("raylab:scene").unwrap_or_default(),
         camera: entry("raylab:camera").ok_or_else(|| bad("no camera (raylab:camera)"))?,
+        provenance,
     })
 }
 

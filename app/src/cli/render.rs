@@ -50,12 +50,7 @@ pub fn run(args: &RenderArgs) -> Result<Rendered> {
     let view = view_of(args, scene_view)?;
     let (w, h) = (world.camera.w, world.camera.h);
     let split = Split::of(args, w, h, options.adaptive.is_some())?;
-    let provenance_of = |passes| {
-        split.record(
-            Provenance::of_render(&world.camera, Some(&args.scene.scene), passes),
-            passes,
-        )
-    };
+
     // A bad reference is an error before the render, not after it.
     let reference = match &args.reference {
         Some(path) => {
@@ -67,7 +62,8 @@ pub fn run(args: &RenderArgs) -> Result<Rendered> {
     };
     let start = Instant::now();
     let provenance_of = |passes| {
-        let provenance = provenance_of(passes);
+        let provenance = Provenance::of_render(&world.camera, Some(&args.scene.scene), passes);
+        let provenance = split.record(provenance, passes);
         match args.aov {
             AovArg::Variance => provenance.with_display(Display::Variance),
             AovArg::Cost => provenance.with_display(Display::Cost),

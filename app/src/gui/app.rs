@@ -139,9 +139,6 @@ impl RaylabApp {
         app
     }
 
-    /// Names the object under the pointer (in the object-id mode) and turns
-    /// this frame's mouse gestures on the image into a pick (which also
-    /// inspects the pixel), a hover inspection or a camera move.
     /// Records the edits since the last undo step as one step, named by
     /// what changed, unless `gesture` (one still under way).
     fn record_step(&mut self, gesture: bool) {
@@ -157,6 +154,11 @@ impl RaylabApp {
         }
     }
 
+    /// Names the object under the pointer (in the object-id mode) and turns
+    /// this frame's mouse gestures on the image into a pick (which also
+    /// inspects the pixel), a hover inspection or a camera move (remembered
+    /// by kind for its undo step's name; a wheel dolly also starts the
+    /// wheel's gesture).
     fn on_image(&mut self, gestures: &Gestures, dragging: bool) {
         let method = self.doc.state.render.method;
         let prepared = self.session.prepared.as_ref();

@@ -94,7 +94,6 @@ impl Provenance {
     }
 
     /// The value recorded under `keyword`.
-    #[cfg(test)]
     pub fn get(&self, keyword: &str) -> Option<&str> {
         self.entries
             .iter()
@@ -163,6 +162,25 @@ pub fn read_png_provenance(path: &Path) -> Result<Provenance> {
     for chunk in &info.uncompressed_latin1_text {
         entries.push((chunk.keyword.clone(), chunk.text.clone()));
     }
+    Ok(Provenance { entries })
+}
+
+/// The provenance [`write_exr`] recorded in an EXR's comments ("keyword:
+/// text" lines); empty for an EXR without them.
+pub fn read_exr_provenance(path: &Path) -> Result<Provenance> {
+    let meta = exr::meta::MetaData::read_from_file(path, false)
+        .with_context(|| format!("cannot read {}", path.display()))?;
+    let comments = meta
+        .headers
+        .first()
+        .and_then(|h| h.own_attributes.comments.as_ref())
+        .map(|t| t.to_string())
+        .unwrap_or_default();
+    let entries = comments
+        .lines()
+        .filter_map(|line| line.split_once(": "))
+        .map(|(k, v)| (k.to_owned(), v.to_owned()))
+        .collect();
     Ok(Provenance { entries })
 }
 

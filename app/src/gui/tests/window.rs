@@ -641,6 +641,27 @@ fn wgpu_harness(
         .build_ui_state(|ui, app: &mut RaylabApp| app.show(ui), app)
 }
 
+/// Clicks the seed scene's sphere (object 1) in the image: it is selected
+/// and its pixel inspected.
+fn click_the_sphere(h: &mut Harness<'static, RaylabApp>) {
+    let world = &h.state().session.prepared.as_ref().expect("prepared").world;
+    let sphere = world.names[1].clone();
+    let (pixel, _) = pixel_on(h, &sphere);
+    let pos = h.state().image.pixel_on_screen(pixel).expect("drawn");
+    click_at(h, pos);
+    step_shown(h);
+}
+
+/// The window drawn by wgpu, also saved as target/tmp/`name` for a person
+/// to look at.
+fn keep_rendered(h: &mut Harness<'static, RaylabApp>, name: &str) -> image::RgbaImage {
+    let image = h.render().expect("the window renders");
+    let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/tmp");
+    std::fs::create_dir_all(&out).expect("target/tmp");
+    image.save(out.join(name)).expect("saved");
+    image
+}
+
 #[test]
 fn the_window_with_debug_view_and_inspector_renders_with_wgpu() {
     let mut h = wgpu_harness(1400.0, 860.0, |render_state| {
@@ -649,25 +670,8 @@ fn the_window_with_debug_view_and_inspector_renders_with_wgpu() {
         app
     });
     settle(&mut h);
-    let sphere = h
-        .state()
-        .session
-        .prepared
-        .as_ref()
-        .expect("prepared")
-        .world
-        .names[1]
-        .clone();
-    let (pixel, _) = pixel_on(&h, &sphere);
-    let pos = h.state().image.pixel_on_screen(pixel).expect("drawn");
-    click_at(&mut h, pos);
-    step_shown(&mut h);
-    let image = h.render().expect("the window renders");
-    let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/tmp");
-    std::fs::create_dir_all(&out).expect("target/tmp");
-    image
-        .save(out.join("window_debug_view.png"))
-        .expect("saved");
+    click_the_sphere(&mut h);
+    let image = keep_rendered(&mut h, "window_debug_view.png");
     let distinct: std::collections::HashSet<[u8; 4]> = image.pixels().map(|p| p.0).collect();
     assert!(distinct.len() > 500, "only {} colours", distinct.len());
 }
@@ -683,19 +687,7 @@ fn at_1280x800_and_1920x1080_the_image_the_docked_inspector_and_the_editor_are_a
             seed_app(320, 180).with_gpu(Some(render_state))
         });
         settle(&mut h);
-        let sphere = h
-            .state()
-            .session
-            .prepared
-            .as_ref()
-            .expect("prepared")
-            .world
-            .names[1]
-            .clone();
-        let (pixel, _) = pixel_on(&h, &sphere);
-        let pos = h.state().image.pixel_on_screen(pixel).expect("drawn");
-        click_at(&mut h, pos);
-        step_shown(&mut h);
+        click_the_sphere(&mut h);
         step_shown(&mut h);
         let window = egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(width, height));
         let inspector = h.get_by_label("Pixel inspector").rect();
@@ -720,12 +712,7 @@ fn at_1280x800_and_1920x1080_the_image_the_docked_inspector_and_the_editor_are_a
             !inspector.intersects(material),
             "the inspector does not cover the editor"
         );
-        let image = h.render().expect("the window renders");
-        let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/tmp");
-        std::fs::create_dir_all(&out).expect("target/tmp");
-        image
-            .save(out.join(format!("layout_{width}x{height}.png")))
-            .expect("saved");
+        keep_rendered(&mut h, &format!("layout_{width}x{height}.png"));
     }
 }
 
@@ -1085,10 +1072,7 @@ fn the_sky_editor_renders_with_wgpu_beside_a_path_traced_map() {
     settle(&mut h);
     h.get_by_label("sky: sky_map.exr");
     h.get_by_label("Rotate (°)");
-    let image = h.render().expect("the window renders");
-    let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/tmp");
-    std::fs::create_dir_all(&out).expect("target/tmp");
-    image.save(out.join("window_sky.png")).expect("saved");
+    let image = keep_rendered(&mut h, "window_sky.png");
     let distinct: std::collections::HashSet<[u8; 4]> = image.pixels().map(|p| p.0).collect();
     assert!(distinct.len() > 500, "only {} colours", distinct.len());
 }
