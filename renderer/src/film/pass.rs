@@ -124,10 +124,12 @@ impl Film {
                         let known_row = known
                             .and_then(|k| k.row(j))
                             .map(|row| (row, row.stride as usize));
-                        for_each_with_known_in(start..end, known_row, |i, sample| {
-                            if needing_row.is_some_and(|n| !n[i])
-                                || region.is_some_and(|r| !(r.x0..r.x1).contains(&(i as u32)))
-                            {
+                        // The strip's columns inside the region, if any.
+                        let (lo, hi) =
+                            region.map_or((start, end), |r| (r.x0 as usize, r.x1 as usize));
+                        let columns = start.max(lo)..end.min(hi).max(start.max(lo));
+                        for_each_with_known_in(columns, known_row, |i, sample| {
+                            if needing_row.is_some_and(|n| !n[i]) {
                                 return;
                             }
                             let at = row * width + i;
