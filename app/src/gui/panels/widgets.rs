@@ -169,4 +169,22 @@ mod tests {
         h.run();
         assert_eq!(*h.state(), None);
     }
+
+    /// The picker's popup lays out every label with a font that has its
+    /// glyphs: egui's test harness panics on a missing glyph ("📋", the copy
+    /// button beside "U8", needs egui's emoji fonts).
+    #[test]
+    fn the_colour_pickers_popup_has_a_glyph_for_every_label() {
+        let mut h = Harness::new_ui_state(
+            |ui, c: &mut Vec3| {
+                color(ui, c);
+            },
+            Vec3::new(0.8, 0.2, 0.1),
+        );
+        h.run();
+        h.get_by_role(egui::accesskit::Role::ColorWell).click();
+        h.run();
+        assert!(h.query_by_label("U8").is_some(), "the popup is open");
+        assert!(h.query_by_label("📋").is_some(), "its copy button is there");
+    }
 }
