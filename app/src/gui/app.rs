@@ -5,7 +5,7 @@
 
 use super::commands::{self, Command};
 use super::crash_recovery::CrashRecovery;
-use super::debug_view::{DebugRenderer, DebugView, Inputs};
+use super::debug_view::{DebugRenderer, DebugView, Inputs, Split, Splitter};
 use super::doc::change;
 use super::doc::document::{Document, RenderSettings};
 use super::doc::edits::{self, Action, Selection};
@@ -46,10 +46,12 @@ pub struct RaylabApp {
     settings: Settings,
     /// Autosave, and the offer of what crashed runs left.
     recovery: CrashRecovery,
-    /// The 3D debug view is shown beside the image.
+    /// The 3D debug view is shown beside or below the image.
     pub(super) show_debug: bool,
     /// The 3D debug view's state.
     pub(super) debug: DebugView,
+    /// The image's share of the centre while the debug view is shown.
+    debug_split: Splitter,
     /// The help overlay is shown.
     show_help: bool,
     /// The title last sent to the window.
@@ -88,6 +90,7 @@ impl RaylabApp {
             camera_move: None,
             last_wheel: None,
             debug: DebugView::default(),
+            debug_split: Splitter::default(),
             show_help: false,
             title: String::new(),
             frame_times: FrameTimes::default(),
@@ -471,16 +474,29 @@ impl RaylabApp {
             if let Some(command) = commands::toolbar(ui, self.show_debug) {
                 self.run(&ctx, command);
             }
-            if self.show_debug {
-                let half = 0.5 * ui.available_width();
-                egui::Panel::right("debug_view")
-                    .resizable(true)
-                    .default_size(half)
-                    .size_range(160.0..=(ui.available_width() - 160.0).max(160.0))
-                    .show(ui, |ui| self.debug_view(ui));
-            }
-            let gestures = self.image.ui(ui, &mut self.doc.state.scene.view);
-            self.inspector.mark(ui, &self.image);
+            // With the debug view on, beside the image or below it, whichever
+            // leaves the image larger; half each until the line is dragged.
+            let image_rect = self.show_debug.then(|| {
+                let camera = &self.doc.state.scene.camera;
+                let split = Split::for_centre(ui.available_size(), camera.width, camera.height);
+                let (image, debug) = self.debug_split.layout(ui, split);
+                ui.scope_builder(egui::UiBuilder::new().max_rect(debug), |ui| {
+                    self.debug_view(ui)
+                });
+                image
+            });
+            let mut image_part = |ui: &mut egui::Ui| {
+                let gestures = self.image.ui(ui, &mut self.doc.state.scene.view);
+                self.inspector.mark(ui, &self.image);
+                gestures
+            };
+            let gestures = match image_rect {
+                Some(rect) => {
+                    ui.scope_builder(egui::UiBuilder::new().max_rect(rect), image_part)
+                        .inner
+                }
+                None => image_part(ui),
+            };
             let dragging = ctx.input(|i| i.pointer.any_down());
             self.on_image(&gestures, dragging);
         });

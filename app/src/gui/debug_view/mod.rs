@@ -8,11 +8,13 @@ pub mod drawing;
 mod gpu;
 pub mod observer;
 pub mod rays;
+mod split;
 mod tessellate;
 
 pub use drawing::{DrawOptions, Fan, Inputs};
 pub use gpu::DebugRenderer;
 pub use rays::DrawnRay;
+pub use split::{Split, Splitter};
 
 use drawing::{Drawing, palette};
 use glam::Vec3;

@@ -178,7 +178,10 @@ impl Inspector {
             .show(ui, |ui| {
                 ui.add_space(2.0);
                 ui.strong("Pixel inspector");
-                egui::ScrollArea::vertical()
+                // Both ways: a row wider than the centre (a table of a
+                // sample's vertices) scrolls instead of widening the panel
+                // under the object editor.
+                egui::ScrollArea::both()
                     .id_salt("inspector")
                     .auto_shrink([false, false])
                     .show(ui, |ui| {

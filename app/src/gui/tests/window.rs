@@ -716,6 +716,38 @@ fn at_1280x800_and_1920x1080_the_image_the_docked_inspector_and_the_editor_are_a
     }
 }
 
+/// With the debug view on in a 1280×800 window, a 16:9 image keeps more than
+/// half the centre's width (the debug view opens below it, where beside it
+/// the image was a strip of a quarter of the window), and the debug view's
+/// toolbar is in view above the inspector.
+#[test]
+fn at_1280x800_the_debug_view_opens_below_a_wide_image_and_leaves_it_large() {
+    let (width, height) = (1280.0, 800.0);
+    let mut h = wgpu_harness(width, height, |render_state| {
+        let mut app = seed_app(640, 360).with_gpu(Some(render_state));
+        app.show_debug = true;
+        app
+    });
+    settle(&mut h);
+    click_the_sphere(&mut h);
+    step_shown(&mut h);
+    let left = h.state().image.pixel_on_screen([0, 0]).expect("drawn");
+    let right = h.state().image.pixel_on_screen([639, 359]).expect("drawn");
+    let fan = h.get_by_label("ray fan").rect();
+    let inspector = h.get_by_label("Pixel inspector").rect();
+    let shown_width = right.x - left.x;
+    assert!(
+        shown_width > 0.25 * width,
+        "the image is {shown_width} points wide in a {width}-point window"
+    );
+    assert!(
+        fan.top() > right.y,
+        "the debug view ({fan:?}) is below the image"
+    );
+    assert!(fan.bottom() < inspector.top(), "and above the inspector");
+    keep_rendered(&mut h, "layout_1280x800_debug_view.png");
+}
+
 /// Steps the UI until the frame on screen is shown in `display`.
 fn settle_display(h: &mut Harness<'static, RaylabApp>, display: renderer::display::Display) {
     let deadline = Instant::now() + Duration::from_secs(60);
