@@ -3,7 +3,7 @@
 # a C and C++ toolchain (linking; FLIP's C++ in `raylab chart`); Mesa's software Vulkan (lavapipe) and the X client
 # libraries the window loads at run time (no GPU needed); Xvfb,
 # ImageMagick and xdotool (screenshots, resizing, keys) for the end-to-end tests of the real window; Python 3
-# for the import-cycle check (scripts/module_cycles.py); and the rustfmt/clippy components the checks use.
+# for the import-cycle check (scripts/module_cycles.py); GNU parallel for the farm script and its test; and the rustfmt/clippy components the checks use.
 # Safe to run again: it installs only what is missing.
 set -euo pipefail
 
@@ -13,6 +13,7 @@ packages=(
   libx11-6 libx11-xcb1 libxcursor1 libxi6 libxrandr2 libxkbcommon0 libxkbcommon-x11-0
   xvfb xauth imagemagick xdotool
   python3
+  parallel
 )
 
 missing=()

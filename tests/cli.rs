@@ -1037,6 +1037,53 @@ fn a_render_split_into_rectangles_and_merged_is_the_whole_render_bit_for_bit() {
     assert_eq!(part[20 * 40 + 7], [0.0; 3]);
 }
 
+/// The README's farm script: GNU parallel renders 4 bands of rows on 2
+/// processes and `raylab merge` joins them into the whole render, bit for bit.
+#[test]
+fn the_gnu_parallel_farm_script_renders_bands_on_two_processes_into_the_whole_render() {
+    let found = std::process::Command::new("sh")
+        .args(["-c", "command -v parallel"])
+        .output()
+        .expect("sh");
+    assert!(
+        found.status.success(),
+        "GNU parallel is not installed: scripts/setup.sh installs it"
+    );
+    let dir = tempfile::tempdir().expect("tempdir");
+    let whole = seed_part(dir.path(), "whole.exr", &["--spp", "3"]);
+    let merged = dir.path().join("farmed.exr");
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let output = std::process::Command::new("bash")
+        .arg(root.join("../scripts/farm/parallel.sh"))
+        .arg(asset("seed.xml"))
+        .args(["40", "30"])
+        .arg(&merged)
+        .args([
+            "--bands",
+            "4",
+            "--jobs",
+            "2",
+            "--",
+            "--integrator",
+            "path",
+            "--spp",
+            "3",
+        ])
+        .env("RAYLAB", env!("CARGO_BIN_EXE_raylab"))
+        .output()
+        .expect("bash");
+    assert!(
+        output.status.success(),
+        "the farm script failed: {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let (want, got) = (exr_rgb(&whole), exr_rgb(&merged));
+    assert_eq!(got.len(), want.len());
+    for (k, (g, w)) in got.iter().zip(&want).enumerate() {
+        assert_eq!(g.map(f32::to_bits), w.map(f32::to_bits), "pixel {k}");
+    }
+}
+
 #[test]
 fn a_render_split_into_sample_ranges_and_merged_is_the_whole_render_within_rounding() {
     let dir = tempfile::tempdir().expect("tempdir");

@@ -37,8 +37,13 @@ if ! command -v parallel >/dev/null; then
   "${sudo[@]}" apt-get update -qq
   DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq parallel >/dev/null
 fi
-cargo build --release -p raylab --quiet
-raylab=$PWD/target/release/raylab
+# RAYLAB: a raylab binary to use instead of building one (the test of this script passes its own).
+if [ -n "${RAYLAB:-}" ]; then
+  raylab=$RAYLAB
+else
+  cargo build --release -p raylab --quiet
+  raylab=$PWD/target/release/raylab
+fi
 parts=$(mktemp -d)
 trap 'rm -rf "$parts"' EXIT
 
