@@ -48,7 +48,13 @@ impl World {
     ) {
         assert_eq!(rays.len(), hits.len(), "one hit slot per ray");
         assert_eq!(rays.len(), tests.len(), "one count per ray");
-        if self.meshes.len() > BATCHED_INSTANCES {
+        let top = self.top.for_method(method);
+        let mesh_items = top
+            .items
+            .iter()
+            .filter(|item| matches!(item, Item::Mesh(_)))
+            .count();
+        if mesh_items > BATCHED_INSTANCES {
             for ((ray, hit), tests) in rays.iter().zip(hits.iter_mut()).zip(tests) {
                 let before = shape_tests_on_this_thread();
                 *hit = self.intersect(ray, method);
@@ -56,12 +62,24 @@ impl World {
             }
             return;
         }
-        let top = self.top.for_method(method);
+        // Instances placed among the lone triangles take the batch as one.
+        let group_batched = top.items.contains(&Item::LoneTriangles)
+            && self.top.lone_triangles().has_mesh_triangles();
         // Each ray's closest hit so far and the top-level item it lies on.
         let mut best: Vec<Option<(u32, Hit)>> = vec![None; rays.len()];
         let mut local = Vec::with_capacity(rays.len());
         let mut found = vec![None; rays.len()];
         for (item, kind) in top.items.iter().enumerate() {
+            if *kind == Item::LoneTriangles && group_batched {
+                local.clear();
+                local.extend(rays.iter().zip(&best).map(|(ray, best)| within(ray, best)));
+                self.top
+                    .lone_triangles()
+                    .closest_hits(&local, &mut found, |k, hit| {
+                        offer(&mut best[k], item as u32, hit)
+                    });
+                continue;
+            }
             let Item::Mesh(instance) = *kind else {
                 continue;
             };
@@ -91,11 +109,7 @@ impl World {
         }
         // Items other than instances (shapes, the grouped triangles and
         // spheres) are met ray by ray through the top level.
-        let instances = top
-            .items
-            .iter()
-            .filter(|item| matches!(item, Item::Mesh(_)))
-            .count();
+        let instances = mesh_items + usize::from(group_batched);
         let has_shapes = top.items.len() > instances;
         let mut all_tests = 0usize;
         for (((ray, best), hit), ray_tests) in rays
@@ -108,25 +122,24 @@ impl World {
             let mut tests = instances;
             if has_shapes {
                 let search = within(ray, best);
-                let shape =
-                    top.bvh
-                        .closest_with(&search, |item, ray| match top.items[item as usize] {
-                            Item::Shape(id) => {
-                                tests += 1;
-                                Some((self.analytic(id).intersect(ray, method)?, (id, None)))
-                            }
-                            Item::LoneTriangles => {
-                                tests += 1;
-                                let hit = self.top.lone_triangles().closest(ray)?;
-                                Some((hit.alpha, (hit.object, hit.triangle)))
-                            }
-                            Item::LoneSpheres => {
-                                tests += 1;
-                                let hit = self.top.lone_spheres().closest(ray)?;
-                                Some((hit.alpha, (hit.object, None)))
-                            }
-                            Item::Mesh(_) => None,
-                        });
+                let shape = top.closest_with(&search, |item, ray| match top.items[item as usize] {
+                    Item::Shape(id) => {
+                        tests += 1;
+                        Some((self.analytic(id).intersect(ray, method)?, (id, None)))
+                    }
+                    Item::LoneTriangles if group_batched => None,
+                    Item::LoneTriangles => {
+                        tests += 1;
+                        let hit = self.top.lone_triangles().closest(ray)?;
+                        Some((hit.alpha, (hit.object, hit.triangle)))
+                    }
+                    Item::LoneSpheres => {
+                        tests += 1;
+                        let hit = self.top.lone_spheres().closest(ray)?;
+                        Some((hit.alpha, (hit.object, None)))
+                    }
+                    Item::Mesh(_) => None,
+                });
                 if let Some((item, alpha, (object, triangle))) = shape {
                     let hit = Hit {
                         object,

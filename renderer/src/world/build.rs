@@ -5,9 +5,10 @@
 use super::blas_cache;
 use super::emitters::Emitters;
 use super::environment::Environment;
+use super::group_cache;
 use super::light::Light;
 use super::placed_mesh::PlacedMesh;
-use super::top_level::{BAKED_TRIANGLES, GroupedTriangle, Lone, TopLevels};
+use super::top_level::{BAKED_TRIANGLES, GroupInput, Lone, LoneTriangles, TopLevels};
 use super::{Item, Object, RenderError, World};
 use crate::accel::Aabb;
 use crate::camera::Camera;
@@ -53,7 +54,18 @@ impl World {
         }
         let meshes = place_meshes(&resolved.objects);
         let mesh_triangles: usize = meshes.iter().map(|m| m.mesh.triangles.len()).sum();
-        let bake = mesh_triangles <= BAKED_TRIANGLES;
+        // Instances are placed in world space among the lone triangles when
+        // they are small, or when no mesh is shared (each triangle is then
+        // held once more at most); a large group is kept across worlds.
+        let mut shared: Vec<*const scene::TriangleMesh> =
+            meshes.iter().map(|m| Arc::as_ptr(&m.mesh)).collect();
+        shared.sort();
+        let shared = shared.windows(2).any(|w| w[0] == w[1]);
+        let bake = mesh_triangles <= BAKED_TRIANGLES || !shared;
+        let key = (bake && mesh_triangles > BAKED_TRIANGLES)
+            .then(|| group_cache::Key::of(&resolved.objects, &meshes));
+        let kept = key.as_ref().and_then(group_cache::kept);
+        let mut group = GroupInput::default();
         let mut objects = Vec::with_capacity(resolved.objects.len());
         let (mut items, mut bounds, mut unbounded) = (Vec::new(), Vec::new(), Vec::new());
         let mut lone = Lone::default();
@@ -72,23 +84,14 @@ impl World {
                     let placed = &meshes[next_instance as usize];
                     items.push(Item::Mesh(next_instance));
                     bounds.push(placed.bounds);
-                    if bake {
-                        lone.triangles
-                            .extend(placed.mesh.triangles.iter().enumerate().map(
-                                |(k, corners)| {
-                                    let corners = corners.map(|i| {
-                                        placed
-                                            .instance
-                                            .point_to_world(placed.mesh.positions[i as usize])
-                                    });
-                                    GroupedTriangle {
-                                        object: id,
-                                        corners,
-                                        bounds: padded_bounds(Aabb::around(corners)),
-                                        from_mesh: Some((next_instance, k as u32)),
-                                    }
-                                },
-                            ));
+                    if bake && kept.is_none() {
+                        group.instance(
+                            id,
+                            next_instance,
+                            &placed.mesh,
+                            |p| placed.instance.point_to_world(p),
+                            padded_bounds,
+                        );
                     }
                     next_instance += 1;
                 }
@@ -112,12 +115,12 @@ impl World {
                     bounds.push(padded);
                     shape_bounds[id as usize] = Some(padded);
                     match shape {
-                        Shape::Triangle(t) => lone.triangles.push(GroupedTriangle {
-                            object: id,
-                            corners: [t.t0, t.t1, t.t2],
-                            bounds: padded,
-                            from_mesh: None,
-                        }),
+                        Shape::Triangle(t) => {
+                            lone.triangle_objects.push(id);
+                            if kept.is_none() {
+                                group.triangle(id, [t.t0, t.t1, t.t2], padded);
+                            }
+                        }
                         Shape::Sphere(s) => lone.spheres.push((id, s, bounds[bounds.len() - 1])),
                         _ => {}
                     }
@@ -132,6 +135,13 @@ impl World {
                 }
             }
         }
+        lone.triangles = kept.or_else(|| {
+            let built = LoneTriangles::new(group).map(Arc::new);
+            if let (Some(key), Some(built)) = (key, &built) {
+                group_cache::keep(key, built.clone());
+            }
+            built
+        });
         let emissive_shapes: Vec<_> = objects
             .iter()
             .zip(&resolved.objects)
@@ -157,7 +167,7 @@ impl World {
             meshes,
             lights,
             ambient,
-            top: TopLevels::new(items, &bounds, &lone),
+            top: TopLevels::new(items, &bounds, lone),
             unbounded,
             magnitudes,
             shape_bounds,

@@ -15,37 +15,35 @@ impl World {
         let top = self.top.for_method(method);
         // Each item's hit keeps what `Hit` needs besides α: a mesh
         // triangle, or the object of a lone triangle in the group.
-        let found = top
-            .bvh
-            .closest_with(ray, |item, ray| match top.items[item as usize] {
-                Item::Shape(id) => {
-                    tests += 1;
-                    let alpha = self.analytic(id).intersect(ray, method)?;
-                    Some((alpha, (id, None)))
-                }
-                Item::LoneTriangles => {
-                    tests += 1;
-                    let hit = self.top.lone_triangles().closest(ray)?;
-                    Some((hit.alpha, (hit.object, hit.triangle)))
-                }
-                Item::LoneSpheres => {
-                    tests += 1;
-                    let hit = self.top.lone_spheres().closest(ray)?;
-                    Some((hit.alpha, (hit.object, None)))
-                }
-                Item::Mesh(instance) => {
-                    tests += 1;
-                    let placed = &self.meshes[instance as usize];
-                    let hit = placed.closest_hit(ray)?;
-                    let triangle = TriangleRef {
-                        instance,
-                        triangle: hit.triangle,
-                        beta: hit.beta,
-                        gamma: hit.gamma,
-                    };
-                    Some((hit.alpha, (placed.object, Some(triangle))))
-                }
-            });
+        let found = top.closest_with(ray, |item, ray| match top.items[item as usize] {
+            Item::Shape(id) => {
+                tests += 1;
+                let alpha = self.analytic(id).intersect(ray, method)?;
+                Some((alpha, (id, None)))
+            }
+            Item::LoneTriangles => {
+                tests += 1;
+                let hit = self.top.lone_triangles().closest(ray)?;
+                Some((hit.alpha, (hit.object, hit.triangle)))
+            }
+            Item::LoneSpheres => {
+                tests += 1;
+                let hit = self.top.lone_spheres().closest(ray)?;
+                Some((hit.alpha, (hit.object, None)))
+            }
+            Item::Mesh(instance) => {
+                tests += 1;
+                let placed = &self.meshes[instance as usize];
+                let hit = placed.closest_hit(ray)?;
+                let triangle = TriangleRef {
+                    instance,
+                    triangle: hit.triangle,
+                    beta: hit.beta,
+                    gamma: hit.gamma,
+                };
+                Some((hit.alpha, (placed.object, Some(triangle))))
+            }
+        });
         let nearest = found.map(|(_, alpha, (object, triangle))| Hit {
             object,
             alpha,
@@ -90,7 +88,7 @@ impl World {
         let blocked = self.unbounded.iter().any(|&id| {
             tests += 1;
             self.analytic(id).intersect(ray, method).is_some()
-        }) || top.bvh.any(ray, |item, ray| {
+        }) || top.any(ray, |item, ray| {
             tests += 1;
             match top.items[item as usize] {
                 Item::LoneTriangles => self.top.lone_triangles().any(ray),

@@ -9,6 +9,7 @@ pub mod blas_cache;
 mod build;
 pub mod emitters;
 pub mod environment;
+mod group_cache;
 mod hit;
 mod hit_surface;
 mod intersect;
@@ -63,7 +64,7 @@ pub enum Object {
 
 /// What the top-level BVH holds: an analytic shape, a mesh instance, or
 /// (robust method) the lone triangles grouped in one BVH.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Item {
     /// The object with this id, an analytic shape.
     Shape(u32),
@@ -163,7 +164,7 @@ impl World {
     ///
     /// [`Method::Robust`]: crate::shapes::Method::Robust
     pub(crate) fn grouped_triangles(&self) -> Option<&[GroupedTriangle]> {
-        self.top.lone_triangles.as_ref().map(|g| g.triangles())
+        self.top.lone_triangles.as_ref().and_then(|g| g.triangles())
     }
 
     /// True when [`Method::Robust`] meets every mesh instance's triangles

@@ -18,10 +18,11 @@ use super::{Hit, Item, TriangleRef};
 /// below, preparing the ray for the packed test costs more than testing
 /// each triangle its box lets through.
 pub(super) const GROUPED_TRIANGLES: usize = 4;
-use crate::accel::{Aabb, MeshBvh, SceneBvh};
+use crate::accel::{Aabb, MeshBvh, MeshHit, SceneBvh};
 use crate::geometry::ray::Ray;
 use crate::shapes::{Method, Sphere};
 use glam::Vec3;
+use std::sync::Arc;
 
 /// Items in a BVH over their boxes.
 #[derive(Clone, Debug)]
@@ -30,6 +31,11 @@ pub(super) struct TopLevel {
     pub(super) bvh: SceneBvh,
     /// What each item is.
     pub(super) items: Vec<Item>,
+    /// True when the only item is a BVH of its own (a mesh instance or the
+    /// grouped triangles), whose walk tests its box first anyway: rays go
+    /// to it without the top level's walk (~20 ns a ray when a world's
+    /// triangles are all grouped).
+    alone: bool,
 }
 
 impl TopLevel {
@@ -37,25 +43,75 @@ impl TopLevel {
     pub(super) fn new(items: Vec<Item>, bounds: &[Aabb]) -> Self {
         Self {
             bvh: SceneBvh::build(bounds),
+            alone: matches!(items[..], [Item::Mesh(_) | Item::LoneTriangles]),
             items,
         }
     }
+
+    /// [`SceneBvh::closest_with`] over the items.
+    #[inline(always)]
+    pub(super) fn closest_with<T>(
+        &self,
+        ray: &Ray,
+        mut test: impl FnMut(u32, &Ray) -> Option<(f32, T)>,
+    ) -> Option<(u32, f32, T)> {
+        if self.alone {
+            return test(0, ray).map(|(alpha, kept)| (0, alpha, kept));
+        }
+        self.bvh.closest_with(ray, test)
+    }
+
+    /// [`SceneBvh::any`] over the items.
+    #[inline(always)]
+    pub(super) fn any(&self, ray: &Ray, mut test: impl FnMut(u32, &Ray) -> bool) -> bool {
+        if self.alone {
+            return test(0, ray);
+        }
+        self.bvh.any(ray, test)
+    }
 }
 
-/// A world's triangles that need no instance: its lone triangles and, when
-/// the mesh instances are small ([`BAKED_TRIANGLES`] in all), the
-/// instances' triangles placed in world space, all in one mesh BVH
-/// ([`Method::Robust`] only). A ray then walks one tree, prepared once,
-/// where it walked the top level and each instance it entered with a ray
-/// of its own (mapped into the instance's space, its walk set up again);
-/// and a world of such triangles, boxes, spheres and planes is traced in
-/// packets (`packet_shapes`), which test these same world-space corners.
+/// A world's triangles that need no instance: its lone triangles and the
+/// mesh instances' triangles placed in world space, all in one mesh BVH
+/// ([`Method::Robust`] only), when the world's meshes are small
+/// ([`BAKED_TRIANGLES`] in all) or each is placed once ([`World::new`]
+/// decides). A ray then walks one tree, prepared once, where it walked the
+/// top level and each instance it entered with a ray of its own (mapped
+/// into the instance's space, its walk set up again); and a world of such
+/// triangles, boxes, spheres and planes is traced in packets
+/// (`packet_shapes`), which test these same world-space corners.
+///
+/// [`World::new`]: super::World::new
 #[derive(Clone, Debug)]
 pub(super) struct LoneTriangles {
     bvh: MeshBvh,
-    /// The triangles, by their index in the BVH (the lowest wins a tie).
+    /// What the triangles of the BVH are: runs of consecutive triangle
+    /// indices (the lowest wins a tie), by their first.
+    runs: Vec<Run>,
+    /// Number of triangles.
+    len: usize,
+    /// The triangles with their corners and boxes, for packet tests; empty
+    /// past [`BAKED_TRIANGLES`] (packets are not used there).
     triangles: Vec<GroupedTriangle>,
+    /// True when instances' triangles are in the group.
+    placed: bool,
 }
+
+/// Where a run of grouped triangles, from index `first` on, comes from: the
+/// triangles of one mesh instance (of object `object`, in the mesh's
+/// order), or `<triangle>` objects with consecutive ids from `object` on
+/// (`instance` is `NOT_MESH`). A table of runs, not of triangles: a hit
+/// looks its triangle up in a few cached entries, where a table of a
+/// million triangles would miss the cache.
+#[derive(Clone, Copy, Debug)]
+struct Run {
+    first: u32,
+    object: u32,
+    instance: u32,
+}
+
+/// [`Run::instance`] of `<triangle>` objects.
+const NOT_MESH: u32 = u32::MAX;
 
 /// One triangle of [`LoneTriangles`]: its object, its corners in world
 /// space, its box as the top level would hold it, and the mesh instance and
@@ -78,52 +134,184 @@ pub(crate) struct GroupedTriangle {
 
 /// Up to this many mesh triangles in all (every instance counted), a
 /// world's mesh instances are placed in world space among its lone
-/// triangles ([`LoneTriangles`]), where packets of rays can test them
-/// (`PacketShapes::MAX_PRIMITIVES`, the same number, says why there); with
-/// more, each stays an instance of its shared BVH, built once and kept
-/// across edits (a group is built again with every world; one ray at a time
-/// it gained only ~5% on a sphere of 3,480 triangles).
+/// triangles ([`LoneTriangles`]) even when instances share a mesh, and
+/// packets of rays can test them (`PacketShapes::MAX_PRIMITIVES`, the same
+/// number, says why there). Past it they are placed only when no mesh is
+/// shared (so the world holds each triangle once more at most); the group
+/// is then kept across worlds while the meshes and their placements stay
+/// (`group_cache.rs`).
 pub(super) const BAKED_TRIANGLES: usize = 8192;
 
+/// The lone triangles of a world being built, in object order: their world
+/// corners as one indexed mesh (a placed mesh's vertices shared as in the
+/// mesh, so the group is as watertight as the mesh) and where each comes
+/// from.
+#[derive(Default)]
+pub(super) struct GroupInput {
+    positions: Vec<Vec3>,
+    indices: Vec<[u32; 3]>,
+    runs: Vec<Run>,
+    /// Kept while there are at most [`BAKED_TRIANGLES`] triangles.
+    triangles: Vec<GroupedTriangle>,
+}
+
+impl GroupInput {
+    /// Number of triangles so far.
+    pub(super) fn len(&self) -> usize {
+        self.indices.len()
+    }
+
+    /// A `<triangle>` object, `bounds` its padded box.
+    pub(super) fn triangle(&mut self, object: u32, corners: [Vec3; 3], bounds: Aabb) {
+        let first = self.positions.len() as u32;
+        self.positions.extend(corners);
+        let index = self.indices.len() as u32;
+        let follows = self
+            .runs
+            .last()
+            .is_some_and(|r| r.instance == NOT_MESH && r.object + (index - r.first) == object);
+        if !follows {
+            self.runs.push(Run {
+                first: index,
+                object,
+                instance: NOT_MESH,
+            });
+        }
+        self.indices.push([first, first + 1, first + 2]);
+        self.keep(GroupedTriangle {
+            object,
+            corners,
+            bounds,
+            from_mesh: None,
+        });
+    }
+
+    /// Every triangle of instance `instance` of `object`: its mesh's
+    /// vertices placed by `to_world`, each once; `padded` boxes a triangle
+    /// as the top level would.
+    pub(super) fn instance(
+        &mut self,
+        object: u32,
+        instance: u32,
+        mesh: &scene::TriangleMesh,
+        to_world: impl Fn(Vec3) -> Vec3,
+        padded: impl Fn(Aabb) -> Aabb,
+    ) {
+        let first = self.positions.len() as u32;
+        self.positions
+            .extend(mesh.positions.iter().map(|&p| to_world(p)));
+        self.runs.push(Run {
+            first: self.indices.len() as u32,
+            object,
+            instance,
+        });
+        for (k, corners) in mesh.triangles.iter().enumerate() {
+            let indices = corners.map(|i| first + i);
+            self.indices.push(indices);
+            if self.triangles.len() + 1 == self.len() && self.len() <= BAKED_TRIANGLES {
+                let corners = indices.map(|i| self.positions[i as usize]);
+                self.triangles.push(GroupedTriangle {
+                    object,
+                    corners,
+                    bounds: padded(Aabb::around(corners)),
+                    from_mesh: Some((instance, k as u32)),
+                });
+            }
+        }
+        self.drop_corners_past_the_limit();
+    }
+
+    /// Keeps `t` for packet tests while the group is small enough for them.
+    fn keep(&mut self, t: GroupedTriangle) {
+        if self.triangles.len() + 1 == self.len() {
+            self.triangles.push(t);
+        }
+        self.drop_corners_past_the_limit();
+    }
+
+    /// Forgets the corners once there are more than [`BAKED_TRIANGLES`].
+    fn drop_corners_past_the_limit(&mut self) {
+        if self.len() > BAKED_TRIANGLES {
+            self.triangles = Vec::new();
+        }
+    }
+}
+
 impl LoneTriangles {
-    /// The BVH over `triangles`, ties going to the lowest index;
+    /// The BVH over `input`'s triangles, ties going to the lowest index;
     /// `None` when there are fewer than [`GROUPED_TRIANGLES`].
-    pub(super) fn new(triangles: &[GroupedTriangle]) -> Option<Self> {
-        if triangles.len() < GROUPED_TRIANGLES {
+    pub(super) fn new(input: GroupInput) -> Option<Self> {
+        if input.len() < GROUPED_TRIANGLES {
             return None;
         }
-        let positions: Vec<Vec3> = triangles.iter().flat_map(|t| t.corners).collect();
-        let indices: Vec<[u32; 3]> = (0..triangles.len() as u32)
-            .map(|k| [3 * k, 3 * k + 1, 3 * k + 2])
-            .collect();
         Some(Self {
-            bvh: MeshBvh::build(&positions, &indices),
-            triangles: triangles.to_vec(),
+            bvh: MeshBvh::build(&input.positions, &input.indices),
+            placed: input.runs.iter().any(|r| r.instance != NOT_MESH),
+            len: input.indices.len(),
+            runs: input.runs,
+            triangles: input.triangles,
         })
+    }
+
+    /// The hit as the object it is (with the mesh triangle and its β and γ
+    /// for a placed instance's).
+    #[inline(always)]
+    fn hit(&self, h: MeshHit) -> Hit {
+        let run = self.runs[self.runs.partition_point(|r| r.first <= h.triangle) - 1];
+        let offset = h.triangle - run.first;
+        if run.instance == NOT_MESH {
+            Hit {
+                object: run.object + offset,
+                alpha: h.alpha,
+                triangle: None,
+            }
+        } else {
+            Hit {
+                object: run.object,
+                alpha: h.alpha,
+                triangle: Some(TriangleRef {
+                    instance: run.instance,
+                    triangle: offset,
+                    beta: h.beta,
+                    gamma: h.gamma,
+                }),
+            }
+        }
     }
 
     /// The nearest triangle hit in the ray's interval, as the object it is
     /// (with the mesh triangle and its β and γ for a placed instance's).
     #[inline]
     pub(super) fn closest(&self, ray: &Ray) -> Option<Hit> {
-        self.bvh.closest_hit(ray).map(|h| {
-            let grouped = &self.triangles[h.triangle as usize];
-            Hit {
-                object: grouped.object,
-                alpha: h.alpha,
-                triangle: grouped.from_mesh.map(|(instance, triangle)| TriangleRef {
-                    instance,
-                    triangle,
-                    beta: h.beta,
-                    gamma: h.gamma,
-                }),
-            }
-        })
+        self.bvh.closest_hit(ray).map(|h| self.hit(h))
     }
 
-    /// The triangles, by index (the BVH's triangle ids).
-    pub(super) fn triangles(&self) -> &[GroupedTriangle] {
-        &self.triangles
+    /// [`LoneTriangles::closest`] of every ray, bit for bit, through the
+    /// BVH's batch walk ([`MeshBvh::closest_hits`]: packets and interleaved
+    /// rays); `found` is scratch of the rays' length.
+    pub(super) fn closest_hits(
+        &self,
+        rays: &[Ray],
+        found: &mut [Option<MeshHit>],
+        mut each: impl FnMut(usize, Hit),
+    ) {
+        self.bvh.closest_hits(rays, found);
+        for (k, h) in found.iter().enumerate() {
+            if let Some(h) = h {
+                each(k, self.hit(*h));
+            }
+        }
+    }
+
+    /// The triangles with their corners, by index (the BVH's triangle ids);
+    /// `None` past [`BAKED_TRIANGLES`].
+    pub(super) fn triangles(&self) -> Option<&[GroupedTriangle]> {
+        (self.triangles.len() == self.len).then_some(&self.triangles)
+    }
+
+    /// True when instances' triangles are in the group.
+    pub(super) fn has_mesh_triangles(&self) -> bool {
+        self.placed
     }
 
     /// True when some lone triangle lies on the ray inside its interval.
@@ -147,8 +335,9 @@ pub(super) struct TopLevels {
     /// grouped in one item (`lone_triangles`, `lone_spheres`); `None` when
     /// neither is grouped (then `all` serves both methods).
     pub(super) robust: Option<TopLevel>,
-    /// The grouped lone triangles ([`Item::LoneTriangles`]).
-    pub(super) lone_triangles: Option<LoneTriangles>,
+    /// The grouped lone triangles ([`Item::LoneTriangles`]), shared with
+    /// later worlds of the same triangles (`group_cache.rs`).
+    pub(super) lone_triangles: Option<Arc<LoneTriangles>>,
     /// The grouped lone spheres ([`Item::LoneSpheres`]).
     pub(super) lone_spheres: Option<LoneSpheres>,
     /// True when every mesh instance was placed among the lone triangles
@@ -157,11 +346,14 @@ pub(super) struct TopLevels {
 }
 
 /// The objects a world may group for [`Method::Robust`]: `<triangle>`s and
-/// small mesh instances' triangles ([`GroupedTriangle`]), and `<sphere>`s
-/// (object id, the sphere, and its box as the top level has it).
+/// mesh instances' triangles, already grouped ([`LoneTriangles`], `None`
+/// when there are too few), the ids of the `<triangle>` objects among them,
+/// and `<sphere>`s (object id, the sphere, and its box as the top level has
+/// it).
 #[derive(Default)]
 pub(super) struct Lone {
-    pub(super) triangles: Vec<GroupedTriangle>,
+    pub(super) triangles: Option<Arc<LoneTriangles>>,
+    pub(super) triangle_objects: Vec<u32>,
     pub(super) spheres: Vec<(u32, Sphere, Aabb)>,
 }
 
@@ -169,24 +361,20 @@ impl TopLevels {
     /// The top levels over `items` (boxed by `bounds`) for both methods; the
     /// `lone` triangles and spheres are grouped for the robust one when
     /// there are enough of them.
-    pub(super) fn new(items: Vec<Item>, bounds: &[Aabb], lone: &Lone) -> TopLevels {
-        let lone_triangles = LoneTriangles::new(&lone.triangles);
+    pub(super) fn new(items: Vec<Item>, bounds: &[Aabb], lone: Lone) -> TopLevels {
+        let lone_triangles = lone.triangles;
         let (spheres, sphere_bounds): (Vec<(u32, Sphere)>, Vec<Aabb>) =
             lone.spheres.iter().map(|&(id, s, b)| ((id, s), b)).unzip();
         let lone_spheres = LoneSpheres::new(&spheres, &sphere_bounds);
         let mut grouped_ids = Vec::new();
         if lone_triangles.is_some() {
-            grouped_ids.extend(
-                lone.triangles
-                    .iter()
-                    .filter(|t| t.from_mesh.is_none())
-                    .map(|t| t.object),
-            );
+            grouped_ids.extend(lone.triangle_objects.iter().copied());
         }
         // The world places every instance among the lone triangles or none
-        // (`BAKED_TRIANGLES`); they are in the group when it exists.
-        let placed =
-            lone_triangles.is_some() && lone.triangles.iter().any(|t| t.from_mesh.is_some());
+        // (`World::new`); they are in the group when it exists.
+        let placed = lone_triangles
+            .as_ref()
+            .is_some_and(|g| g.has_mesh_triangles());
         let instances_grouped = placed || !items.iter().any(|item| matches!(item, Item::Mesh(_)));
         if lone_spheres.is_some() {
             grouped_ids.extend(spheres.iter().map(|s| s.0));
@@ -284,6 +472,92 @@ mod tests {
             r#"<triangle t0="-5 -5 0" t1="5 -5 0" t2="5 5 0"/><triangle t0="-5 -5 0" t1="5 5 0" t2="-5 5 0"/></scene>"#,
         );
         World::from_scene(&scene::read_str(&xml, "t.xml").expect("parses")).expect("valid")
+    }
+
+    /// A world whose meshes are each placed once is grouped past
+    /// [`BAKED_TRIANGLES`] too: its hits are the watertight test's on the
+    /// placed triangles, brute forced, bit for bit (α, β, γ, the instance
+    /// and its triangle), shadow rays agree, and a batch finds the same.
+    #[test]
+    fn large_unshared_meshes_are_grouped_and_hit_as_brute_force_bit_for_bit() {
+        let mut scene = scene::generate::knot_scene(9000);
+        scene.camera.width = 48;
+        scene.camera.height = 27;
+        let world = World::from_scene(&scene).expect("valid");
+        assert!(world.instances_grouped(), "each mesh is placed once");
+        let (mut positions, mut indices, mut from) = (Vec::new(), Vec::new(), Vec::new());
+        for (instance, placed) in world.meshes.iter().enumerate() {
+            let first = positions.len() as u32;
+            positions.extend(
+                placed
+                    .mesh
+                    .positions
+                    .iter()
+                    .map(|&p| placed.instance.point_to_world(p)),
+            );
+            for (k, t) in placed.mesh.triangles.iter().enumerate() {
+                indices.push(t.map(|i| i + first));
+                from.push((placed.object, instance as u32, k as u32));
+            }
+        }
+        let mut rays = crate::diagnostics::throughput::primary_rays(&world);
+        let mut rng = Sampler::for_sample(3, 0, 0, 0);
+        rays.extend((0..600).map(|_| {
+            let origin = Vec3::new(
+                rng.next_f32() * 8.0 - 4.0,
+                rng.next_f32() * 3.0,
+                rng.next_f32() * 8.0 - 4.0,
+            );
+            Ray::new(origin, rng.next_direction())
+        }));
+        let mut hits = 0;
+        for (k, ray) in rays.iter().enumerate() {
+            let want = crate::accel::reference::closest_hit(&positions, &indices, ray);
+            let got = world.intersect(ray, Method::Robust);
+            match (got, want) {
+                (Some(got), Some(want)) => {
+                    let (object, instance, triangle) = from[want.triangle as usize];
+                    let t = got.triangle.expect("a mesh triangle");
+                    assert_eq!(
+                        (got.object, t.instance, t.triangle, got.alpha.to_bits()),
+                        (object, instance, triangle, want.alpha.to_bits()),
+                        "ray {k}"
+                    );
+                    assert_eq!(
+                        (t.beta.to_bits(), t.gamma.to_bits()),
+                        (want.beta.to_bits(), want.gamma.to_bits())
+                    );
+                    hits += 1;
+                }
+                (None, None) => {}
+                other => panic!("ray {k}: {other:?}"),
+            }
+            assert_eq!(
+                world.occluded(ray, Method::Robust),
+                want.is_some(),
+                "ray {k}"
+            );
+        }
+        assert!(hits > 800, "too few hits to mean anything: {hits}");
+        let mut batch = vec![None; rays.len()];
+        world.intersect_batch(&rays, Method::Robust, &mut batch);
+        for (k, (ray, got)) in rays.iter().zip(&batch).enumerate() {
+            assert_eq!(*got, world.intersect(ray, Method::Robust), "ray {k}");
+        }
+    }
+
+    /// Instances of one mesh past [`BAKED_TRIANGLES`] stay instances (a
+    /// group would hold the mesh once per instance).
+    #[test]
+    fn large_shared_meshes_stay_instances() {
+        let mut scene = scene::generate::knot_scene(9000);
+        let mut copy = scene.objects[0].clone();
+        if let scene::Shape::Mesh { translate, .. } = &mut copy.shape {
+            *translate = Some(Vec3::new(3.0, 1.15, 0.0));
+        }
+        scene.objects.push(copy);
+        let world = World::from_scene(&scene).expect("valid");
+        assert!(!world.instances_grouped());
     }
 
     #[test]
