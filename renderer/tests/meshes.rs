@@ -238,7 +238,7 @@ fn moving_a_mesh_object_keeps_its_bottom_level_bvh() {
     let model = Arc::new(model(quad(), &[Mat4::IDENTITY]));
     let before = World::from_scene(&scene_with(model.clone(), Vec3::ZERO)).expect("valid");
     let after = World::from_scene(&scene_with(model, Vec3::new(0.0, 1.0, 0.0))).expect("valid");
-    assert!(Arc::ptr_eq(&before.meshes[0].bvh, &after.meshes[0].bvh));
+    assert!(Arc::ptr_eq(before.meshes[0].bvh(), after.meshes[0].bvh()));
     assert_ne!(before.meshes[0].bounds, after.meshes[0].bounds);
 }
 

@@ -150,7 +150,7 @@ fn distinct_meshes(world: &World) -> Vec<&PlacedMesh> {
 /// The triangles of `world`'s distinct meshes and the bytes of their BVHs.
 pub fn mesh_bvh_footprint(world: &World) -> (usize, usize) {
     distinct_meshes(world).iter().fold((0, 0), |(t, b), m| {
-        (t + m.mesh.triangles.len(), b + m.bvh.bytes())
+        (t + m.mesh.triangles.len(), b + m.bvh().bytes())
     })
 }
 

@@ -90,7 +90,7 @@ impl World {
                     .zip(&best)
                     .map(|(ray, best)| placed.instance.ray_to_object(&within(ray, best))),
             );
-            placed.bvh.closest_hits(&local, &mut found);
+            placed.bvh().closest_hits(&local, &mut found);
             for (best, mesh_hit) in best.iter_mut().zip(&found) {
                 if let Some(m) = mesh_hit {
                     let hit = Hit {

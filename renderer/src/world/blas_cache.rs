@@ -1,50 +1,97 @@
-//! Bottom-level BVHs kept across worlds: a mesh's BVH is built once and
-//! reused by every later world that draws the same (`Arc`-shared) mesh, so
-//! an edit rebuilds only the top level, never a million-triangle mesh.
+//! Bottom-level BVHs kept across worlds: a mesh's BVH is built once (when
+//! first needed) and reused by every later world that draws the same
+//! (`Arc`-shared) mesh, so an edit rebuilds only the top level, never a
+//! million-triangle mesh.
 
-use crate::accel::MeshBvh;
+use crate::accel::{Aabb, MeshBvh};
 use rayon::prelude::*;
 use scene::TriangleMesh;
-use std::sync::{Arc, Mutex, Weak};
+use std::sync::{Arc, Mutex, OnceLock, Weak};
 
-/// Every live mesh's BVH; entries die with their mesh.
-static CACHE: Mutex<Vec<(Weak<TriangleMesh>, Arc<MeshBvh>)>> = Mutex::new(Vec::new());
+/// What is kept of a mesh: the box around its triangles, found when the
+/// mesh is first seen, and its BVH, built when first asked for (a world
+/// that traces the mesh's only instance in world space, among its grouped
+/// triangles, never asks unless the lecture's method traces it).
+#[derive(Debug)]
+pub struct MeshEntry {
+    mesh: Weak<TriangleMesh>,
+    bounds: Aabb,
+    bvh: OnceLock<Arc<MeshBvh>>,
+}
 
-/// The BVH of each mesh, in order: cached ones reused, the rest built in
-/// parallel and remembered.
-pub fn bvhs_for(meshes: &[Arc<TriangleMesh>]) -> Vec<Arc<MeshBvh>> {
-    let cached = |cache: &[(Weak<TriangleMesh>, Arc<MeshBvh>)], mesh: &Arc<TriangleMesh>| {
+impl MeshEntry {
+    /// The box around the mesh's triangles (the BVH's box; empty for none).
+    pub fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+
+    /// True once the BVH is built.
+    pub fn is_built(&self) -> bool {
+        self.bvh.get().is_some()
+    }
+
+    /// The mesh's BVH, built now if it was not yet (`mesh` is the mesh).
+    pub fn bvh(&self, mesh: &TriangleMesh) -> &Arc<MeshBvh> {
+        self.bvh
+            .get_or_init(|| Arc::new(MeshBvh::build(&mesh.positions, &mesh.triangles)))
+    }
+}
+
+/// Every live mesh's entry; entries die with their mesh.
+static CACHE: Mutex<Vec<Arc<MeshEntry>>> = Mutex::new(Vec::new());
+
+/// The entry of each mesh, in order: kept ones reused, the others made (their
+/// boxes found in parallel) and kept. With `build`, every BVH not built
+/// yet is built, in parallel.
+pub fn entries_for(meshes: &[Arc<TriangleMesh>], build: bool) -> Vec<Arc<MeshEntry>> {
+    let find = |cache: &[Arc<MeshEntry>], mesh: &Arc<TriangleMesh>| {
         cache
             .iter()
-            .find(|(weak, _)| std::ptr::eq(weak.as_ptr(), Arc::as_ptr(mesh)))
-            .map(|(_, bvh)| bvh.clone())
+            .find(|e| std::ptr::eq(e.mesh.as_ptr(), Arc::as_ptr(mesh)))
+            .cloned()
     };
-    let known: Vec<Option<Arc<MeshBvh>>> = {
+    let known: Vec<Option<Arc<MeshEntry>>> = {
         let mut cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
-        cache.retain(|(weak, _)| weak.strong_count() > 0);
-        meshes.iter().map(|m| cached(&cache, m)).collect()
+        cache.retain(|e| e.mesh.strong_count() > 0);
+        meshes.iter().map(|m| find(&cache, m)).collect()
     };
-    // Only BVHs to build go to rayon's workers: a world whose meshes are
-    // all cached (an edit of the camera or of another object) is prepared
-    // without waiting for them.
-    let built: Vec<Arc<MeshBvh>> = if known.iter().all(Option::is_some) {
+    let entries: Vec<Arc<MeshEntry>> = if known.iter().all(Option::is_some) {
         known.into_iter().flatten().collect()
     } else {
         meshes
             .par_iter()
             .zip(known)
             .map(|(mesh, known)| {
-                known.unwrap_or_else(|| Arc::new(MeshBvh::build(&mesh.positions, &mesh.triangles)))
+                known.unwrap_or_else(|| {
+                    Arc::new(MeshEntry {
+                        mesh: Arc::downgrade(mesh),
+                        bounds: Aabb::around(
+                            mesh.triangles
+                                .iter()
+                                .flatten()
+                                .map(|&i| mesh.positions[i as usize]),
+                        ),
+                        bvh: OnceLock::new(),
+                    })
+                })
             })
             .collect()
     };
+    if build && entries.iter().any(|e| e.bvh.get().is_none()) {
+        // Only BVHs to build go to rayon's workers: a world whose meshes'
+        // BVHs are all built (an edit of the camera or of another object)
+        // is prepared without waiting for them.
+        entries.par_iter().zip(meshes).for_each(|(e, m)| {
+            e.bvh(m);
+        });
+    }
     let mut cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
-    for (mesh, bvh) in meshes.iter().zip(&built) {
-        if cached(&cache, mesh).is_none() {
-            cache.push((Arc::downgrade(mesh), bvh.clone()));
+    for (mesh, entry) in meshes.iter().zip(&entries) {
+        if find(&cache, mesh).is_none() {
+            cache.push(entry.clone());
         }
     }
-    built
+    entries
 }
 
 #[cfg(test)]
@@ -61,22 +108,30 @@ mod tests {
     }
 
     #[test]
-    fn the_same_mesh_gets_the_same_bvh_and_a_dropped_mesh_is_forgotten() {
+    fn the_same_mesh_gets_the_same_entry_its_bvh_built_when_asked_and_a_dropped_mesh_is_forgotten()
+    {
         let mesh = triangle_mesh();
-        let first = bvhs_for(std::slice::from_ref(&mesh));
-        let again = bvhs_for(&[mesh.clone(), mesh.clone()]);
+        let first = entries_for(std::slice::from_ref(&mesh), false);
+        assert!(first[0].bvh.get().is_none(), "not built until asked for");
+        assert_eq!(
+            first[0].bounds(),
+            Aabb::around([Vec3::ZERO, Vec3::X, Vec3::Y])
+        );
+        let again = entries_for(&[mesh.clone(), mesh.clone()], true);
         assert!(Arc::ptr_eq(&first[0], &again[0]) && Arc::ptr_eq(&first[0], &again[1]));
+        assert!(first[0].bvh.get().is_some(), "built when asked for");
+        assert_eq!(first[0].bvh(&mesh).bounds(), first[0].bounds());
         let other = triangle_mesh();
-        let different = bvhs_for(std::slice::from_ref(&other));
+        let different = entries_for(std::slice::from_ref(&other), false);
         assert!(!Arc::ptr_eq(&first[0], &different[0]));
         let weak = Arc::downgrade(&mesh);
         drop((mesh, first, again));
-        bvhs_for(&[]);
+        entries_for(&[], false);
         let cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
         assert!(
             cache
                 .iter()
-                .all(|(w, _)| !std::ptr::eq(w.as_ptr(), weak.as_ptr()))
+                .all(|e| !std::ptr::eq(e.mesh.as_ptr(), weak.as_ptr()))
         );
     }
 }

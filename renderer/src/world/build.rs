@@ -52,18 +52,24 @@ impl World {
                 other => lights.push(other),
             }
         }
-        let meshes = place_meshes(&resolved.objects);
-        let mesh_triangles: usize = meshes.iter().map(|m| m.mesh.triangles.len()).sum();
+        let (wanted, entries) = wanted_meshes(&resolved.objects);
+        let mesh_triangles: usize = wanted.iter().map(|w| w.1.triangles.len()).sum();
         // Instances are placed in world space among the lone triangles when
         // they are small, or when no mesh is shared (each triangle is then
         // held once more at most); a large group is kept across worlds.
         let mut shared: Vec<*const scene::TriangleMesh> =
-            meshes.iter().map(|m| Arc::as_ptr(&m.mesh)).collect();
+            wanted.iter().map(|w| Arc::as_ptr(&w.1)).collect();
         shared.sort();
         let shared = shared.windows(2).any(|w| w[0] == w[1]);
         let bake = mesh_triangles <= BAKED_TRIANGLES || !shared;
+        let meshes = place_meshes(wanted, entries);
         let key = (bake && mesh_triangles > BAKED_TRIANGLES)
             .then(|| group_cache::Key::of(&resolved.objects, &meshes));
+        if key.is_none() {
+            // Traced as instances (or small): every mesh's BVH now, in parallel.
+            let meshes: Vec<_> = meshes.iter().map(|m| m.mesh.clone()).collect();
+            blas_cache::entries_for(&meshes, true);
+        }
         let kept = key.as_ref().and_then(group_cache::kept);
         let mut group = GroupInput::default();
         let mut objects = Vec::with_capacity(resolved.objects.len());
@@ -176,9 +182,20 @@ impl World {
     }
 }
 
-/// Every instance of every model object, in object order, with its BVH
-/// (shared per mesh, reused from earlier worlds) and its material.
-fn place_meshes(objects: &[ResolvedObject]) -> Vec<PlacedMesh> {
+/// An instance to place: its object, mesh, world_from_mesh, material and
+/// texture.
+type Wanted = (
+    u32,
+    Arc<scene::TriangleMesh>,
+    glam::Mat4,
+    scene::Material,
+    Option<Arc<scene::Texture>>,
+);
+
+/// Every instance of every model object, in object order, with its mesh's
+/// entry (box and BVH, shared per mesh, reused from earlier worlds; the
+/// BVH not built here).
+fn wanted_meshes(objects: &[ResolvedObject]) -> (Vec<Wanted>, Vec<Arc<blas_cache::MeshEntry>>) {
     let mut wanted = Vec::new();
     for (id, object) in objects.iter().enumerate() {
         if let Geometry::Mesh {
@@ -204,15 +221,20 @@ fn place_meshes(objects: &[ResolvedObject]) -> Vec<PlacedMesh> {
         }
     }
     let meshes: Vec<Arc<scene::TriangleMesh>> = wanted.iter().map(|w| w.1.clone()).collect();
-    let bvhs = blas_cache::bvhs_for(&meshes);
+    let entries = blas_cache::entries_for(&meshes, false);
+    (wanted, entries)
+}
+
+/// The `wanted` instances placed, each with its mesh's entry.
+fn place_meshes(wanted: Vec<Wanted>, entries: Vec<Arc<blas_cache::MeshEntry>>) -> Vec<PlacedMesh> {
     wanted
         .into_iter()
-        .zip(bvhs)
-        .map(|((object, mesh, transform, material, texture), bvh)| {
+        .zip(entries)
+        .map(|((object, mesh, transform, material, texture), entry)| {
             PlacedMesh::new(
                 object,
                 mesh,
-                bvh,
+                entry,
                 Affine3A::from_mat4(transform),
                 material,
                 texture,

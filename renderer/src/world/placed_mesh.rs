@@ -1,6 +1,7 @@
 //! A mesh placed in the world: one instance of a model file's primitive,
 //! sharing its bottom-level BVH with every other instance of the same mesh.
 
+use super::blas_cache::MeshEntry;
 use crate::accel::{Aabb, Instance, MeshBvh, MeshHit};
 use crate::geometry::ray::Ray;
 use crate::geometry::terminator::curved_surface_point;
@@ -18,8 +19,10 @@ pub struct PlacedMesh {
     pub object: u32,
     /// The mesh, in its own space.
     pub mesh: Arc<TriangleMesh>,
-    /// Its bottom-level BVH (shared by every instance of `mesh`).
-    pub bvh: Arc<MeshBvh>,
+    /// Its box and bottom-level BVH (shared by every instance of `mesh`,
+    /// kept across worlds; the BVH built when first asked for:
+    /// [`PlacedMesh::bvh`]).
+    entry: Arc<MeshEntry>,
     /// world_from_mesh (the model file's node transform, then the object's
     /// placement) with its inverse, which takes rays into mesh space.
     pub instance: Instance,
@@ -35,11 +38,12 @@ pub struct PlacedMesh {
 }
 
 impl PlacedMesh {
-    /// The instance of `mesh` (with its BVH) placed by `world_from_mesh`.
+    /// The instance of `mesh` (with its box and BVH, `entry`) placed by
+    /// `world_from_mesh`.
     pub fn new(
         object: u32,
         mesh: Arc<TriangleMesh>,
-        bvh: Arc<MeshBvh>,
+        entry: Arc<MeshEntry>,
         world_from_mesh: Affine3A,
         material: Material,
         texture: Option<Arc<Texture>>,
@@ -48,8 +52,8 @@ impl PlacedMesh {
         PlacedMesh {
             object,
             mesh,
-            bounds: instance.world_bounds(bvh.bounds()),
-            bvh,
+            bounds: instance.world_bounds(entry.bounds()),
+            entry,
             instance,
             bsdf: PreparedBsdf::new(&material),
             material,
@@ -57,17 +61,30 @@ impl PlacedMesh {
         }
     }
 
+    /// The mesh's BVH (in mesh space), built now if no world built it yet:
+    /// a world that traces this instance among its grouped triangles builds
+    /// it only when the lecture's method traces the instance.
+    #[inline]
+    pub fn bvh(&self) -> &Arc<MeshBvh> {
+        self.entry.bvh(&self.mesh)
+    }
+
+    /// True once the mesh's BVH is built.
+    pub fn bvh_built(&self) -> bool {
+        self.entry.is_built()
+    }
+
     /// The closest triangle hit inside the ray's interval (watertight test);
     /// α is the world ray's.
     #[inline]
     pub fn closest_hit(&self, ray: &Ray) -> Option<MeshHit> {
-        self.instance.closest_hit(&self.bvh, ray)
+        self.instance.closest_hit(self.bvh(), ray)
     }
 
     /// True when any triangle lies on the ray inside its interval.
     #[inline]
     pub fn any_hit(&self, ray: &Ray) -> bool {
-        self.instance.any_hit(&self.bvh, ray)
+        self.instance.any_hit(self.bvh(), ray)
     }
 
     /// The triangle's corners in mesh space.

@@ -485,6 +485,10 @@ mod tests {
         scene.camera.height = 27;
         let world = World::from_scene(&scene).expect("valid");
         assert!(world.instances_grouped(), "each mesh is placed once");
+        assert!(
+            world.meshes.iter().all(|m| !m.bvh_built()),
+            "a grouped world builds no instance BVH"
+        );
         let (mut positions, mut indices, mut from) = (Vec::new(), Vec::new(), Vec::new());
         for (instance, placed) in world.meshes.iter().enumerate() {
             let first = positions.len() as u32;
@@ -544,6 +548,20 @@ mod tests {
         for (k, (ray, got)) in rays.iter().zip(&batch).enumerate() {
             assert_eq!(*got, world.intersect(ray, Method::Robust), "ray {k}");
         }
+        assert!(world.meshes.iter().all(|m| !m.bvh_built()));
+        // The lecture's method traces the instances: their BVHs are built
+        // then, and find the same triangles.
+        let hit = |method| world.intersect(&rays[rays.len() / 2], method);
+        let (lecture, robust) = (hit(Method::Lecture), hit(Method::Robust));
+        assert!(world.meshes.iter().any(|m| m.bvh_built()));
+        assert_eq!(
+            lecture
+                .and_then(|h| h.triangle)
+                .map(|t| (t.instance, t.triangle)),
+            robust
+                .and_then(|h| h.triangle)
+                .map(|t| (t.instance, t.triangle))
+        );
     }
 
     /// Instances of one mesh past [`BAKED_TRIANGLES`] stay instances (a

@@ -319,7 +319,7 @@ fn random_edits_while_tracing(triangles: usize, seed: u64) -> Figures {
     wait_for_newest(&mut h);
     let knot_bvh = |h: &Harness<'static, RaylabApp>| {
         let world = &h.state().session.prepared.as_ref().expect("prepared").world;
-        Arc::clone(&world.meshes[0].bvh)
+        Arc::clone(world.meshes[0].bvh())
     };
     let bvh = knot_bvh(&h);
     let start = Memory::now();
