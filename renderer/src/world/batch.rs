@@ -18,11 +18,12 @@ impl World {
     /// length), for callers holding many rays at once: the same hit bit for
     /// bit (α, object, triangle and barycentrics; a tie between objects goes
     /// to the lower top-level item, as `intersect`'s walk decides it). Each
-    /// mesh instance takes the whole batch in turn
+    /// mesh instance, and the grouped triangles when instances were placed
+    /// among them, takes the whole batch in turn
     /// ([`MeshBvh::closest_hits`]: coherent rays in packets, the others
     /// interleaved, which hides memory latency), then each ray meets the
     /// analytic shapes with its interval ending just past its nearest mesh
-    /// hit. A world of more than [`BATCHED_INSTANCES`] mesh instances is
+    /// hit. A top level of more than [`BATCHED_INSTANCES`] mesh instances is
     /// traced ray by ray instead (the top level culls instances there, which
     /// matters more).
     ///
@@ -122,23 +123,14 @@ impl World {
             let mut tests = instances;
             if has_shapes {
                 let search = within(ray, best);
+                // Instances (and the group, when it took the batch) are done.
                 let shape = top.closest_with(&search, |item, ray| match top.items[item as usize] {
-                    Item::Shape(id) => {
-                        tests += 1;
-                        Some((self.analytic(id).intersect(ray, method)?, (id, None)))
-                    }
-                    Item::LoneTriangles if group_batched => None,
-                    Item::LoneTriangles => {
-                        tests += 1;
-                        let hit = self.top.lone_triangles().closest(ray)?;
-                        Some((hit.alpha, (hit.object, hit.triangle)))
-                    }
-                    Item::LoneSpheres => {
-                        tests += 1;
-                        let hit = self.top.lone_spheres().closest(ray)?;
-                        Some((hit.alpha, (hit.object, None)))
-                    }
                     Item::Mesh(_) => None,
+                    Item::LoneTriangles if group_batched => None,
+                    other => {
+                        tests += 1;
+                        self.item_hit(other, ray, method)
+                    }
                 });
                 if let Some((item, alpha, (object, triangle))) = shape {
                     let hit = Hit {

@@ -37,13 +37,25 @@ impl MeshEntry {
     }
 }
 
+/// Builds, in parallel, the BVH of each of `meshes` (a mesh with its entry)
+/// not built yet. Only those go to rayon's workers: a world whose meshes'
+/// BVHs are all built (an edit of the camera or of another object) is
+/// prepared without waiting for them.
+pub fn build_bvhs<'a>(meshes: impl Iterator<Item = (&'a Arc<MeshEntry>, &'a TriangleMesh)>) {
+    let mut missing: Vec<_> = meshes.filter(|(e, _)| !e.is_built()).collect();
+    missing.sort_by_key(|(e, _)| Arc::as_ptr(e));
+    missing.dedup_by_key(|(e, _)| Arc::as_ptr(e));
+    missing.par_iter().for_each(|(e, m)| {
+        e.bvh(m);
+    });
+}
+
 /// Every live mesh's entry; entries die with their mesh.
 static CACHE: Mutex<Vec<Arc<MeshEntry>>> = Mutex::new(Vec::new());
 
 /// The entry of each mesh, in order: kept ones reused, the others made (their
-/// boxes found in parallel) and kept. With `build`, every BVH not built
-/// yet is built, in parallel.
-pub fn entries_for(meshes: &[Arc<TriangleMesh>], build: bool) -> Vec<Arc<MeshEntry>> {
+/// boxes found in parallel, their BVHs not built) and kept.
+pub fn entries_for(meshes: &[Arc<TriangleMesh>]) -> Vec<Arc<MeshEntry>> {
     let find = |cache: &[Arc<MeshEntry>], mesh: &Arc<TriangleMesh>| {
         cache
             .iter()
@@ -77,14 +89,6 @@ pub fn entries_for(meshes: &[Arc<TriangleMesh>], build: bool) -> Vec<Arc<MeshEnt
             })
             .collect()
     };
-    if build && entries.iter().any(|e| e.bvh.get().is_none()) {
-        // Only BVHs to build go to rayon's workers: a world whose meshes'
-        // BVHs are all built (an edit of the camera or of another object)
-        // is prepared without waiting for them.
-        entries.par_iter().zip(meshes).for_each(|(e, m)| {
-            e.bvh(m);
-        });
-    }
     let mut cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
     for (mesh, entry) in meshes.iter().zip(&entries) {
         if find(&cache, mesh).is_none() {
@@ -111,22 +115,23 @@ mod tests {
     fn the_same_mesh_gets_the_same_entry_its_bvh_built_when_asked_and_a_dropped_mesh_is_forgotten()
     {
         let mesh = triangle_mesh();
-        let first = entries_for(std::slice::from_ref(&mesh), false);
+        let first = entries_for(std::slice::from_ref(&mesh));
         assert!(first[0].bvh.get().is_none(), "not built until asked for");
         assert_eq!(
             first[0].bounds(),
             Aabb::around([Vec3::ZERO, Vec3::X, Vec3::Y])
         );
-        let again = entries_for(&[mesh.clone(), mesh.clone()], true);
+        let again = entries_for(&[mesh.clone(), mesh.clone()]);
+        build_bvhs(again.iter().map(|e| (e, &*mesh)));
         assert!(Arc::ptr_eq(&first[0], &again[0]) && Arc::ptr_eq(&first[0], &again[1]));
         assert!(first[0].bvh.get().is_some(), "built when asked for");
         assert_eq!(first[0].bvh(&mesh).bounds(), first[0].bounds());
         let other = triangle_mesh();
-        let different = entries_for(std::slice::from_ref(&other), false);
+        let different = entries_for(std::slice::from_ref(&other));
         assert!(!Arc::ptr_eq(&first[0], &different[0]));
         let weak = Arc::downgrade(&mesh);
         drop((mesh, first, again));
-        entries_for(&[], false);
+        entries_for(&[]);
         let cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
         assert!(
             cache

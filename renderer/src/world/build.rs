@@ -66,12 +66,11 @@ impl World {
         let key = (bake && mesh_triangles > BAKED_TRIANGLES)
             .then(|| group_cache::Key::of(&resolved.objects, &meshes));
         if key.is_none() {
-            // Traced as instances (or small): every mesh's BVH now, in parallel.
-            let meshes: Vec<_> = meshes.iter().map(|m| m.mesh.clone()).collect();
-            blas_cache::entries_for(&meshes, true);
+            // Traced as instances (or small): every mesh's BVH now.
+            blas_cache::build_bvhs(meshes.iter().map(PlacedMesh::entry));
         }
         let kept = key.as_ref().and_then(group_cache::kept);
-        let mut group = GroupInput::default();
+        let mut group = GroupInput::new(mesh_triangles <= BAKED_TRIANGLES);
         let mut objects = Vec::with_capacity(resolved.objects.len());
         let (mut items, mut bounds, mut unbounded) = (Vec::new(), Vec::new(), Vec::new());
         let mut lone = Lone::default();
@@ -221,7 +220,7 @@ fn wanted_meshes(objects: &[ResolvedObject]) -> (Vec<Wanted>, Vec<Arc<blas_cache
         }
     }
     let meshes: Vec<Arc<scene::TriangleMesh>> = wanted.iter().map(|w| w.1.clone()).collect();
-    let entries = blas_cache::entries_for(&meshes, false);
+    let entries = blas_cache::entries_for(&meshes);
     (wanted, entries)
 }
 

@@ -13,26 +13,41 @@ impl World {
         crate::geometry::counters::count_ray();
         let mut tests = 0usize;
         let top = self.top.for_method(method);
-        // Each item's hit keeps what `Hit` needs besides α: a mesh
-        // triangle, or the object of a lone triangle in the group.
-        let found = top.closest_with(ray, |item, ray| match top.items[item as usize] {
-            Item::Shape(id) => {
-                tests += 1;
-                let alpha = self.analytic(id).intersect(ray, method)?;
-                Some((alpha, (id, None)))
-            }
+        let found = top.closest_with(ray, |item, ray| {
+            tests += 1;
+            self.item_hit(top.items[item as usize], ray, method)
+        });
+        let nearest = found.map(|(_, alpha, (object, triangle))| Hit {
+            object,
+            alpha,
+            triangle,
+        });
+        let nearest = self.planes_last(ray, nearest, method, &mut tests);
+        crate::geometry::counters::count_shape_tests(tests);
+        nearest
+    }
+
+    /// The nearest hit of `ray` in its interval with the top-level item
+    /// `item`: its α, and what `Hit` needs besides (the object, and a mesh
+    /// triangle or the object of a lone triangle in the group).
+    #[inline(always)]
+    pub(super) fn item_hit(
+        &self,
+        item: Item,
+        ray: &Ray,
+        method: Method,
+    ) -> Option<(f32, (u32, Option<TriangleRef>))> {
+        match item {
+            Item::Shape(id) => Some((self.analytic(id).intersect(ray, method)?, (id, None))),
             Item::LoneTriangles => {
-                tests += 1;
                 let hit = self.top.lone_triangles().closest(ray)?;
                 Some((hit.alpha, (hit.object, hit.triangle)))
             }
             Item::LoneSpheres => {
-                tests += 1;
                 let hit = self.top.lone_spheres().closest(ray)?;
                 Some((hit.alpha, (hit.object, None)))
             }
             Item::Mesh(instance) => {
-                tests += 1;
                 let placed = &self.meshes[instance as usize];
                 let hit = placed.closest_hit(ray)?;
                 let triangle = TriangleRef {
@@ -43,15 +58,7 @@ impl World {
                 };
                 Some((hit.alpha, (placed.object, Some(triangle))))
             }
-        });
-        let nearest = found.map(|(_, alpha, (object, triangle))| Hit {
-            object,
-            alpha,
-            triangle,
-        });
-        let nearest = self.planes_last(ray, nearest, method, &mut tests);
-        crate::geometry::counters::count_shape_tests(tests);
-        nearest
+        }
     }
 
     /// `nearest` (the nearest bounded hit of `ray`, if any) or a nearer hit

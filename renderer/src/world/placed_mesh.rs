@@ -74,6 +74,11 @@ impl PlacedMesh {
         self.entry.is_built()
     }
 
+    /// The mesh's entry in the BVH cache, with the mesh.
+    pub(super) fn entry(&self) -> (&Arc<MeshEntry>, &TriangleMesh) {
+        (&self.entry, &self.mesh)
+    }
+
     /// The closest triangle hit inside the ray's interval (watertight test);
     /// α is the world ray's.
     #[inline]

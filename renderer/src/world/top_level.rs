@@ -88,11 +88,10 @@ pub(super) struct LoneTriangles {
     /// What the triangles of the BVH are: runs of consecutive triangle
     /// indices (the lowest wins a tie), by their first.
     runs: Vec<Run>,
-    /// Number of triangles.
-    len: usize,
-    /// The triangles with their corners and boxes, for packet tests; empty
-    /// past [`BAKED_TRIANGLES`] (packets are not used there).
-    triangles: Vec<GroupedTriangle>,
+    /// The triangles with their corners and boxes, for packet tests;
+    /// `None` past [`BAKED_TRIANGLES`] mesh triangles (packets are not used
+    /// there).
+    triangles: Option<Vec<GroupedTriangle>>,
     /// True when instances' triangles are in the group.
     placed: bool,
 }
@@ -146,19 +145,26 @@ pub(super) const BAKED_TRIANGLES: usize = 8192;
 /// corners as one indexed mesh (a placed mesh's vertices shared as in the
 /// mesh, so the group is as watertight as the mesh) and where each comes
 /// from.
-#[derive(Default)]
 pub(super) struct GroupInput {
     positions: Vec<Vec3>,
     indices: Vec<[u32; 3]>,
     runs: Vec<Run>,
-    /// Kept while there are at most [`BAKED_TRIANGLES`] triangles.
-    triangles: Vec<GroupedTriangle>,
+    /// Each triangle with its corners and box, for packet tests; `None` in
+    /// a world of more mesh triangles than packets take
+    /// ([`BAKED_TRIANGLES`]).
+    triangles: Option<Vec<GroupedTriangle>>,
 }
 
 impl GroupInput {
-    /// Number of triangles so far.
-    pub(super) fn len(&self) -> usize {
-        self.indices.len()
+    /// An empty group; `for_packets`: its triangles are kept for packet
+    /// tests too.
+    pub(super) fn new(for_packets: bool) -> Self {
+        Self {
+            positions: Vec::new(),
+            indices: Vec::new(),
+            runs: Vec::new(),
+            triangles: for_packets.then(Vec::new),
+        }
     }
 
     /// A `<triangle>` object, `bounds` its padded box.
@@ -178,12 +184,14 @@ impl GroupInput {
             });
         }
         self.indices.push([first, first + 1, first + 2]);
-        self.keep(GroupedTriangle {
-            object,
-            corners,
-            bounds,
-            from_mesh: None,
-        });
+        if let Some(triangles) = &mut self.triangles {
+            triangles.push(GroupedTriangle {
+                object,
+                corners,
+                bounds,
+                from_mesh: None,
+            });
+        }
     }
 
     /// Every triangle of instance `instance` of `object`: its mesh's
@@ -208,31 +216,15 @@ impl GroupInput {
         for (k, corners) in mesh.triangles.iter().enumerate() {
             let indices = corners.map(|i| first + i);
             self.indices.push(indices);
-            if self.triangles.len() + 1 == self.len() && self.len() <= BAKED_TRIANGLES {
+            if let Some(triangles) = &mut self.triangles {
                 let corners = indices.map(|i| self.positions[i as usize]);
-                self.triangles.push(GroupedTriangle {
+                triangles.push(GroupedTriangle {
                     object,
                     corners,
                     bounds: padded(Aabb::around(corners)),
                     from_mesh: Some((instance, k as u32)),
                 });
             }
-        }
-        self.drop_corners_past_the_limit();
-    }
-
-    /// Keeps `t` for packet tests while the group is small enough for them.
-    fn keep(&mut self, t: GroupedTriangle) {
-        if self.triangles.len() + 1 == self.len() {
-            self.triangles.push(t);
-        }
-        self.drop_corners_past_the_limit();
-    }
-
-    /// Forgets the corners once there are more than [`BAKED_TRIANGLES`].
-    fn drop_corners_past_the_limit(&mut self) {
-        if self.len() > BAKED_TRIANGLES {
-            self.triangles = Vec::new();
         }
     }
 }
@@ -241,13 +233,12 @@ impl LoneTriangles {
     /// The BVH over `input`'s triangles, ties going to the lowest index;
     /// `None` when there are fewer than [`GROUPED_TRIANGLES`].
     pub(super) fn new(input: GroupInput) -> Option<Self> {
-        if input.len() < GROUPED_TRIANGLES {
+        if input.indices.len() < GROUPED_TRIANGLES {
             return None;
         }
         Some(Self {
             bvh: MeshBvh::build(&input.positions, &input.indices),
             placed: input.runs.iter().any(|r| r.instance != NOT_MESH),
-            len: input.indices.len(),
             runs: input.runs,
             triangles: input.triangles,
         })
@@ -306,7 +297,7 @@ impl LoneTriangles {
     /// The triangles with their corners, by index (the BVH's triangle ids);
     /// `None` past [`BAKED_TRIANGLES`].
     pub(super) fn triangles(&self) -> Option<&[GroupedTriangle]> {
-        (self.triangles.len() == self.len).then_some(&self.triangles)
+        self.triangles.as_deref()
     }
 
     /// True when instances' triangles are in the group.
@@ -553,6 +544,7 @@ mod tests {
         // then, and find the same triangles.
         let hit = |method| world.intersect(&rays[rays.len() / 2], method);
         let (lecture, robust) = (hit(Method::Lecture), hit(Method::Robust));
+        assert!(robust.is_some(), "the middle camera ray hits");
         assert!(world.meshes.iter().any(|m| m.bvh_built()));
         assert_eq!(
             lecture
