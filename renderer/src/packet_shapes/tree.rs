@@ -38,7 +38,7 @@
 
 use super::{FloatLanes, MaskLanes, Rays, Vec3s, coordinate};
 use crate::accel::Aabb;
-use crate::accel::binned_sah::{PrimRef, Span, split};
+use crate::accel::binned_sah::{PrimRef, Span, Splitter};
 use crate::accel::slab::widen_up_lanes;
 use glam::Vec3A;
 use std::ops::Range;
@@ -186,16 +186,18 @@ impl Tree {
             return None;
         }
         let span = Span::around(&refs, 0);
-        tree.grow(&mut refs, span, 1, &mut push_leaf)?;
+        tree.grow(&mut refs, span, 1, &mut Splitter::default(), &mut push_leaf)?;
         Some(tree)
     }
 
-    /// Appends the subtree of `span` (at `depth`, the root's being 1).
+    /// Appends the subtree of `span` (at `depth`, the root's being 1),
+    /// split by `splitter`.
     fn grow(
         &mut self,
         refs: &mut [PrimRef],
         span: Span,
         depth: usize,
+        splitter: &mut Splitter,
         push_leaf: &mut impl FnMut(&[u32]) -> Leaf,
     ) -> Option<()> {
         if depth > MAX_DEPTH {
@@ -219,10 +221,10 @@ impl Tree {
             self.leaves.push(push_leaf(&ids));
             return Some(());
         }
-        let (left, right) = split(&mut refs[span.begin..span.end], &span);
-        self.grow(refs, left, depth + 1, push_leaf)?;
+        let (left, right) = splitter.split(&mut refs[span.begin..span.end], &span);
+        self.grow(refs, left, depth + 1, splitter, push_leaf)?;
         let second = self.nodes.len() as u32;
-        self.grow(refs, right, depth + 1, push_leaf)?;
+        self.grow(refs, right, depth + 1, splitter, push_leaf)?;
         self.nodes[index].link = second;
         self.nodes[index].leaf = false;
         Some(())

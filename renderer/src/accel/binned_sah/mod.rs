@@ -285,19 +285,26 @@ impl Bins {
         self
     }
 
-    fn of(refs: &[PrimRef], mapping: &Mapping) -> Bins {
+    /// Empties the first `used` bins.
+    fn empty(&mut self, used: usize) {
+        self.bounds[..used].fill([Bounds::EMPTY; 3]);
+        self.counts[..used].fill([0; 3]);
+    }
+
+    /// Bins `refs` into these (empty) bins: in place, since a set of bins
+    /// is kilobytes that a returned value would copy at every split.
+    fn fill(&mut self, refs: &[PrimRef], mapping: &Mapping) {
         if refs.len() >= PARALLEL_BINNING {
-            refs.par_chunks(PARALLEL_BINNING / 4)
+            *self = refs
+                .par_chunks(PARALLEL_BINNING / 4)
                 .map(|chunk| {
                     let mut bins = Bins::EMPTY;
                     bins.add(chunk, mapping);
                     bins
                 })
-                .reduce(|| Bins::EMPTY, Bins::merge)
+                .reduce(|| Bins::EMPTY, Bins::merge);
         } else {
-            let mut bins = Bins::EMPTY;
-            bins.add(refs, mapping);
-            bins
+            self.add(refs, mapping);
         }
     }
 
@@ -379,17 +386,46 @@ fn cheapest(bins: &Bins, mapping: &Mapping, total: u32) -> Option<(usize, usize,
     Some((axis, last, side(0..last + 1), side(last + 1..mapping.bins)))
 }
 
-/// Splits `span` (whose primitives are `refs`, all of them) in two by the
-/// binned SAH, reordering `refs` so the left side comes first. Both sides
-/// are non-empty; primitives whose centroids all coincide are halved by
-/// count. `span` must have at least two primitives.
-pub fn split(refs: &mut [PrimRef], span: &Span) -> (Span, Span) {
-    debug_assert_eq!(refs.len(), span.len());
-    debug_assert!(refs.len() >= 2);
-    let mapping = Mapping::new(&span.centroids, refs.len());
-    let bins = Bins::of(refs, &mapping);
-    let Some((axis, last, left_bounds, right_bounds)) =
-        cheapest(&bins, &mapping, refs.len() as u32)
+/// Splits sets of primitive boxes in two by the binned SAH. It keeps one
+/// set of bins (kilobytes) for all its splits and empties only the bins a
+/// split uses: most splits, of a few dozen primitives, use a few.
+#[derive(Clone, Debug)]
+pub struct Splitter {
+    bins: Box<Bins>,
+}
+
+impl Default for Splitter {
+    fn default() -> Self {
+        Splitter {
+            bins: Box::new(Bins::EMPTY),
+        }
+    }
+}
+
+impl Splitter {
+    /// Splits `span` (whose primitives are `refs`, all of them) in two,
+    /// reordering `refs` so the left side comes first. Both sides are
+    /// non-empty; primitives whose centroids all coincide are halved by
+    /// count. `span` must have at least two primitives.
+    pub fn split(&mut self, refs: &mut [PrimRef], span: &Span) -> (Span, Span) {
+        debug_assert_eq!(refs.len(), span.len());
+        debug_assert!(refs.len() >= 2);
+        let mapping = Mapping::new(&span.centroids, refs.len());
+        let bins = &mut *self.bins;
+        bins.empty(mapping.bins);
+        bins.fill(refs, &mapping);
+        split_at_cheapest(refs, span, bins, &mapping)
+    }
+}
+
+/// The split of [`Splitter::split`] once `bins` hold `refs` by `mapping`.
+fn split_at_cheapest(
+    refs: &mut [PrimRef],
+    span: &Span,
+    bins: &Bins,
+    mapping: &Mapping,
+) -> (Span, Span) {
+    let Some((axis, last, left_bounds, right_bounds)) = cheapest(bins, mapping, refs.len() as u32)
     else {
         return halve(refs, span);
     };
@@ -423,7 +459,30 @@ fn partition(
     refs: &mut [PrimRef],
     goes_left: impl Fn(&PrimRef) -> bool,
 ) -> (usize, Bounds, Bounds) {
-    // Hoare partition.
+    let i = hoare(refs, goes_left);
+    (i, centroids(&refs[..i]), centroids(&refs[i..]))
+}
+
+/// The box around the (doubled) centroids of `refs`: after the partition,
+/// each side in a straight pass, which costs less than growing one box or
+/// the other inside the partition's loop (a branch on each).
+fn centroids(refs: &[PrimRef]) -> Bounds {
+    let grow = |mut b: Bounds, r: &PrimRef| {
+        b.grow_point(r.centroid());
+        b
+    };
+    if refs.len() < PARALLEL_BINNING {
+        refs.iter().fold(Bounds::EMPTY, grow)
+    } else {
+        refs.par_chunks(PARALLEL_BINNING / 4)
+            .map(|chunk| chunk.iter().fold(Bounds::EMPTY, grow))
+            .reduce(|| Bounds::EMPTY, Bounds::union)
+    }
+}
+
+/// Hoare's partition of `refs` (those that `goes_left` first); how many
+/// go left.
+fn hoare(refs: &mut [PrimRef], goes_left: impl Fn(&PrimRef) -> bool) -> usize {
     let (mut i, mut j) = (0usize, refs.len());
     loop {
         while i < j && goes_left(&refs[i]) {
@@ -439,16 +498,7 @@ fn partition(
         i += 1;
         j -= 1;
     }
-    // The centroid boxes afterwards, each side in one straight pass (a
-    // union, so the order does not matter): cheaper than growing one box or
-    // the other inside the partition's loop, which branches on each.
-    let centroids = |side: &[PrimRef]| {
-        side.iter().fold(Bounds::EMPTY, |mut b, r| {
-            b.grow_point(r.centroid());
-            b
-        })
-    };
-    (i, centroids(&refs[..i]), centroids(&refs[i..]))
+    i
 }
 
 /// Halves `span` by count (its centroids all coincide, so no plane

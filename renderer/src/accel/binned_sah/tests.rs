@@ -38,7 +38,7 @@ fn two_far_apart_clusters_are_split_between_them() {
     }
     let mut refs = refs_from(&boxes);
     let span = Span::around(&refs, 0);
-    let (left, right) = split(&mut refs, &span);
+    let (left, right) = Splitter::default().split(&mut refs, &span);
     assert_eq!((left.len(), right.len()), (10, 10));
     assert!(refs[..10].iter().all(|r| r.lo().x < 50.0));
     assert!(refs[10..].iter().all(|r| r.lo().x > 50.0));
@@ -48,7 +48,7 @@ fn two_far_apart_clusters_are_split_between_them() {
 fn coinciding_centroids_are_halved_by_count() {
     let mut refs = refs_from(&[([0.0; 3], [1.0; 3]); 9]);
     let span = Span::around(&refs, 5);
-    let (left, right) = split(&mut refs, &span);
+    let (left, right) = Splitter::default().split(&mut refs, &span);
     assert_eq!(
         (left.begin, left.end, right.begin, right.end),
         (5, 9, 9, 14)
@@ -122,7 +122,7 @@ proptest! {
         };
         let mut refs = refs_from(&boxes);
         let span = Span::around(&refs, 3);
-        let (left, right) = split(&mut refs, &span);
+        let (left, right) = Splitter::default().split(&mut refs, &span);
         prop_assert!(left.len() > 0 && right.len() > 0);
         prop_assert_eq!((left.begin, left.end, right.end), (3, right.begin, span.end));
         let mut ids: Vec<u32> = refs.iter().map(PrimRef::id).collect();
@@ -134,6 +134,30 @@ proptest! {
             prop_assert_eq!(side.bounds, exact.bounds);
             prop_assert_eq!(side.centroids, exact.centroids);
         }
+    }
+
+    /// A splitter that has split other sets (a large one first, whose
+    /// bins it keeps) splits a set exactly as a new one does: the bins a
+    /// split does not empty are never read.
+    #[test]
+    fn a_reused_splitter_splits_as_a_new_one(
+        first in prop::collection::vec(
+            (prop::array::uniform3(-1e3f32..1e3), prop::array::uniform3(-1e3f32..1e3)),
+            2..3000,
+        ),
+        second in prop::collection::vec(
+            (prop::array::uniform3(-1e3f32..1e3), prop::array::uniform3(-1e3f32..1e3)),
+            2..40,
+        ),
+    ) {
+        let mut reused = Splitter::default();
+        let mut refs = refs_from(&first);
+        let span = Span::around(&refs, 0);
+        reused.split(&mut refs, &span);
+        let (mut a, mut b) = (refs_from(&second), refs_from(&second));
+        let span = Span::around(&a, 7);
+        prop_assert_eq!(reused.split(&mut a, &span), Splitter::default().split(&mut b, &span));
+        prop_assert_eq!(a, b);
     }
 
     /// Sweeping the three axes together, lane by lane, picks exactly the
@@ -166,7 +190,8 @@ proptest! {
         let refs = refs_from(&boxes);
         let span = Span::around(&refs, 0);
         let mapping = Mapping::new(&span.centroids, refs.len());
-        let bins = Bins::of(&refs, &mapping);
+        let mut bins = Bins::EMPTY;
+        bins.fill(&refs, &mapping);
         let total = refs.len() as u32;
         prop_assert_eq!(
             cheapest(&bins, &mapping, total),
