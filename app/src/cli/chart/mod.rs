@@ -1,6 +1,9 @@
 //! `raylab chart`: speed against accuracy. Renders a scene progressively
-//! with each method, records after every pass the time and the error against
-//! a reference, and writes the curves as CSV and as a log–log PNG chart.
+//! with each method, records the time and the error against a reference
+//! after every pass up to 16, then each time the passes have grown by an
+//! eighth (measuring slows the pass after it:
+//! [`renderer::diagnostics::convergence::next_measurement`]), and writes the
+//! curves as CSV and as a log–log PNG chart.
 
 pub(crate) mod flip;
 
