@@ -182,13 +182,19 @@ impl ObjectTable {
     }
 
     /// The row of object `id`, or the miss row for an id past the objects.
-    #[inline(always)]
+    #[cfg(test)]
     pub(crate) fn row(&self, id: usize) -> &[f32; ROW] {
         let last = self.rows.len() / ROW - 1;
         let at = id.min(last) * ROW;
         self.rows[at..at + ROW]
             .try_into()
             .expect("rows are ROW numbers long")
+    }
+
+    /// Every row's numbers, one row after the other.
+    #[inline(always)]
+    pub(crate) fn numbers(&self) -> &[f32] {
+        &self.rows
     }
 
     /// The rows' count, the miss row's index.

@@ -1,8 +1,8 @@
 //! What the objects the lanes hit are made of: each lane's row of the
-//! [`ObjectTable`], read once and turned into lanes column by column.
+//! [`ObjectTable`], gathered into lanes column by column.
 
 use super::scene::{Column, LaneBsdf, ObjectTable, ROW};
-use crate::packet::{FloatLanes, IntLanes, Vec3s, WIDTH, lane_set};
+use crate::packet::{FloatLanes, IntLanes, Vec3s, WIDTH};
 
 /// What the objects hit are made of, one lane per hit (the miss row's
 /// values in lanes that hit nothing).
@@ -45,20 +45,21 @@ pub(super) struct Surfaces<F: FloatLanes> {
 }
 
 impl<F: FloatLanes> Surfaces<F> {
-    /// The table's rows of the objects `object` in the lanes of `hit`.
+    /// The table's rows of the objects `object` in the lanes of `hit` (the
+    /// miss row elsewhere, and for an id past the objects, as
+    /// [`ObjectTable::row`] has it), each column gathered into lanes.
     #[inline(always)]
     pub(super) fn gather(table: &ObjectTable, hit: F::Mask, object: F::Ints) -> Self {
-        let ids = object.to_array();
-        let mut rows = [table.row(table.miss()); WIDTH];
-        for (k, row) in rows.iter_mut().enumerate() {
-            if lane_set(hit, k) {
-                *row = table.row(ids[k] as usize);
-            }
-        }
-        let flags = column::<F>(&rows, Column::Flags as usize).bits();
-        let emitter = column::<F>(&rows, Column::Emitter as usize)
-            .bits()
-            .to_array();
+        const { assert!(ROW == 16, "a row's first number is its index times 16") };
+        let miss = F::Ints::splat(table.miss() as i32);
+        let rows = F::Ints::select(hit, object, miss);
+        let rows = F::Ints::select(rows.simd_gt(miss), miss, rows);
+        let first = rows.shl::<4>();
+        // (Functions, not closures: a closure that is not inlined runs its
+        // lane operations as calls.)
+        let rows = (table.numbers(), first);
+        let flags = column::<F>(rows, Column::Flags).bits();
+        let emitter = column::<F>(rows, Column::Emitter).bits().to_array();
         Self {
             on_lanes: has::<F>(flags, LaneBsdf::ON_LANES),
             layered: has::<F>(flags, LaneBsdf::LAYERED),
@@ -67,40 +68,38 @@ impl<F: FloatLanes> Surfaces<F> {
             schlick: has::<F>(flags, LaneBsdf::SCHLICK),
             rough: has::<F>(flags, LaneBsdf::ROUGH),
             rough_glass: has::<F>(flags, LaneBsdf::ROUGH_GLASS),
-            alpha: column(&rows, Column::Alpha as usize),
+            alpha: column(rows, Column::Alpha),
             dielectric: has::<F>(flags, LaneBsdf::DIELECTRIC),
-            color: vec3s(&rows, Column::Color as usize),
-            diffuse: column(&rows, Column::Diffuse as usize),
-            glossy: column(&rows, Column::Glossy as usize),
-            mirror: column(&rows, Column::Mirror as usize),
+            color: vec3s(rows, Column::Color),
+            diffuse: column(rows, Column::Diffuse),
+            glossy: column(rows, Column::Glossy),
+            mirror: column(rows, Column::Mirror),
             eta: (
-                column(&rows, Column::EtaFront as usize),
-                column(&rows, Column::EtaBack as usize),
+                column(rows, Column::EtaFront),
+                column(rows, Column::EtaBack),
             ),
-            emission: vec3s(&rows, Column::Emission as usize),
+            emission: vec3s(rows, Column::Emission),
             emitter,
-            magnitude: column(&rows, Column::Magnitude as usize),
+            magnitude: column(rows, Column::Magnitude),
         }
     }
 }
 
-/// Number `c` of each lane's row.
+/// Column `c` of each lane's row: `rows` is the table's numbers and each
+/// lane's first number there.
 #[inline(always)]
-fn column<F: FloatLanes>(rows: &[&[f32; ROW]; WIDTH], c: usize) -> F {
-    let mut lanes = [0.0f32; WIDTH];
-    for k in 0..WIDTH {
-        lanes[k] = rows[k][c];
-    }
-    F::from_array(lanes)
+fn column<F: FloatLanes>((numbers, first): (&[f32], F::Ints), c: Column) -> F {
+    F::gather_from(numbers, first + F::Ints::splat(c as i32))
 }
 
-/// Numbers `c`, `c + 1`, `c + 2` of each lane's row, as vectors.
+/// Columns `c`, `c + 1`, `c + 2` of each lane's row, as vectors.
 #[inline(always)]
-fn vec3s<F: FloatLanes>(rows: &[&[f32; ROW]; WIDTH], c: usize) -> Vec3s<F> {
+fn vec3s<F: FloatLanes>((numbers, first): (&[f32], F::Ints), c: Column) -> Vec3s<F> {
+    let c = c as i32;
     Vec3s {
-        x: column(rows, c),
-        y: column(rows, c + 1),
-        z: column(rows, c + 2),
+        x: F::gather_from(numbers, first + F::Ints::splat(c)),
+        y: F::gather_from(numbers, first + F::Ints::splat(c + 1)),
+        z: F::gather_from(numbers, first + F::Ints::splat(c + 2)),
     }
 }
 
