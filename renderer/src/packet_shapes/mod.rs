@@ -70,6 +70,10 @@ struct Slot {
     index: u32,
 }
 
+/// Where [`PacketShapes::slot_lanes`] keeps the kind: the bits above the
+/// index.
+const KIND_SHIFT: i32 = 28;
+
 /// [`Slot::kind`] of a triangle.
 const TRIANGLE: usize = 0;
 /// [`Slot::kind`] of a box.
@@ -102,6 +106,10 @@ pub struct PacketShapes {
     /// Per object id, which primitive it is (for a triangle or a model,
     /// only the kind: [`PacketHits::triangle`] says which triangle).
     slots: Vec<Slot>,
+    /// [`PacketShapes::slots`] as lanes gather them: per object id, the
+    /// kind in the top bits ([`KIND_SHIFT`]) and the index below, then one
+    /// entry of no kind, which an id past the objects (−1: no hit) reads.
+    slot_lanes: Vec<i32>,
     /// Per triangle key ([`PacketHits::triangle`]), its index in `triangles`.
     triangle_at: Vec<u32>,
     /// Per triangle key, the mesh instance and the triangle's index in its
@@ -275,6 +283,26 @@ impl PacketShapes {
 
     /// `world`'s `primitives` laid out, in a tree or not.
     fn laid_out(world: &World, primitives: &[Primitive], with_tree: bool) -> Option<Self> {
+        let mut shapes = Self::lay_out(world, primitives, with_tree)?;
+        let none = Slot {
+            kind: NO_KIND,
+            index: 0,
+        };
+        shapes.slot_lanes = (shapes.slots.iter().chain([&none]))
+            .map(|slot| {
+                assert!(
+                    slot.index < 1 << KIND_SHIFT,
+                    "{} primitives of a kind",
+                    slot.index
+                );
+                ((slot.kind as i32) << KIND_SHIFT) | slot.index as i32
+            })
+            .collect();
+        Some(shapes)
+    }
+
+    /// [`PacketShapes::laid_out`] but for the slots' lane table.
+    fn lay_out(world: &World, primitives: &[Primitive], with_tree: bool) -> Option<Self> {
         let grouped = world.grouped_triangles().unwrap_or(&[]);
         // Keys: a grouped triangle's index in the group; without a group,
         // the `<triangle>`s numbered in object order.
@@ -301,6 +329,7 @@ impl PacketShapes {
                 };
                 world.objects.len()
             ],
+            slot_lanes: Vec::new(),
             triangle_at: vec![0; grouped.len() + next_key as usize],
             from_mesh: Vec::new(),
             count: primitives.len(),
@@ -550,23 +579,31 @@ impl PacketShapes {
         rays: &Rays<F>,
         hits: &PacketHits<F>,
     ) -> (Vec3s<F>, Vec3s<F>) {
-        // Each lane's primitive, by kind: its index there and the lane's
-        // bit (without branches: kinds vary from lane to lane).
+        // Each lane's primitive: its kind and its index among that kind's
+        // (a triangle's by its key), gathered on lanes.
+        let slot = F::Ints::gather_from(&self.slot_lanes, hits.object);
+        let kinds = slot.shr::<KIND_SHIFT>();
+        let mut at = slot & F::Ints::splat((1 << KIND_SHIFT) - 1);
+        if !self.triangle_at.is_empty() {
+            let triangle_at: &[i32] = bytemuck::cast_slice(&self.triangle_at);
+            let triangles = F::Ints::gather_from(triangle_at, hits.triangle);
+            at = F::Ints::select(
+                kinds.simd_gt(F::Ints::splat(TRIANGLE as i32)),
+                at,
+                triangles,
+            );
+        }
+        // Per kind, its lanes and their indices (0 in the other lanes,
+        // which its surface also reads).
         let mut index = [[0u32; WIDTH]; NO_KIND + 1];
         let mut bits = [0u32; NO_KIND + 1];
-        let none = Slot {
-            kind: NO_KIND,
-            index: 0,
-        };
-        let keys = hits.triangle.to_array();
-        for (lane, object) in hits.object.to_array().into_iter().enumerate() {
-            // −1 (no hit) becomes usize::MAX, beyond every object.
-            let slot = self.slots.get(object as usize).copied().unwrap_or(none);
-            index[slot.kind][lane] = match slot.kind {
-                TRIANGLE => self.triangle_at[keys[lane] as usize],
-                _ => slot.index,
-            };
-            bits[slot.kind] |= 1 << lane;
+        for kind in [TRIANGLE, BOX, SPHERE, PLANE, OTHER] {
+            let lanes = of_kind::<F>(kinds, kind);
+            bits[kind] = lanes.to_bitmask();
+            if bits[kind] != 0 {
+                let own = F::Ints::select(lanes, at, F::Ints::splat(0)).to_array();
+                index[kind] = own.map(|i| i as u32);
+            }
         }
         let hit_bits = bits[TRIANGLE] | bits[BOX] | bits[SPHERE] | bits[PLANE] | bits[OTHER];
         let (mut point, mut normal) = (Vec3s::ZERO, Vec3s::ZERO);
@@ -702,6 +739,14 @@ impl<F: FloatLanes> Visitor<F> for Occluded<'_, F> {
             .spheres
             .occluded(&p.spheres, leaf.spheres.clone(), t_max, settled)
     }
+}
+
+/// The lanes whose kind (`kinds`) is `kind`.
+#[inline(always)]
+fn of_kind<F: FloatLanes>(kinds: F::Ints, kind: usize) -> F::Mask {
+    let from = kinds.simd_gt(F::Ints::splat(kind as i32 - 1));
+    let past = kinds.simd_gt(F::Ints::splat(kind as i32));
+    from & !past
 }
 
 /// `n` in the lanes of `lanes`, 0 elsewhere.
