@@ -10,10 +10,11 @@
 //! u = (x + ½) / W across and at θ = π y / (H − 1) down, the first and last
 //! rows on the poles.
 
+use super::alias_lanes::AliasLanes;
 use crate::geometry::alias_table::AliasTable;
 use crate::geometry::polar::{atan2, sin_cos_turns};
 use crate::packet::polar::{atan2s, sin_cos_turns_lanes};
-use crate::packet::{FloatLanes, MaskLanes, Vec3s, WIDTH};
+use crate::packet::{FloatLanes, IntLanes, MaskLanes, Vec3s};
 use glam::{Vec2, Vec3};
 use scene::EnvImage;
 use scene::color::luminance;
@@ -33,6 +34,12 @@ pub struct EnvMap {
     bands: Option<AliasTable>,
     /// Per band, its W cells by weight (`None` for a black band).
     cells: Vec<Option<AliasTable>>,
+    /// [`EnvMap::bands`] for lanes.
+    band_lanes: Option<AliasLanes>,
+    /// [`EnvMap::cells`] for lanes, band after band.
+    cell_lanes: AliasLanes,
+    /// Per band, 1 when it has cells to draw (not black), else 0.
+    drawn_bands: Vec<i32>,
     /// Per cell (band-major), the density in solid angle of directions drawn in it.
     density: Vec<f32>,
     /// cos θ of each texel row.
@@ -114,11 +121,15 @@ impl EnvMap {
             })
             .collect();
         let mean = Vec3::from_array(total_rgb.map(|s| (s / (4.0 * std::f64::consts::PI)) as f32));
+        let bands = AliasTable::new(&band_weights);
         EnvMap {
             width: w as u32,
             height: h as u32,
             texels,
-            bands: AliasTable::new(&band_weights),
+            band_lanes: bands.as_ref().map(|b| AliasLanes::new([Some(b)], h - 1)),
+            bands,
+            cell_lanes: AliasLanes::new(cells.iter().map(Option::as_ref), w),
+            drawn_bands: cells.iter().map(|c| i32::from(c.is_some())).collect(),
             cells,
             density,
             row_cos,
@@ -286,63 +297,50 @@ pub struct MapSamples<F: FloatLanes> {
 
 impl EnvMap {
     /// [`EnvMap::sample`] of the points (`ux`, `uy`) in the lanes of
-    /// `lanes`, bit for bit: each lane picks its band and cell from the
-    /// alias tables, the directions and polar angles are found on lanes,
-    /// and each lane reads its cell's texels.
-    #[inline]
+    /// `lanes`, bit for bit: bands and cells drawn from the alias tables,
+    /// directions, polar angles and densities on lanes; each lane reads its
+    /// cell's texels.
+    #[inline(always)]
     pub fn sample_lanes<F: FloatLanes>(&self, ux: F, uy: F, lanes: F::Mask) -> MapSamples<F> {
-        let (ux, uy) = (ux.as_array(), uy.as_array());
-        let mut cell = [(0usize, 0usize); WIDTH];
-        let (mut column, mut across, mut down) = ([0.0; WIDTH], [0.0; WIDTH], [0.0; WIDTH]);
-        let (mut cos0, mut cos1, mut band_f) = ([1.0; WIDTH], [1.0; WIDTH], [0.0; WIDTH]);
-        let mut found = 0u32;
-        let mut bits = lanes.to_bitmask();
-        while bits != 0 {
-            let k = bits.trailing_zeros() as usize;
-            bits &= bits - 1;
-            let Some((band, v)) = self.bands.as_ref().map(|b| b.sample_with_remainder(uy[k]))
-            else {
-                continue;
+        let Some(bands) = &self.band_lanes else {
+            return MapSamples {
+                found: F::Mask::NONE,
+                dir: Vec3s::splat(Vec3::Y),
+                pdf: F::ONE,
+                radiance: Vec3s::ZERO,
             };
-            let Some((c, s)) = self.cells[band]
-                .as_ref()
-                .map(|t| t.sample_with_remainder(ux[k]))
-            else {
-                continue;
-            };
-            found |= 1 << k;
-            cell[k] = (c, band);
-            (column[k], across[k], down[k]) = (c as f32, s, v);
-            (cos0[k], cos1[k]) = (self.row_cos[band], self.row_cos[band + 1]);
-            band_f[k] = band as f32;
-        }
+        };
+        let (band, down) = bands.sample_with_remainder(F::Ints::splat(0), uy);
+        let drawn = F::Ints::gather_from(&self.drawn_bands, band).simd_gt(F::Ints::splat(0));
+        let found = lanes & drawn;
+        let (column, across) = self.cell_lanes.sample_with_remainder(band, ux);
         let (w, h) = (self.width as f32, self.height as f32);
-        let s = F::from_array(across);
         let (sin_phi, cos_phi) =
-            sin_cos_turns_lanes((F::from_array(column) + s + F::splat(0.5)) / F::splat(w));
-        let (cos0, cos1) = (F::from_array(cos0), F::from_array(cos1));
-        let cos_theta = (cos0 + (cos1 - cos0) * F::from_array(down))
+            sin_cos_turns_lanes((column.to_floats() + across + F::splat(0.5)) / F::splat(w));
+        let cos0 = F::gather_from(&self.row_cos, band);
+        let cos1 = F::gather_from(&self.row_cos, band + F::Ints::splat(1));
+        let cos_theta = (cos0 + (cos1 - cos0) * down)
             .max(F::splat(-1.0))
             .min(F::ONE);
         let sin_theta = (F::ONE - cos_theta * cos_theta).max(F::ZERO).sqrt();
         let y = atan2s(sin_theta, cos_theta) * F::splat(1.0 / PI) * F::splat(h - 1.0);
-        let fy = (y - F::from_array(band_f))
-            .max(F::ZERO)
-            .min(F::ONE)
-            .to_array();
+        let fy = (y - band.to_floats()).max(F::ZERO).min(F::ONE).to_array();
+        let cell = band * F::Ints::splat(self.width as i32) + column;
+        let pdf = found.select(F::gather_from(&self.density, cell), F::ONE);
+        let (band, column, across) = (band.to_array(), column.to_array(), across.to_array());
         let mut radiance = Vec3s::ZERO;
-        let mut pdf = F::ONE;
-        let mut bits = found;
+        let mut bits = found.to_bitmask();
         while bits != 0 {
             let k = bits.trailing_zeros() as usize;
             bits &= bits - 1;
-            let (c, band) = cell[k];
-            radiance.set_lane(k, self.bilinear(c, band, across[k], fy[k]));
-            pdf.as_mut_array()[k] = self.density[band * self.width as usize + c];
+            let (c, b) = (column[k] as usize, band[k] as usize);
+            radiance.set_lane(k, self.bilinear(c, b, across[k], fy[k]));
         }
+        let dir = Vec3s::new(sin_theta * sin_phi, cos_theta, -sin_theta * cos_phi);
         MapSamples {
-            found: F::Mask::from_bitmask(found),
-            dir: Vec3s::new(sin_theta * sin_phi, cos_theta, -sin_theta * cos_phi),
+            found,
+            // (Lanes that drew nothing: +y, not whatever their numbers made.)
+            dir: Vec3s::select(found, dir, Vec3s::splat(Vec3::Y)),
             pdf,
             radiance,
         }

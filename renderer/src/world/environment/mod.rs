@@ -10,6 +10,7 @@
 //! what MIS compensation (Karlík et al. 2019: sample ∝ max(L − mean L, 0))
 //! reduces to for a constant.
 
+mod alias_lanes;
 mod cache;
 mod map;
 
@@ -145,7 +146,7 @@ impl Environment {
     /// [`Environment::sample`] of the points (`ux`, `uy`) in the lanes of
     /// `lanes`, bit for bit ([`EnvMap::sample_lanes`], turned to world space
     /// as glam turns it and tinted); none found when it is not sampled.
-    #[inline]
+    #[inline(always)]
     pub fn sample_lanes<F: FloatLanes>(&self, ux: F, uy: F, lanes: F::Mask) -> MapSamples<F> {
         let map = match &self.map {
             Some(map) if self.sampled => map,
