@@ -212,7 +212,7 @@ impl EnvMap {
     /// texel coordinates on lanes (the arc tangents, the costly part), then
     /// each lane of `lanes` reads its texels; the other lanes get zero. Bit
     /// for bit what each direction gets alone.
-    #[inline]
+    #[inline(always)]
     pub fn radiance_and_pdf_lanes<F: FloatLanes>(
         &self,
         v: Vec3s<F>,
@@ -224,18 +224,39 @@ impl EnvMap {
         let theta = atan2s((v.x * v.x + v.z * v.z).sqrt(), v.y);
         let y = theta * F::splat(1.0 / PI) * F::splat(h - 1.0);
         let y = y.max(F::ZERO).min(F::splat(h - 1.0));
-        let (x, y) = (x.to_array(), y.to_array());
-        let mut radiance = Vec3s::ZERO;
-        let mut pdf = F::ZERO;
-        let mut bits = lanes.to_bitmask();
-        while bits != 0 {
-            let k = bits.trailing_zeros() as usize;
-            bits &= bits - 1;
-            let (l, p) = self.radiance_and_pdf_at(x[k], y[k]);
-            radiance.set_lane(k, l);
-            pdf.as_mut_array()[k] = p;
-        }
-        (radiance, pdf)
+        // `radiance_and_pdf_at`, every lane at once.
+        let column = saturated_below::<F>(x, self.width as i32 - 1);
+        let band = saturated_below::<F>(y, self.height as i32 - 2);
+        let radiance =
+            self.bilinear_lanes(column, band, x - column.to_floats(), y - band.to_floats());
+        let cell = band * F::Ints::splat(self.width as i32) + column;
+        let pdf = F::gather_from(&self.density, cell);
+        (
+            Vec3s::select(lanes, radiance, Vec3s::ZERO),
+            lanes.select(pdf, F::ZERO),
+        )
+    }
+
+    /// [`EnvMap::bilinear`] in every lane: the texels gathered, the same
+    /// operations.
+    #[inline(always)]
+    fn bilinear_lanes<F: FloatLanes>(
+        &self,
+        column: F::Ints,
+        band: F::Ints,
+        fx: F,
+        fy: F,
+    ) -> Vec3s<F> {
+        let stride = self.width as i32 + 1;
+        let at = band * F::Ints::splat(stride) + column;
+        let numbers: &[f32] = bytemuck::cast_slice(&self.texels);
+        let below = at + F::Ints::splat(stride);
+        let one = F::Ints::splat(1);
+        let (one_fx, one_fy) = (F::ONE - fx, F::ONE - fy);
+        let top = texel_lanes::<F>(numbers, at) * one_fx + texel_lanes::<F>(numbers, at + one) * fx;
+        let bottom =
+            texel_lanes::<F>(numbers, below) * one_fx + texel_lanes::<F>(numbers, below + one) * fx;
+        top * one_fy + bottom * fy
     }
 
     /// [`EnvMap::radiance_and_pdf`] at texel coordinates (x, y).
@@ -282,6 +303,27 @@ impl EnvMap {
     }
 }
 
+/// Texel `at` of each lane, from the texels' `numbers` (three each).
+#[inline(always)]
+fn texel_lanes<F: FloatLanes>(numbers: &[f32], at: F::Ints) -> Vec3s<F> {
+    let first = at * F::Ints::splat(3);
+    Vec3s {
+        x: F::gather_from(numbers, first),
+        y: F::gather_from(numbers, first + F::Ints::splat(1)),
+        z: F::gather_from(numbers, first + F::Ints::splat(2)),
+    }
+}
+
+/// `x as usize` capped at `last`, in every lane (`as` saturates: a
+/// negative or NaN x gives 0).
+#[inline(always)]
+fn saturated_below<F: FloatLanes>(x: F, last: i32) -> F::Ints {
+    let i = x.trunc_to_ints();
+    let last = F::Ints::splat(last);
+    let i = F::Ints::select(i.simd_gt(last), last, i);
+    F::Ints::select(F::Ints::splat(0).simd_gt(i), F::Ints::splat(0), i)
+}
+
 /// Sixteen directions drawn from the map ([`EnvMap::sample_lanes`]).
 #[derive(Clone, Copy, Debug)]
 pub struct MapSamples<F: FloatLanes> {
@@ -324,18 +366,14 @@ impl EnvMap {
             .min(F::ONE);
         let sin_theta = (F::ONE - cos_theta * cos_theta).max(F::ZERO).sqrt();
         let y = atan2s(sin_theta, cos_theta) * F::splat(1.0 / PI) * F::splat(h - 1.0);
-        let fy = (y - band.to_floats()).max(F::ZERO).min(F::ONE).to_array();
+        let fy = (y - band.to_floats()).max(F::ZERO).min(F::ONE);
         let cell = band * F::Ints::splat(self.width as i32) + column;
         let pdf = found.select(F::gather_from(&self.density, cell), F::ONE);
-        let (band, column, across) = (band.to_array(), column.to_array(), across.to_array());
-        let mut radiance = Vec3s::ZERO;
-        let mut bits = found.to_bitmask();
-        while bits != 0 {
-            let k = bits.trailing_zeros() as usize;
-            bits &= bits - 1;
-            let (c, b) = (column[k] as usize, band[k] as usize);
-            radiance.set_lane(k, self.bilinear(c, b, across[k], fy[k]));
-        }
+        let radiance = Vec3s::select(
+            found,
+            self.bilinear_lanes(column, band, across, fy),
+            Vec3s::ZERO,
+        );
         let dir = Vec3s::new(sin_theta * sin_phi, cos_theta, -sin_theta * cos_phi);
         MapSamples {
             found,

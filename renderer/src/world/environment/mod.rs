@@ -171,7 +171,7 @@ impl Environment {
     /// the lanes of `lanes` (zero elsewhere under a map), bit for bit what
     /// each gets alone: turned into the map's frame and normalised as glam
     /// does it, then [`EnvMap::radiance_and_pdf_lanes`].
-    #[inline]
+    #[inline(always)]
     pub fn radiance_and_pdf_lanes<F: FloatLanes>(
         &self,
         dir: Vec3s<F>,
