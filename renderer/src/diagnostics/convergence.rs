@@ -90,9 +90,10 @@ pub fn converge(
 /// passes; [`time_to_reach`] interpolates between them, exactly for an
 /// error that falls as a power of the time). Not after
 /// every pass, because measuring slows the render: the measure's memory
-/// traffic made the pass after it 25–30% slower (spheres.xml path-traced,
-/// 16 ms a pass back to back, 20–23 ms after 20 ms of image-sized work on
-/// the calling thread), and a chart of such passes charts the measurement.
+/// traffic made the pass after it 22–41% slower (spheres.xml path-traced,
+/// medians of 16–17.5 ms a pass back to back, 20.5–23 ms after 20 ms of
+/// image-sized work on the calling thread, six runs), and a chart of such
+/// passes charts the measurement.
 pub fn next_measurement(spp: u32) -> u32 {
     spp + (spp / 8).max(1)
 }

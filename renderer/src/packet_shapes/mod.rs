@@ -70,8 +70,26 @@ struct Slot {
     index: u32,
 }
 
-/// Where [`PacketShapes::slot_lanes`] keeps the kind: the bits above the
-/// index.
+impl Slot {
+    /// No primitive.
+    const NONE: Slot = Slot {
+        kind: NO_KIND,
+        index: 0,
+    };
+
+    /// As [`PacketShapes::slots`] holds it, for lanes to gather: the kind
+    /// in the bits from [`KIND_SHIFT`] up, the index below.
+    fn packed(self) -> i32 {
+        assert!(
+            self.index < 1 << KIND_SHIFT,
+            "{} primitives of a kind",
+            self.index
+        );
+        ((self.kind as i32) << KIND_SHIFT) | self.index as i32
+    }
+}
+
+/// Where a packed [`Slot`] keeps the kind: the bits above the index.
 const KIND_SHIFT: i32 = 28;
 
 /// [`Slot::kind`] of a triangle.
@@ -103,13 +121,11 @@ pub struct PacketShapes {
     planes: Planes,
     /// The cylinders, cones and tori, tested lane by lane, outside the tree.
     others: Others,
-    /// Per object id, which primitive it is (for a triangle or a model,
-    /// only the kind: [`PacketHits::triangle`] says which triangle).
-    slots: Vec<Slot>,
-    /// [`PacketShapes::slots`] as lanes gather them: per object id, the
-    /// kind in the top bits ([`KIND_SHIFT`]) and the index below, then one
-    /// entry of no kind, which an id past the objects (−1: no hit) reads.
-    slot_lanes: Vec<i32>,
+    /// Per object id, which primitive it is ([`Slot::packed`]; for a
+    /// triangle or a model, only the kind: [`PacketHits::triangle`] says
+    /// which triangle), then one entry of no kind, which an id past the
+    /// objects (−1: no hit) reads.
+    slots: Vec<i32>,
     /// Per triangle key ([`PacketHits::triangle`]), its index in `triangles`.
     triangle_at: Vec<u32>,
     /// Per triangle key, the mesh instance and the triangle's index in its
@@ -283,26 +299,6 @@ impl PacketShapes {
 
     /// `world`'s `primitives` laid out, in a tree or not.
     fn laid_out(world: &World, primitives: &[Primitive], with_tree: bool) -> Option<Self> {
-        let mut shapes = Self::lay_out(world, primitives, with_tree)?;
-        let none = Slot {
-            kind: NO_KIND,
-            index: 0,
-        };
-        shapes.slot_lanes = (shapes.slots.iter().chain([&none]))
-            .map(|slot| {
-                assert!(
-                    slot.index < 1 << KIND_SHIFT,
-                    "{} primitives of a kind",
-                    slot.index
-                );
-                ((slot.kind as i32) << KIND_SHIFT) | slot.index as i32
-            })
-            .collect();
-        Some(shapes)
-    }
-
-    /// [`PacketShapes::laid_out`] but for the slots' lane table.
-    fn lay_out(world: &World, primitives: &[Primitive], with_tree: bool) -> Option<Self> {
         let grouped = world.grouped_triangles().unwrap_or(&[]);
         // Keys: a grouped triangle's index in the group; without a group,
         // the `<triangle>`s numbered in object order.
@@ -322,14 +318,7 @@ impl PacketShapes {
             spheres: Spheres::default(),
             planes: Planes::default(),
             others: Others::default(),
-            slots: vec![
-                Slot {
-                    kind: NO_KIND,
-                    index: 0
-                };
-                world.objects.len()
-            ],
-            slot_lanes: Vec::new(),
+            slots: vec![Slot::NONE.packed(); world.objects.len() + 1],
             triangle_at: vec![0; grouped.len() + next_key as usize],
             from_mesh: Vec::new(),
             count: primitives.len(),
@@ -346,7 +335,8 @@ impl PacketShapes {
                 shapes.slots[t.object as usize] = Slot {
                     kind: TRIANGLE,
                     index: 0,
-                };
+                }
+                .packed();
             }
             Primitive::Object(id) => shapes.push(world, id, key_of[id as usize]),
         };
@@ -411,7 +401,7 @@ impl PacketShapes {
             Object::Shape(shape) => (OTHER, self.others.push(object, shape)),
             other => unreachable!("object {id} has no packet test: {other:?}"),
         };
-        self.slots[id as usize] = Slot { kind, index };
+        self.slots[id as usize] = Slot { kind, index }.packed();
     }
 
     /// How many primitives each bounded kind holds.
@@ -581,7 +571,7 @@ impl PacketShapes {
     ) -> (Vec3s<F>, Vec3s<F>) {
         // Each lane's primitive: its kind and its index among that kind's
         // (a triangle's by its key), gathered on lanes.
-        let slot = F::Ints::gather_from(&self.slot_lanes, hits.object);
+        let slot = F::Ints::gather_from(&self.slots, hits.object);
         let kinds = slot.shr::<KIND_SHIFT>();
         let mut at = slot & F::Ints::splat((1 << KIND_SHIFT) - 1);
         if !self.triangle_at.is_empty() {

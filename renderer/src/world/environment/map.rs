@@ -208,10 +208,10 @@ impl EnvMap {
         self.radiance_and_pdf_at(x, y)
     }
 
-    /// [`EnvMap::radiance_and_pdf`] of sixteen unit directions at once: the
-    /// texel coordinates on lanes (the arc tangents, the costly part), then
-    /// each lane of `lanes` reads its texels; the other lanes get zero. Bit
-    /// for bit what each direction gets alone.
+    /// [`EnvMap::radiance_and_pdf`] of sixteen unit directions at once, all
+    /// on lanes: texel coordinates, cells, the four texels gathered and
+    /// interpolated, densities; zero in the lanes not in `lanes`. Bit for
+    /// bit what each direction gets alone.
     #[inline(always)]
     pub fn radiance_and_pdf_lanes<F: FloatLanes>(
         &self,
