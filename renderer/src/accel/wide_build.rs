@@ -73,7 +73,7 @@ pub fn build_wide(
 }
 
 /// The wide nodes (node 0 the root) over the primitives `refs`, which it
-/// reorders, with leaves of at most `leaf_max` (1..=8) primitives; each
+/// reorders, with leaves of at most `leaf_max` (1..=[`LEAF_TRIANGLES`]) primitives; each
 /// leaf's packs are runs (first, count ≤ [`PACK`]) of `refs` in their new
 /// order; and the box around them all. No primitives give no nodes. The
 /// layout of [`build_wide`], for any boxed primitives.
@@ -83,7 +83,7 @@ pub fn build_wide_refs(
 ) -> (Vec<WideNode>, Vec<(u32, u32)>, Aabb) {
     assert!(
         (1..=LEAF_TRIANGLES).contains(&leaf_max),
-        "leaves of 1 to 8 primitives"
+        "leaves of 1 to {LEAF_TRIANGLES} primitives"
     );
     if refs.is_empty() {
         return (Vec::new(), Vec::new(), Aabb::EMPTY);
