@@ -89,6 +89,11 @@ pub struct MeshBvh {
     /// reciprocal direction or stack to prepare and no children to sort.
     /// Empty for a larger mesh.
     flat: Vec<TrianglePack>,
+    /// Whether [`MeshBvh::closest_hits`] traces incoherent rays
+    /// interleaved ([`INTERLEAVED`] at a time): for a tree larger than
+    /// half the last-level cache, whose walks wait on memory; one after
+    /// another otherwise ([`interleaves`]).
+    interleave: bool,
 }
 
 impl MeshBvh {
@@ -114,14 +119,25 @@ impl MeshBvh {
         } else {
             Vec::new()
         };
-        MeshBvh {
+        let mut bvh = MeshBvh {
             flat,
             start: start_of(&nodes),
             nodes,
             packs,
             triangle_count: triangles.len(),
             bounds,
-        }
+            interleave: false,
+        };
+        bvh.interleave = interleaves(bvh.bytes());
+        bvh
+    }
+
+    /// This BVH with its batches' incoherent rays traced interleaved or
+    /// not, whatever its size (for tests of both ways).
+    #[cfg(test)]
+    pub(crate) fn with_interleaving(mut self, on: bool) -> MeshBvh {
+        self.interleave = on;
+        self
     }
 
     /// The box around every triangle (empty for an empty mesh).
@@ -187,10 +203,21 @@ impl MeshBvh {
             hits: &mut *hits,
             alone: &mut alone,
         });
-        with_widest_simd(
-            #[inline(always)]
-            || self.interleaved(alone.into_iter().map(|i| (i, &rays[i])), hits),
-        );
+        if self.interleave {
+            with_widest_simd(
+                #[inline(always)]
+                || self.interleaved(alone.into_iter().map(|i| (i, &rays[i])), hits),
+            );
+        } else {
+            with_widest_simd(
+                #[inline(always)]
+                || {
+                    for i in alone {
+                        hits[i] = self.closest_hit_inline(&rays[i]);
+                    }
+                },
+            );
+        }
     }
 
     /// [`MeshBvh::closest_hit`], compiled into its caller.
@@ -375,6 +402,18 @@ impl WithLanes for Packets<'_> {
 /// them mispredicted).
 pub const FLAT_TRIANGLES: usize = 16;
 
+/// Whether a tree of `bytes` is traced interleaved in batches: when it is
+/// larger than half the last-level cache. Incoherent rays of the knot
+/// (`raylab bench knot:N`, single rays against batches, 1 / 2 threads, in
+/// Mrays/s, on a 32 MiB L3): 50,000 triangles (2.4 MB) 5.51 / 10.7 one at
+/// a time against 4.72 / 9.38 interleaved; 200,000 (9.5 MB) 5.09 / 10.3
+/// against 4.49 / 8.95; 400,000 (19.6 MB) 3.96 / 8.32 against 4.25 / 8.38;
+/// 600,000 2.98 / 6.69 against 4.00 / 7.91; a million 2.70 / 5.81 against
+/// 3.79 / 7.53.
+fn interleaves(bytes: usize) -> bool {
+    bytes > super::cache_size::last_level_cache_bytes() / 2
+}
+
 /// Rays traced at a time by [`MeshBvh::closest_hits`]. On the
 /// million-triangle knot's incoherent rays (`cargo bench --bench bvh`, one
 /// thread) 4 gave 2.2 Mrays/s, 8 gave 2.4–2.5 and 16 gave 2.55 (within the
@@ -551,7 +590,7 @@ mod tests {
         for n in 1..=20usize {
             let (p, mut t) = grid(10, 1, 0.0);
             t.truncate(n);
-            let bvh = MeshBvh::build(&p, &t);
+            let bvh = MeshBvh::build(&p, &t).with_interleaving(true);
             let root = bvh.root().expect("a root");
             assert_eq!(root.packs().is_some(), n <= LEAF_TRIANGLES, "{n} triangles");
             let mut rays = Vec::new();
@@ -625,14 +664,19 @@ mod tests {
                 Ray::new(origin, rng.next_direction())
             })
             .collect();
-        // Fewer rays than interleaved slots, exactly as many, and many more.
-        for n in [0, 1, INTERLEAVED - 1, INTERLEAVED, rays.len()] {
-            let mut hits = vec![None; n];
-            bvh.closest_hits(&rays[..n], &mut hits);
-            for (ray, hit) in rays[..n].iter().zip(&hits) {
-                assert_eq!(*hit, bvh.closest_hit(ray), "{ray:?}");
+        // Interleaved (as a tree too large for the cache is) or one ray
+        // after another; fewer rays than interleaved slots, exactly as
+        // many, and many more.
+        for interleaved in [true, false] {
+            let bvh = bvh.clone().with_interleaving(interleaved);
+            for n in [0, 1, INTERLEAVED - 1, INTERLEAVED, rays.len()] {
+                let mut hits = vec![None; n];
+                bvh.closest_hits(&rays[..n], &mut hits);
+                for (ray, hit) in rays[..n].iter().zip(&hits) {
+                    assert_eq!(*hit, bvh.closest_hit(ray), "{ray:?}");
+                }
+                assert!(n < 100 || hits.iter().filter(|h| h.is_some()).count() > n / 4);
             }
-            assert!(n < 100 || hits.iter().filter(|h| h.is_some()).count() > n / 4);
         }
         let empty = MeshBvh::build(&[], &[]);
         let mut hits = vec![

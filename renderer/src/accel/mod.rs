@@ -9,7 +9,8 @@
 //!   a batch ([`MeshBvh::closest_hits`]): coherent rays in packets of
 //!   sixteen in SIMD lanes (`mesh/lanes.rs`) that share each node's loads
 //!   and each triangle's test, incoherent ones several at a time,
-//!   interleaved, to hide memory latency.
+//!   interleaved, to hide memory latency, when the tree is larger than
+//!   half the last-level cache (`cache_size.rs`; else one after another).
 //! - [`SceneBvh`]: the top level over items known only by their boxes (mesh
 //!   instances, analytic shapes), the same 8-wide nodes by the same binned
 //!   SAH, leaves of up to eight items; the caller intersects each item.
@@ -25,6 +26,7 @@
 //! them for the widest SIMD the CPU has.
 
 pub(crate) mod binned_sah;
+mod cache_size;
 mod huge_pages;
 pub mod instance;
 pub mod mesh;

@@ -22,7 +22,9 @@ type Mesh = (Vec<Vec3>, Vec<[u32; 3]>);
 /// disagreements. Returns how many rays hit.
 fn assert_equals_brute_force(mesh: &Mesh, rays: &[Ray], what: &str) -> usize {
     let (p, t) = mesh;
-    let bvh = MeshBvh::build(p, t);
+    // Batches interleaved, as a mesh too large for the cache traces them
+    // (one ray after another, the other way, is `closest_hit` below).
+    let bvh = MeshBvh::build(p, t).with_interleaving(true);
     let mut batched = vec![None; rays.len()];
     rays.par_chunks(1000)
         .zip(batched.par_chunks_mut(1000))
