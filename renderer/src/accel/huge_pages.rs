@@ -8,6 +8,10 @@
 //! in separate runs, did not show it within its noise); incoherent closest
 //! hits on 1 thread 2.0 -> 2.1-2.2 Mrays/s (fewer TLB misses); primary
 //! rays +1-2%.
+//!
+//! The first such array also fixes glibc's threshold for giving an
+//! allocation its own mapping ([`keep_large_allocations_out_of_the_heap`]),
+//! so that a build's transient arrays go back to the system when freed.
 #![allow(unsafe_code)]
 
 /// Bytes of one huge page.
@@ -31,15 +35,17 @@ pub fn with_capacity<T>(capacity: usize) -> Vec<T> {
 const OWN_MAPPING: usize = 4 << 20;
 
 /// Fixes glibc's threshold for giving an allocation its own mapping at
-/// [`OWN_MAPPING`] (once per process, at the first large array). Left to
-/// itself, glibc raises the threshold to the size of each mapped block
-/// freed (up to 32 MiB), after which a BVH build's transient arrays (a
-/// million triangles' boxes: 30.5 MiB) come from its heaps, where one
-/// small block above them keeps their pages: a thousand random edits of
-/// the million-triangle knot ended 38 MiB higher than half-way in 4 of 16
-/// runs with leaves of four packs (and 0 of 14 before, with other sizes);
-/// with the threshold fixed (at 128 KiB or 4 MiB through glibc's environment
-/// variable, 13 runs, and here, 8 runs) every run stayed flat.
+/// [`OWN_MAPPING`] (once per process, at the first large array; the
+/// setting is the process's). Left to itself, glibc raises the threshold
+/// to the size of each mapped block freed, up to 32 MiB (`mallopt(3)`),
+/// after which a BVH build's transient arrays (a million triangles' boxes:
+/// 30.5 MiB) are served from its heaps, which need not give freed memory
+/// back. Measured with the thousand-random-edits load test of the
+/// million-triangle knot (the whole `raylab` test binary, run repeatedly):
+/// with leaves of four packs it ended 38 MiB higher than half-way in 4 of
+/// 16 runs (0 of 14 with leaves of two); with the threshold fixed (at
+/// 128 KiB or 4 MiB through glibc's environment variable, 13 runs, and
+/// here, 8 runs) every run stayed flat.
 fn keep_large_allocations_out_of_the_heap() {
     #[cfg(all(target_os = "linux", target_env = "gnu"))]
     {

@@ -20,13 +20,12 @@ pub const WIDTH: usize = 8;
 /// A set of at most this many triangles becomes one leaf (four packs).
 /// A walk through a mesh too large for the caches waits for each node and
 /// leaf in turn, and a larger leaf is one level fewer to wait for, its
-/// packs loaded together: on the million-triangle knot against leaves of
-/// two packs (alternated, medians of 8 runs), incoherent closest hits on
-/// one thread 2.30 -> 2.48 Mrays/s (and 3.77 -> 4.20 on a knot of 200,000,
-/// which the caches hold better), primary rays 12.5 -> 12.9, 7% less
-/// memory, and a build that splits less: 111 -> 106 ms on two threads.
-/// Leaves of five packs were as fast, of six and eight slower. (Against
-/// one pack, two had given a fifth less memory and the same speed.)
+/// packs loaded together. On the million-triangle knot against leaves of
+/// two packs (alternated runs, medians): incoherent closest hits on one
+/// thread 2.30 -> 2.48 Mrays/s (8 runs; 3.77 -> 4.20 on a knot of 200,000,
+/// 6 runs), primary rays 12.5 -> 12.9 (4 runs), 6% less memory. Leaves of
+/// five packs gave the same, of six and eight 1-2% less (within the noise).
+/// (Against one pack, two had given a fifth less memory and the same speed.)
 pub const LEAF_TRIANGLES: usize = 4 * PACK;
 
 /// A reference to a child: an inner node, a leaf (a run of triangle packs)
